@@ -1,0 +1,5 @@
+//! The `bzspline` command.
+
+fn main() {
+    println!("bzspline: command-line interface under construction");
+}

@@ -1,0 +1,63 @@
+//! # bzspline
+//!
+//! The third-degree Bezier-type spline of O. Stelia, L. Potapenko and I. Sirenko
+//! ("On the one method of a third-degree Bezier type spline curve construction").
+//!
+//! Given knots `tau_0 < ... < tau_{N-1}`, control values `F_k` and one shape
+//! parameter `alpha_k` in `[1/3, 2/3]` per interval, the spline `S` is the C1
+//! piecewise cubic that
+//!
+//! 1. touches leg `k` of the control polygon at `x_k = tau_{k+1} - alpha_k h_k`:
+//!    `S(x_k) = alpha_k F_k + (1 - alpha_k) F_{k+1}` and
+//!    `S'(x_k) = (F_{k+1} - F_k) / h_k` (the paper's conditions (1)-(2));
+//! 2. has continuous value and first derivative at every interior knot;
+//! 3. starts at `F_0` and ends at `F_{N-1}`.
+//!
+//! Its knot values `phi_k = F_k + d_k` come from one diagonally dominant
+//! tridiagonal system (the paper's (16)), solved in O(N) by the Thomas
+//! algorithm; each piece is then exactly one cubic Bezier segment. The spline is
+//! linear in `F` with a non-negative basis for alphas in the theorem's range, so it
+//! stays inside the convex hull of the control points. The module [`spline`]
+//! states the equations as implemented, including the three misprints of the
+//! paper that this crate does not copy.
+//!
+//! Knots and intervals are numbered from 0 here (the paper numbers from 1):
+//! interval `k` runs from `knots[k]` to `knots[k + 1]` and has `alphas[k]`.
+//!
+//! # Example: the paper's Example 1
+//!
+//! ```
+//! use bzspline::Spline;
+//!
+//! let tau: Vec<f64> = (1..=11).map(f64::from).collect();
+//! let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+//! let s = Spline::new(&tau, &f)?; // alpha = 1/2 on every interval
+//!
+//! // Ends at the end points, touches every leg at its middle.
+//! assert_eq!(s.eval(1.0)?, 1.0);
+//! assert_eq!(s.eval(11.0)?, 1.5);
+//! for (k, (x, fk)) in s.tangent_points().into_iter().enumerate() {
+//!     assert!((s.eval(x)? - fk).abs() < 1e-12);
+//!     assert!((s.deriv(x, 1)? - (f[k + 1] - f[k])).abs() < 1e-12);
+//! }
+//! // Stays within the range of the control values (convex hull property).
+//! let ((_, lo), (_, hi)) = s.range();
+//! assert!(lo >= 1.0 && hi <= 10.0);
+//! // Every piece is one cubic Bezier segment.
+//! let seg = s.segment(0).unwrap();
+//! assert_eq!(seg.p[0], [1.0, 1.0]);
+//! # Ok::<(), bzspline::Error>(())
+//! ```
+
+mod bezier;
+mod error;
+pub mod spline;
+mod tridiag;
+
+pub use bezier::CubicBez;
+pub use error::{Error, Field};
+pub use spline::{
+    Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
+    MIN_RELATIVE_INTERVAL,
+};
+pub use tridiag::Thomas;

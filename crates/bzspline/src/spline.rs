@@ -1,0 +1,1146 @@
+//! The spline `y = S(x)` of Stelia, Potapenko and Sirenko.
+//!
+//! # The method, in the deviation form
+//!
+//! Knots `tau_0 < ... < tau_{N-1}`, values `F_0 .. F_{N-1}`, and one shape
+//! parameter `alpha_k` in `[1/3, 2/3]` per interval `[tau_k, tau_{k+1}]` (the paper
+//! numbers knots from 1 and intervals from 2; this crate counts from 0). With
+//! `h_k = tau_{k+1} - tau_k` and `dF_k = F_{k+1} - F_k`, the tangent abscissa of
+//! interval `k` is `x_k = tau_{k+1} - alpha_k h_k` and the point of leg `k` there is
+//! `f_k = alpha_k F_k + (1 - alpha_k) F_{k+1}` (the paper prints this with the
+//! weights swapped: misprint 1 of `method.md`).
+//!
+//! On each interval `S` is one cubic with `S(x_k) = f_k`, `S'(x_k) = dF_k / h_k`
+//! (conditions (1)-(2) of the paper), `S` and `S'` continuous at every interior
+//! knot, `S(tau_0) = F_0` and `S(tau_{N-1}) = F_{N-1}`. Writing the knot values as
+//! `phi_k = F_k + d_k` (so `d_0 = d_{N-1} = 0`), continuity of `S'` at knot `k`
+//! is the paper's system (16):
+//!
+//! ```text
+//! -A_k d_{k-1} + (B1_k + B2_k) d_k - C_k d_{k+1} = s_k - s_{k-1},   s_k = dF_k / h_k
+//! A_k  = a^2 / ((1-a)^2 h_{k-1})     B1_k = (2/a + 1) / h_{k-1}       (a = alpha_{k-1})
+//! C_k  = (1-b)^2 / (b^2 h_k)         B2_k = (2/(1-b) + 1) / h_k       (b = alpha_k)
+//! ```
+//!
+//! This module multiplies row `k` by `h_{k-1} h_k / (h_{k-1} + h_k)`, which turns
+//! every coefficient and the right-hand side into bounded numbers
+//! (`p = h_k / (h_{k-1} + h_k)`, `q = 1 - p`):
+//!
+//! ```text
+//! -p A' d_{k-1} + (p B1' + q B2') d_k - q C' d_{k+1} = q dF_k - p dF_{k-1}
+//! A' = a^2/(1-a)^2   B1' = 2/a + 1   B2' = 2/(1-b) + 1   C' = (1-b)^2/b^2
+//! ```
+//!
+//! `B1' >= A'` iff `a <= 2/3` and `B2' >= C'` iff `b >= 1/3`: the system is
+//! diagonally dominant in the theorem's range and the Thomas algorithm needs no
+//! pivoting. Values are scaled by a power of two so that `max |F|` is about 1, so
+//! values near `1e308` do not overflow intermediate products.
+//!
+//! In the local variable `t = (x - tau_k) / h_k` each piece depends only on
+//! `F_k, F_{k+1}, d_k, d_{k+1}` and `alpha_k`: its end slopes (times `h_k`) are
+//!
+//! ```text
+//! h S'(tau_k + 0)     = dF_k - d_k (2/(1-a) + 1) + d_{k+1} (1-a)^2 / a^2
+//! h S'(tau_{k+1} - 0) = dF_k + d_{k+1} (2/a + 1) - d_k a^2 / (1-a)^2
+//! ```
+//!
+//! and its Bezier ordinates are `phi_k`, `phi_k + h S'(tau_k+0)/3`,
+//! `phi_{k+1} - h S'(tau_{k+1}-0)/3`, `phi_{k+1}`.
+//!
+//! # Conventions
+//!
+//! - Piece `k` answers on the half-open interval `[tau_k, tau_{k+1})`; the last
+//!   piece also answers at `tau_{N-1}`. Values and first derivatives agree from
+//!   both sides at a knot; second and third derivatives at an interior knot
+//!   `tau_k` are those of piece `k` (the one to the right).
+//! - Outside `[tau_0, tau_{N-1}]` the [`Extrapolate`] policy decides; the default
+//!   is [`Extrapolate::Error`].
+
+use crate::bezier::CubicBez;
+use crate::error::{Error, Field};
+use crate::tridiag::Thomas;
+
+/// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
+/// literal `0.3333333333333333` parses to it).
+pub const ALPHA_MIN: f64 = 0.333_333_333_333_333_3;
+/// Largest accepted shape parameter: the double that the decimal literal
+/// `0.6666666666666667` parses to, one step above the double nearest to 2/3.
+pub const ALPHA_MAX: f64 = 0.666_666_666_666_666_7;
+/// The default shape parameter: each leg is touched at its middle.
+pub const DEFAULT_ALPHA: f64 = 0.5;
+/// An interval narrower than this fraction of the whole span is refused: it is
+/// below one unit in the last place of the span, so the knots' own rounding
+/// would decide the shape.
+pub const MIN_RELATIVE_INTERVAL: f64 = f64::EPSILON;
+
+/// What evaluation does outside `[tau_0, tau_{N-1}]`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Extrapolate {
+    /// Return [`Error::OutOfDomain`]. The default.
+    #[default]
+    Error,
+    /// Hold the end value: `S(x) = F_0` left of the span, `F_{N-1}` right of it,
+    /// and every derivative is 0 there.
+    Clamp,
+    /// Continue the end pieces' cubics.
+    Extend,
+}
+
+/// One shape parameter for every interval, or one each.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Alphas<'a> {
+    /// The same alpha on every interval.
+    Uniform(f64),
+    /// `alphas[k]` for interval `k`; there must be one fewer than knots.
+    PerInterval(&'a [f64]),
+}
+
+impl Default for Alphas<'_> {
+    fn default() -> Self {
+        Alphas::Uniform(DEFAULT_ALPHA)
+    }
+}
+
+/// Kind of a critical point of `S`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ExtremumKind {
+    /// `S'' > 0`: a local minimum.
+    Minimum,
+    /// `S'' < 0`: a local maximum.
+    Maximum,
+    /// `S'' = 0`: a stationary point that may be neither.
+    Stationary,
+}
+
+/// A point inside the span where `S'(x) = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Extremum {
+    /// Abscissa.
+    pub x: f64,
+    /// `S(x)`.
+    pub y: f64,
+    /// Minimum, maximum or neither.
+    pub kind: ExtremumKind,
+}
+
+/// The paper's spline of a function `y(x)`: immutable once built.
+///
+/// # Examples
+///
+/// ```
+/// use bzspline::Spline;
+/// let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+/// // The curve touches the leg (0,0)-(1,1) at its middle, x = 0.5, y = 0.5.
+/// assert!((s.eval(0.5)? - 0.5).abs() < 1e-15);
+/// assert!((s.deriv(0.5, 1)? - 1.0).abs() < 1e-15);
+/// // It starts and ends at the end points and stays below the polygon's top.
+/// assert_eq!(s.eval(0.0)?, 0.0);
+/// assert!(s.eval(1.0)? < 1.0);
+/// # Ok::<(), bzspline::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spline {
+    knots: Vec<f64>,
+    values: Vec<f64>,
+    alphas: Vec<f64>,
+    /// Power-basis coefficients of piece `k` in `t = (x - tau_k) / h_k`, divided
+    /// by `scale`.
+    coefs: Vec<[f64; 4]>,
+    /// Knot values `phi_k`, divided by `scale`.
+    phi: Vec<f64>,
+    scale: f64,
+    extrapolate: Extrapolate,
+}
+
+/// Checks knots: at least two, finite, strictly increasing, a finite span and no
+/// interval narrower than [`MIN_RELATIVE_INTERVAL`] of it. Returns the widths.
+pub(crate) fn validate_knots(knots: &[f64]) -> Result<Vec<f64>, Error> {
+    if knots.len() < 2 {
+        return Err(Error::TooFewPoints {
+            found: knots.len(),
+            min: 2,
+        });
+    }
+    check_finite(Field::Knot, knots)?;
+    for i in 1..knots.len() {
+        if knots[i] <= knots[i - 1] {
+            return Err(Error::NotIncreasing {
+                index: i,
+                previous: knots[i - 1],
+                value: knots[i],
+            });
+        }
+    }
+    let (first, last) = (knots[0], knots[knots.len() - 1]);
+    let span = last - first;
+    if !span.is_finite() {
+        return Err(Error::SpanOverflow { first, last });
+    }
+    let widths: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
+    for (k, &w) in widths.iter().enumerate() {
+        if w < span * MIN_RELATIVE_INTERVAL {
+            return Err(Error::IntervalTooSmall {
+                interval: k,
+                width: w,
+                span,
+            });
+        }
+    }
+    Ok(widths)
+}
+
+/// Returns the first non-finite entry as an error.
+pub(crate) fn check_finite(field: Field, xs: &[f64]) -> Result<(), Error> {
+    match xs.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Error::NonFinite {
+            field,
+            index,
+            value: xs[index],
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Expands and checks the shape parameters for `intervals` intervals.
+pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec<f64>, Error> {
+    let v = match alphas {
+        Alphas::Uniform(a) => vec![a; intervals],
+        Alphas::PerInterval(a) => {
+            if a.len() != intervals {
+                return Err(Error::LengthMismatch {
+                    field: Field::Alpha,
+                    expected: intervals,
+                    found: a.len(),
+                });
+            }
+            a.to_vec()
+        }
+    };
+    for (k, &a) in v.iter().enumerate() {
+        if !a.is_finite() {
+            return Err(Error::NonFinite {
+                field: Field::Alpha,
+                index: k,
+                value: a,
+            });
+        }
+        if !(ALPHA_MIN..=ALPHA_MAX).contains(&a) {
+            return Err(Error::AlphaOutOfRange {
+                interval: k,
+                value: a,
+            });
+        }
+    }
+    Ok(v)
+}
+
+/// A power of two close to `max |v|` (1 for an all-zero input), so that values
+/// divided by it lie in `[-2, 2]` and the division is exact.
+pub(crate) fn power_of_two_scale<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {
+    let m = values.into_iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return 1.0;
+    }
+    let e = m.log2().floor().clamp(-1022.0, 1023.0);
+    // powi cannot reach 2^-1022 through 2.0f64.powi on all platforms exactly, so
+    // build the double from its exponent bits.
+    f64::from_bits(((e as i64 + 1023) as u64) << 52)
+}
+
+/// The factored continuity system of an open spline: depends on the widths and
+/// alphas only, so one factorization serves every coordinate of a curve.
+#[derive(Clone, Debug)]
+pub(crate) struct OpenSystem {
+    /// `p_k` of row `k` (knot `k`, 1 <= k <= N-2), stored at `k - 1`.
+    p: Vec<f64>,
+    thomas: Thomas,
+}
+
+/// `a^2 / (1-a)^2`, `2/a + 1`, `2/(1-a) + 1`, `(1-a)^2 / a^2` for one alpha.
+#[inline]
+pub(crate) fn alpha_terms(a: f64) -> [f64; 4] {
+    let r = a / (1.0 - a);
+    [r * r, 2.0 / a + 1.0, 2.0 / (1.0 - a) + 1.0, 1.0 / (r * r)]
+}
+
+impl OpenSystem {
+    /// Builds and factors the row-scaled system (16) for interior knots.
+    pub(crate) fn new(widths: &[f64], alphas: &[f64]) -> Self {
+        let n = widths.len() + 1;
+        let m = n.saturating_sub(2);
+        let mut lower = Vec::with_capacity(m);
+        let mut diag = Vec::with_capacity(m);
+        let mut upper = Vec::with_capacity(m);
+        let mut p_all = Vec::with_capacity(m);
+        for k in 1..n - 1 {
+            let (hl, hr) = (widths[k - 1], widths[k]);
+            let p = hr / (hl + hr);
+            let q = hl / (hl + hr);
+            let [al, b1, _, _] = alpha_terms(alphas[k - 1]);
+            let [_, _, b2, cr] = alpha_terms(alphas[k]);
+            lower.push(-p * al);
+            diag.push(p * b1 + q * b2);
+            upper.push(-q * cr);
+            p_all.push(p);
+        }
+        // Diagonal dominance with a strictly dominant first row (it has no lower
+        // neighbour) keeps every pivot positive, so factoring cannot fail.
+        let thomas = Thomas::factor(&lower, &diag, &upper).unwrap_or_default();
+        OpenSystem { p: p_all, thomas }
+    }
+
+    /// Solves for the deviations `d` (length N, zero at both ends) of the scaled
+    /// values `f`.
+    pub(crate) fn solve(&self, f: &[f64], d: &mut Vec<f64>) {
+        let n = f.len();
+        d.clear();
+        d.resize(n, 0.0);
+        if n < 3 {
+            return;
+        }
+        for k in 1..n - 1 {
+            let p = self.p[k - 1];
+            let q = 1.0 - p;
+            d[k] = q * (f[k + 1] - f[k]) - p * (f[k] - f[k - 1]);
+        }
+        self.thomas.solve_in_place(&mut d[1..n - 1]);
+    }
+}
+
+/// Power-basis coefficients in `t` of the piece between scaled values `f0, f1`
+/// with deviations `d0, d1` and shape parameter `a`.
+#[inline]
+pub(crate) fn piece_coefs(f0: f64, f1: f64, d0: f64, d1: f64, a: f64) -> [f64; 4] {
+    let [al, b1, b2, cr] = alpha_terms(a);
+    let df = f1 - f0;
+    let s0 = df - d0 * b2 + d1 * cr; // h S'(tau_k + 0)
+    let s1 = df + d1 * b1 - d0 * al; // h S'(tau_{k+1} - 0)
+    let rise = df + (d1 - d0);
+    [
+        f0 + d0,
+        s0,
+        3.0 * rise - 2.0 * s0 - s1,
+        s0 + s1 - 2.0 * rise,
+    ]
+}
+
+#[inline]
+fn horner(c: &[f64; 4], t: f64) -> f64 {
+    c[0] + t * (c[1] + t * (c[2] + t * c[3]))
+}
+
+/// Derivative of order `order` (0..=3) of the cubic `c` in `t`, not yet divided by
+/// `h^order`.
+#[inline]
+fn poly_deriv(c: &[f64; 4], t: f64, order: u32) -> f64 {
+    match order {
+        0 => horner(c, t),
+        1 => c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]),
+        2 => 2.0 * c[2] + 6.0 * t * c[3],
+        3 => 6.0 * c[3],
+        _ => 0.0,
+    }
+}
+
+/// Where a query falls.
+enum Locus {
+    /// Piece `k` at local parameter `t`.
+    Piece(usize, f64),
+    /// Clamped to the end value of knot `k`.
+    Held(usize),
+}
+
+impl Spline {
+    /// Builds the spline with `alpha = 1/2` on every interval.
+    ///
+    /// # Errors
+    ///
+    /// See [`Spline::with_alphas`].
+    pub fn new(knots: &[f64], values: &[f64]) -> Result<Self, Error> {
+        Self::build(knots, values, Alphas::default())
+    }
+
+    /// Builds the spline with the same `alpha` on every interval.
+    ///
+    /// # Errors
+    ///
+    /// See [`Spline::with_alphas`].
+    pub fn with_alpha(knots: &[f64], values: &[f64], alpha: f64) -> Result<Self, Error> {
+        Self::build(knots, values, Alphas::Uniform(alpha))
+    }
+
+    /// Builds the spline with `alphas[k]` on interval `k` (one fewer alphas than
+    /// knots).
+    ///
+    /// # Errors
+    ///
+    /// - [`Error::TooFewPoints`] for fewer than 2 knots;
+    /// - [`Error::LengthMismatch`] when `values` or `alphas` has the wrong length;
+    /// - [`Error::NonFinite`] for a NaN or infinite knot, value or alpha;
+    /// - [`Error::NotIncreasing`] when a knot does not exceed the one before;
+    /// - [`Error::SpanOverflow`] when `knots[N-1] - knots[0]` overflows;
+    /// - [`Error::IntervalTooSmall`] for an interval narrower than
+    ///   [`MIN_RELATIVE_INTERVAL`] times the span;
+    /// - [`Error::AlphaOutOfRange`] for an alpha outside `[ALPHA_MIN, ALPHA_MAX]`.
+    pub fn with_alphas(knots: &[f64], values: &[f64], alphas: &[f64]) -> Result<Self, Error> {
+        Self::build(knots, values, Alphas::PerInterval(alphas))
+    }
+
+    /// Builds the spline from any [`Alphas`] choice.
+    ///
+    /// # Errors
+    ///
+    /// See [`Spline::with_alphas`].
+    pub fn build(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
+        let widths = validate_knots(knots)?;
+        if values.len() != knots.len() {
+            return Err(Error::LengthMismatch {
+                field: Field::Value,
+                expected: knots.len(),
+                found: values.len(),
+            });
+        }
+        check_finite(Field::Value, values)?;
+        let alphas = resolve_alphas(alphas, widths.len())?;
+        let scale = power_of_two_scale(values);
+        let inv = 1.0 / scale;
+        let f: Vec<f64> = values.iter().map(|v| v * inv).collect();
+        let system = OpenSystem::new(&widths, &alphas);
+        let mut d = Vec::new();
+        system.solve(&f, &mut d);
+        let phi: Vec<f64> = f.iter().zip(&d).map(|(f, d)| f + d).collect();
+        let coefs = (0..widths.len())
+            .map(|k| piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k]))
+            .collect();
+        Ok(Spline {
+            knots: knots.to_vec(),
+            values: values.to_vec(),
+            alphas,
+            coefs,
+            phi,
+            scale,
+            extrapolate: Extrapolate::default(),
+        })
+    }
+
+    /// Returns the spline with another extrapolation policy.
+    #[must_use]
+    pub fn with_extrapolation(mut self, policy: Extrapolate) -> Self {
+        self.extrapolate = policy;
+        self
+    }
+
+    /// The extrapolation policy.
+    #[must_use]
+    pub fn extrapolation(&self) -> Extrapolate {
+        self.extrapolate
+    }
+
+    /// The knots `tau`.
+    #[must_use]
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The control values `F`.
+    #[must_use]
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// The shape parameters, one per interval.
+    #[must_use]
+    pub fn alphas(&self) -> &[f64] {
+        &self.alphas
+    }
+
+    /// Number of pieces (intervals), one fewer than knots.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.coefs.len()
+    }
+
+    /// Always false: a spline has at least one piece.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.coefs.is_empty()
+    }
+
+    /// The domain `[tau_0, tau_{N-1}]`.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[0], self.knots[self.knots.len() - 1])
+    }
+
+    /// The knot values `phi_k = S(tau_k)`; `phi_0 = F_0` and `phi_{N-1} = F_{N-1}`.
+    #[must_use]
+    pub fn knot_values(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = self.phi.iter().map(|p| p * self.scale).collect();
+        // The end values are the end control values by construction (d = 0).
+        v[0] = self.values[0];
+        let n = v.len();
+        v[n - 1] = self.values[n - 1];
+        v
+    }
+
+    /// The points `(x_k, f_k)` where the spline touches leg `k` of the control
+    /// polygon: `x_k = tau_{k+1} - alpha_k h_k`,
+    /// `f_k = alpha_k F_k + (1 - alpha_k) F_{k+1}` (method.md, misprint 1).
+    #[must_use]
+    pub fn tangent_points(&self) -> Vec<(f64, f64)> {
+        let inv = 1.0 / self.scale;
+        (0..self.len())
+            .map(|k| {
+                let a = self.alphas[k];
+                let h = self.knots[k + 1] - self.knots[k];
+                let x = self.knots[k + 1] - a * h;
+                let f = (a * (self.values[k] * inv) + (1.0 - a) * (self.values[k + 1] * inv))
+                    * self.scale;
+                (x, f)
+            })
+            .collect()
+    }
+
+    /// The slope `s_k = (F_{k+1} - F_k) / h_k` of leg `k`.
+    #[must_use]
+    pub fn leg_slope(&self, k: usize) -> Option<f64> {
+        let h = self.knots.get(k + 1)? - self.knots[k];
+        let inv = 1.0 / self.scale;
+        Some((self.values[k + 1] * inv - self.values[k] * inv) * self.scale / h)
+    }
+
+    /// Piece `k` as a cubic Bezier segment in the plane: control points at
+    /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md.
+    #[must_use]
+    pub fn segment(&self, k: usize) -> Option<CubicBez<2>> {
+        let c = self.coefs.get(k)?;
+        let (x0, x1) = (self.knots[k], self.knots[k + 1]);
+        let h = x1 - x0;
+        let s = self.scale;
+        let b0 = self.phi[k];
+        let b3 = self.phi[k + 1];
+        let s0 = c[1];
+        let s1 = c[1] + 2.0 * c[2] + 3.0 * c[3];
+        let y0 = if k == 0 { self.values[0] } else { b0 * s };
+        let y3 = if k + 1 == self.len() {
+            self.values[k + 1]
+        } else {
+            b3 * s
+        };
+        Some(CubicBez::new([
+            [x0, y0],
+            [x0 + h / 3.0, (b0 + s0 / 3.0) * s],
+            [x1 - h / 3.0, (b3 - s1 / 3.0) * s],
+            [x1, y3],
+        ]))
+    }
+
+    /// Every piece as a cubic Bezier segment, see [`Spline::segment`].
+    #[must_use]
+    pub fn segments(&self) -> Vec<CubicBez<2>> {
+        (0..self.len()).filter_map(|k| self.segment(k)).collect()
+    }
+
+    /// Coefficients `[c0, c1, c2, c3]` of piece `k` in the local variable
+    /// `x - tau_k`: `S(x) = c0 + c1 (x - tau_k) + c2 (x - tau_k)^2 + c3 (x - tau_k)^3`
+    /// (scipy's `PPoly` convention, lowest order first).
+    ///
+    /// On very narrow intervals the higher coefficients can overflow; the spline
+    /// itself does not use this form.
+    #[must_use]
+    pub fn power_coefficients(&self, k: usize) -> Option<[f64; 4]> {
+        let c = self.coefs.get(k)?;
+        let h = self.knots[k + 1] - self.knots[k];
+        let s = self.scale;
+        Some([
+            c[0] * s,
+            c[1] * s / h,
+            c[2] * s / h / h,
+            c[3] * s / h / h / h,
+        ])
+    }
+
+    /// Coefficients of piece `k` in `t = (x - tau_k) / h_k`, `t` in `[0, 1]`.
+    #[must_use]
+    pub fn unit_coefficients(&self, k: usize) -> Option<[f64; 4]> {
+        let c = self.coefs.get(k)?;
+        Some(c.map(|v| v * self.scale))
+    }
+
+    /// Index of the piece that answers at `x` inside the domain (see the module
+    /// docs for the convention at knots); queries outside map to the end pieces.
+    #[must_use]
+    pub fn piece_index(&self, x: f64) -> usize {
+        let i = self.knots.partition_point(|&k| k <= x);
+        i.saturating_sub(1).min(self.len() - 1)
+    }
+
+    fn locate_in(&self, x: f64, k: usize) -> Result<Locus, Error> {
+        let (a, b) = self.domain();
+        if !(a..=b).contains(&x) {
+            if x.is_nan() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: 0,
+                    value: x,
+                });
+            }
+            match self.extrapolate {
+                Extrapolate::Error => return Err(Error::OutOfDomain { x, min: a, max: b }),
+                Extrapolate::Clamp => {
+                    return Ok(Locus::Held(if x < a { 0 } else { self.len() }));
+                }
+                Extrapolate::Extend => {}
+            }
+        }
+        let t = (x - self.knots[k]) / (self.knots[k + 1] - self.knots[k]);
+        Ok(Locus::Piece(k, t))
+    }
+
+    fn eval_locus(&self, locus: Locus, order: u32) -> Result<f64, Error> {
+        match locus {
+            Locus::Held(k) => Ok(if order == 0 { self.values[k] } else { 0.0 }),
+            Locus::Piece(k, t) => {
+                if order == 0 && t == 1.0 {
+                    // The knot value itself, not the sum of the coefficients.
+                    return Ok(if k + 1 == self.len() {
+                        self.values[k + 1]
+                    } else {
+                        self.phi[k + 1] * self.scale
+                    });
+                }
+                let c = &self.coefs[k];
+                let mut v = poly_deriv(c, t, order) * self.scale;
+                if order == 0 && v.is_infinite() && (0.0..=1.0).contains(&t) {
+                    // Rounding above f64::MAX inside the hull: the true value is
+                    // within the control values, which are finite.
+                    v = f64::MAX.copysign(v);
+                }
+                let h = self.knots[k + 1] - self.knots[k];
+                for _ in 0..order.min(4) {
+                    v /= h;
+                }
+                if !v.is_finite() {
+                    return Err(Error::Overflow {
+                        what: if order == 0 {
+                            "the extrapolated value"
+                        } else {
+                            "the derivative"
+                        },
+                    });
+                }
+                Ok(v)
+            }
+        }
+    }
+
+    /// `S(x)`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a NaN `x`; [`Error::OutOfDomain`] outside the
+    /// domain under [`Extrapolate::Error`]; [`Error::Overflow`] when an
+    /// extrapolated value overflows.
+    pub fn eval(&self, x: f64) -> Result<f64, Error> {
+        self.deriv(x, 0)
+    }
+
+    /// The derivative of order `order` at `x` (0 is the value; above 3 it is 0).
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::eval`]; [`Error::Overflow`] also when the derivative exceeds
+    /// the range of a double (on an extremely narrow interval).
+    pub fn deriv(&self, x: f64, order: u32) -> Result<f64, Error> {
+        let k = self.piece_index(x);
+        let locus = self.locate_in(x, k)?;
+        self.eval_locus(locus, order)
+    }
+
+    /// Value and derivatives of orders 1, 2 and 3 at `x`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::eval`].
+    pub fn eval_all(&self, x: f64) -> Result<[f64; 4], Error> {
+        let k = self.piece_index(x);
+        let mut out = [0.0; 4];
+        for (order, o) in out.iter_mut().enumerate() {
+            let locus = self.locate_in(x, k)?;
+            *o = self.eval_locus(locus, order as u32)?;
+        }
+        Ok(out)
+    }
+
+    /// Evaluates the derivative of order `order` (0 for values) at every `xs[i]`
+    /// into `out[i]`. Sorted queries are answered in one pass (each search starts
+    /// at the previous piece); unsorted ones fall back to binary search.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] when `out.len() != xs.len()`; otherwise as
+    /// [`Spline::eval`], with the index of the failing query in
+    /// [`Error::NonFinite`]. On error the contents of `out` are unspecified.
+    pub fn deriv_many(&self, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
+        if out.len() != xs.len() {
+            return Err(Error::LengthMismatch {
+                field: Field::Query,
+                expected: xs.len(),
+                found: out.len(),
+            });
+        }
+        let last = self.len() - 1;
+        let mut k = 0;
+        for (i, (&x, o)) in xs.iter().zip(out.iter_mut()).enumerate() {
+            // Walk from the previous piece: one or two steps for sorted input.
+            if x >= self.knots[k] && (k == last || x < self.knots[k + 1]) {
+            } else if k < last && x >= self.knots[k + 1] && (k + 1 == last || x < self.knots[k + 2])
+            {
+                k += 1;
+            } else {
+                k = self.piece_index(x);
+            }
+            let locus = self.locate_in(x, k).map_err(|e| match e {
+                Error::NonFinite { field, value, .. } => Error::NonFinite {
+                    field,
+                    index: i,
+                    value,
+                },
+                e => e,
+            })?;
+            *o = self.eval_locus(locus, order)?;
+        }
+        Ok(())
+    }
+
+    /// `S(xs[i])` into `out[i]`; see [`Spline::deriv_many`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::deriv_many`].
+    pub fn eval_many(&self, xs: &[f64], out: &mut [f64]) -> Result<(), Error> {
+        self.deriv_many(xs, 0, out)
+    }
+
+    /// Integral of `S` over `[a, b]` (negative when `b < a`), exact up to rounding.
+    /// Parts outside the domain follow the extrapolation policy.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a non-finite bound; [`Error::OutOfDomain`] for a
+    /// bound outside the domain under [`Extrapolate::Error`]; [`Error::Overflow`]
+    /// when the result exceeds the range of a double.
+    pub fn integral(&self, a: f64, b: f64) -> Result<f64, Error> {
+        for (i, &v) in [a, b].iter().enumerate() {
+            if !v.is_finite() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: i,
+                    value: v,
+                });
+            }
+        }
+        if b < a {
+            return self.integral(b, a).map(|v| -v);
+        }
+        let (lo, hi) = self.domain();
+        if self.extrapolate == Extrapolate::Error && (a < lo || b > hi) {
+            let x = if a < lo { a } else { b };
+            return Err(Error::OutOfDomain {
+                x,
+                min: lo,
+                max: hi,
+            });
+        }
+        let mut total = 0.0;
+        // Parts outside the domain.
+        if a < lo {
+            let end = b.min(lo);
+            total += match self.extrapolate {
+                Extrapolate::Clamp => (end - a) * (self.values[0] / self.scale),
+                _ => self.piece_integral(0, a, end),
+            };
+        }
+        if b > hi {
+            let start = a.max(hi);
+            total += match self.extrapolate {
+                Extrapolate::Clamp => (b - start) * (self.values[self.len()] / self.scale),
+                _ => self.piece_integral(self.len() - 1, start, b),
+            };
+        }
+        let (ca, cb) = (a.max(lo), b.min(hi));
+        if ca < cb {
+            let (ka, kb) = (self.piece_index(ca), self.piece_index(cb));
+            for k in ka..=kb {
+                let x0 = ca.max(self.knots[k]);
+                let x1 = cb.min(self.knots[k + 1]);
+                if x0 < x1 {
+                    total += self.piece_integral(k, x0, x1);
+                }
+            }
+        }
+        let v = total * self.scale;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(Error::Overflow {
+                what: "the integral",
+            })
+        }
+    }
+
+    /// Integral of piece `k`'s cubic (scaled) from `x0` to `x1`.
+    fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
+        let c = &self.coefs[k];
+        let h = self.knots[k + 1] - self.knots[k];
+        let prim = |t: f64| t * (c[0] + t * (c[1] / 2.0 + t * (c[2] / 3.0 + t * c[3] / 4.0)));
+        let t0 = (x0 - self.knots[k]) / h;
+        let t1 = (x1 - self.knots[k]) / h;
+        (prim(t1) - prim(t0)) * h
+    }
+
+    /// The points inside the domain where `S' = 0`, in increasing `x`: the real
+    /// roots of each piece's derivative, classified by the sign of `S''`.
+    #[must_use]
+    pub fn extrema(&self) -> Vec<Extremum> {
+        let mut out = Vec::new();
+        for (k, c) in self.coefs.iter().enumerate() {
+            let h = self.knots[k + 1] - self.knots[k];
+            let mut roots = quadratic_roots(3.0 * c[3], 2.0 * c[2], c[1]);
+            roots.sort_by(f64::total_cmp);
+            for t in roots {
+                // Knots belong to the piece on their right; the domain's ends are
+                // not interior points.
+                let inside = if k == 0 {
+                    t > 0.0 && t < 1.0
+                } else {
+                    (0.0..1.0).contains(&t)
+                };
+                if !inside {
+                    continue;
+                }
+                let x = (self.knots[k] + t * h).min(self.knots[k + 1]);
+                let y = horner(c, t) * self.scale;
+                let curv = poly_deriv(c, t, 2);
+                let kind = if curv > 0.0 {
+                    ExtremumKind::Minimum
+                } else if curv < 0.0 {
+                    ExtremumKind::Maximum
+                } else {
+                    ExtremumKind::Stationary
+                };
+                if out.last().is_some_and(|e: &Extremum| e.x >= x) {
+                    continue;
+                }
+                out.push(Extremum { x, y, kind });
+            }
+        }
+        out
+    }
+
+    /// The smallest and largest value of `S` on its domain, as `(x, y)` pairs.
+    #[must_use]
+    pub fn range(&self) -> ((f64, f64), (f64, f64)) {
+        let (a, b) = self.domain();
+        let ends = [(a, self.values[0]), (b, self.values[self.len()])];
+        let mut lo = ends[0];
+        let mut hi = ends[0];
+        for (x, y) in ends
+            .into_iter()
+            .chain(self.extrema().into_iter().map(|e| (e.x, e.y)))
+        {
+            if y < lo.1 {
+                lo = (x, y);
+            }
+            if y > hi.1 {
+                hi = (x, y);
+            }
+        }
+        (lo, hi)
+    }
+}
+
+/// Real roots of `a t^2 + b t + c` (numerically stable form); an empty vector for
+/// the zero polynomial.
+pub(crate) fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+    let scale = a.abs().max(b.abs()).max(c.abs());
+    if scale == 0.0 || !scale.is_finite() {
+        return Vec::new();
+    }
+    let (a, b, c) = (a / scale, b / scale, c / scale);
+    if a.abs() < 1e-14 {
+        if b == 0.0 {
+            return Vec::new();
+        }
+        // A nearly linear derivative: the large root of the quadratic is far
+        // outside any piece, the small one is the linear root.
+        let r = -c / b;
+        return if a == 0.0 {
+            vec![r]
+        } else {
+            refine_pair(a, b, c)
+        };
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    if disc == 0.0 {
+        return vec![-b / (2.0 * a)];
+    }
+    refine_pair(a, b, c)
+}
+
+fn refine_pair(a: f64, b: f64, c: f64) -> Vec<f64> {
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let mut r = Vec::with_capacity(2);
+    if q != 0.0 {
+        r.push(c / q);
+    }
+    if a != 0.0 {
+        r.push(q / a);
+    }
+    if q == 0.0 && a != 0.0 && r.len() == 1 {
+        // b = 0 and c = 0: a double root at 0.
+        r.push(0.0);
+    }
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const EX1_X: [f64; 11] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0];
+    const EX1_F: [f64; 11] = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)
+    }
+
+    #[test]
+    fn alpha_bounds_accept_the_decimal_literals() {
+        assert_eq!(ALPHA_MIN, 1.0 / 3.0);
+        const { assert!(ALPHA_MAX > 2.0 / 3.0) };
+        assert_eq!(ALPHA_MAX, "0.6666666666666667".parse::<f64>().unwrap());
+        for a in [ALPHA_MIN, ALPHA_MAX, 1.0 / 3.0, 2.0 / 3.0] {
+            assert!(Spline::with_alpha(&EX1_X, &EX1_F, a).is_ok(), "alpha {a}");
+        }
+        for a in [
+            f64::from_bits(ALPHA_MIN.to_bits() - 1),
+            f64::from_bits(ALPHA_MAX.to_bits() + 1),
+        ] {
+            assert!(
+                matches!(
+                    Spline::with_alpha(&EX1_X, &EX1_F, a),
+                    Err(Error::AlphaOutOfRange { interval: 0, .. })
+                ),
+                "alpha {a} should be refused"
+            );
+        }
+    }
+
+    #[test]
+    fn example_1_touches_every_leg_and_is_c1() {
+        for alpha in [ALPHA_MIN, 0.4, 0.5, 0.6, ALPHA_MAX] {
+            let s = Spline::with_alpha(&EX1_X, &EX1_F, alpha).unwrap();
+            for (k, (x, f)) in s.tangent_points().into_iter().enumerate() {
+                let c = &s.coefs[k];
+                let t = (x - EX1_X[k]) / (EX1_X[k + 1] - EX1_X[k]);
+                let y = horner(c, t) * s.scale;
+                let dy = poly_deriv(c, t, 1) * s.scale;
+                assert!(close(y, f, 1e-13), "S(x_{k}): want {f}, got {y}");
+                let slope = s.leg_slope(k).unwrap();
+                assert!(close(dy, slope, 1e-13), "S'(x_{k}): want {slope}, got {dy}");
+            }
+            for k in 1..s.len() {
+                let l = &s.coefs[k - 1];
+                let r = &s.coefs[k];
+                assert!(close(horner(l, 1.0), horner(r, 0.0), 1e-13));
+                assert!(close(poly_deriv(l, 1.0, 1), poly_deriv(r, 0.0, 1), 1e-13));
+            }
+            assert_eq!(s.eval(1.0).unwrap(), 1.0);
+            assert_eq!(s.eval(11.0).unwrap(), 1.5);
+        }
+    }
+
+    #[test]
+    fn two_and_three_knots() {
+        let s = Spline::new(&[0.0, 2.0], &[1.0, 5.0]).unwrap();
+        assert_eq!(s.knot_values(), vec![1.0, 5.0]);
+        assert!(close(s.eval(1.0).unwrap(), 3.0, 1e-15));
+        assert!(close(s.deriv(0.3, 1).unwrap(), 2.0, 1e-15));
+        assert!(s.deriv(0.3, 2).unwrap().abs() < 1e-14);
+        let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0]).unwrap();
+        // One unknown: -(p B1 + q B2) d = ... with p = q = 1/2, B1 = B2 = 5: d = -2/10.
+        assert!(
+            close(s.knot_values()[1], 0.8, 1e-15),
+            "{:?}",
+            s.knot_values()
+        );
+    }
+
+    #[test]
+    fn straight_polygon_is_reproduced() {
+        let x = [0.0, 0.3, 1.7, 2.0, 5.5];
+        let f: Vec<f64> = x.iter().map(|x| 2.0 * x - 1.0).collect();
+        let s = Spline::new(&x, &f).unwrap();
+        for (phi, f) in s.knot_values().iter().zip(&f) {
+            assert!(close(*phi, *f, 1e-14), "want {f}, got {phi}");
+        }
+    }
+
+    #[test]
+    fn extrapolation_policies() {
+        let s = Spline::new(&EX1_X, &EX1_F).unwrap();
+        assert!(matches!(s.eval(0.5), Err(Error::OutOfDomain { .. })));
+        assert!(matches!(s.eval(f64::NAN), Err(Error::NonFinite { .. })));
+        let c = s.clone().with_extrapolation(Extrapolate::Clamp);
+        assert_eq!(c.eval(-1e300).unwrap(), 1.0);
+        assert_eq!(c.eval(f64::INFINITY).unwrap(), 1.5);
+        assert_eq!(c.deriv(20.0, 1).unwrap(), 0.0);
+        let e = s.with_extrapolation(Extrapolate::Extend);
+        let c0 = e.power_coefficients(0).unwrap();
+        let x = 0.25;
+        let dx = x - 1.0;
+        let want = c0[0] + dx * (c0[1] + dx * (c0[2] + dx * c0[3]));
+        assert!(close(e.eval(x).unwrap(), want, 1e-13));
+        assert!(matches!(e.eval(f64::INFINITY), Err(Error::Overflow { .. })));
+    }
+
+    #[test]
+    fn integral_matches_power_form() {
+        let s = Spline::with_alpha(&EX1_X, &EX1_F, 0.4).unwrap();
+        let mut want = 0.0;
+        for k in 0..s.len() {
+            let c = s.power_coefficients(k).unwrap();
+            want += c[0] + c[1] / 2.0 + c[2] / 3.0 + c[3] / 4.0;
+        }
+        let got = s.integral(1.0, 11.0).unwrap();
+        assert!(close(got, want, 1e-13), "want {want}, got {got}");
+        assert!(close(s.integral(11.0, 1.0).unwrap(), -want, 1e-13));
+        let split = s.integral(1.0, 4.3).unwrap() + s.integral(4.3, 11.0).unwrap();
+        assert!(close(split, want, 1e-13));
+        assert!(s.integral(0.0, 2.0).is_err());
+    }
+
+    #[test]
+    fn extrema_are_roots_of_the_derivative() {
+        let s = Spline::new(&EX1_X, &EX1_F).unwrap();
+        let ex = s.extrema();
+        // 1 3 3 1 2 7 1.5 1 10 2 1.5: three maxima and two minima, alternating.
+        assert_eq!(ex.len(), 5, "{ex:?}");
+        for (i, e) in ex.iter().enumerate() {
+            let want = if i % 2 == 0 {
+                ExtremumKind::Maximum
+            } else {
+                ExtremumKind::Minimum
+            };
+            assert_eq!(e.kind, want, "{ex:?}");
+        }
+        for e in &ex {
+            let d = s.deriv(e.x, 1).unwrap();
+            assert!(d.abs() < 1e-10, "S'({}) = {d}", e.x);
+        }
+        let ((_, lo), (_, hi)) = s.range();
+        let mut xs = vec![0.0; 10001];
+        for (i, x) in xs.iter_mut().enumerate() {
+            *x = 1.0 + 10.0 * i as f64 / 10000.0;
+        }
+        let mut ys = vec![0.0; xs.len()];
+        s.eval_many(&xs, &mut ys).unwrap();
+        for y in ys {
+            assert!(
+                y >= lo - 1e-12 && y <= hi + 1e-12,
+                "{y} outside [{lo}, {hi}]"
+            );
+        }
+    }
+
+    #[test]
+    fn batch_matches_pointwise_sorted_and_not() {
+        let s = Spline::with_alpha(&EX1_X, &EX1_F, 0.6).unwrap();
+        let xs: Vec<f64> = (0..200)
+            .map(|i| 1.0 + ((i * 7919) % 1000) as f64 / 100.0)
+            .collect();
+        let mut sorted = xs.clone();
+        sorted.sort_by(f64::total_cmp);
+        for q in [&xs, &sorted] {
+            for order in 0..4 {
+                let mut out = vec![0.0; q.len()];
+                s.deriv_many(q, order, &mut out).unwrap();
+                for (x, y) in q.iter().zip(&out) {
+                    assert_eq!(*y, s.deriv(*x, order).unwrap(), "order {order} at {x}");
+                }
+            }
+        }
+        let mut out = vec![0.0; 3];
+        assert!(matches!(
+            s.eval_many(&[2.0, f64::NAN, 3.0], &mut out),
+            Err(Error::NonFinite { index: 1, .. })
+        ));
+        assert!(s.eval_many(&[2.0], &mut out).is_err());
+    }
+
+    #[test]
+    fn huge_values_do_not_overflow() {
+        // Values at the very top of the range: evaluation stays finite.
+        let f = [1e308, -1.7e308, 1.7e308, f64::MAX, -f64::MAX];
+        let x = [0.0, 1.0, 2.0, 3.0, 4.0];
+        let s = Spline::new(&x, &f).unwrap();
+        for v in s.knot_values() {
+            assert!(v.is_finite());
+        }
+        for i in 0..=400 {
+            let y = s.eval(i as f64 / 100.0).unwrap();
+            assert!(y.is_finite(), "{y}");
+        }
+        // Values near 1e308 whose Bezier ordinates are representable: the
+        // export is finite and agrees with a scaled-down copy.
+        let f = [1e308, -1e308, 1e308, 5e307, -1e308];
+        let s = Spline::new(&x, &f).unwrap();
+        let small: Vec<f64> = f.iter().map(|v| v * 1e-300).collect();
+        let t = Spline::new(&x, &small).unwrap();
+        for (a, b) in s.segments().iter().zip(t.segments()) {
+            for j in 0..4 {
+                let (ya, yb) = (a.p[j][1], b.p[j][1] * 1e300);
+                assert!(
+                    ya.is_finite() && close(ya, yb, 1e-13),
+                    "want {yb}, got {ya}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn tiny_interval_is_computed_or_refused() {
+        let ok = Spline::new(&[0.0, 1e-15, 1.0], &[0.0, 1.0, 0.0]).unwrap();
+        assert!(ok.knot_values().iter().all(|v| v.is_finite()));
+        assert!(matches!(
+            Spline::new(&[0.0, 5e-324, 1.0], &[0.0, 1.0, 0.0]),
+            Err(Error::IntervalTooSmall { interval: 0, .. })
+        ));
+        assert!(matches!(
+            Spline::new(&[-1e308, 1e308], &[0.0, 1.0]),
+            Err(Error::SpanOverflow { .. })
+        ));
+    }
+
+    #[test]
+    fn quadratic_roots_are_stable() {
+        let mut r = quadratic_roots(1.0, -3.0, 2.0);
+        r.sort_by(f64::total_cmp);
+        assert_eq!(r.len(), 2);
+        assert!(close(r[0], 1.0, 1e-15) && close(r[1], 2.0, 1e-15), "{r:?}");
+        assert_eq!(quadratic_roots(0.0, 2.0, -1.0), vec![0.5]);
+        assert!(quadratic_roots(1.0, 0.0, 1.0).is_empty());
+        assert!(quadratic_roots(0.0, 0.0, 0.0).is_empty());
+        let r = quadratic_roots(1e-20, 1.0, -0.25);
+        assert!(r.iter().any(|t| (t - 0.25).abs() < 1e-15), "{r:?}");
+    }
+}

@@ -1,0 +1,135 @@
+//! Tridiagonal solvers (Thomas algorithm).
+//!
+//! The spline's system is diagonally dominant for every alpha in `[1/3, 2/3]`
+//! (see [`crate::spline`]), so Gaussian elimination without pivoting is stable.
+//! The matrix does not depend on the right-hand side: a curve in `R^d` factors it
+//! once and solves `d` right-hand sides.
+
+/// A tridiagonal matrix factored for repeated solves by the Thomas algorithm.
+///
+/// Row `i` reads `lower[i] * x[i-1] + diag[i] * x[i] + upper[i] * x[i+1] = r[i]`
+/// (`lower[0]` and `upper[n-1]` are ignored).
+#[derive(Clone, Debug, Default)]
+pub struct Thomas {
+    /// `lower[i]` for the forward sweep.
+    lower: Vec<f64>,
+    /// Reciprocal of the eliminated pivot of row `i`.
+    inv_pivot: Vec<f64>,
+    /// Modified super-diagonal `upper[i] / pivot[i]`.
+    upper: Vec<f64>,
+}
+
+impl Thomas {
+    /// Factors the matrix. The three slices must have the same length.
+    ///
+    /// Returns `None` if a pivot is zero or not finite, which cannot happen for a
+    /// diagonally dominant matrix with a strictly dominant first row.
+    #[must_use]
+    pub fn factor(lower: &[f64], diag: &[f64], upper: &[f64]) -> Option<Self> {
+        let n = diag.len();
+        if lower.len() != n || upper.len() != n {
+            return None;
+        }
+        let mut inv_pivot = Vec::with_capacity(n);
+        let mut up = Vec::with_capacity(n);
+        let mut prev_up = 0.0;
+        for i in 0..n {
+            let pivot = diag[i] - if i > 0 { lower[i] * prev_up } else { 0.0 };
+            if pivot == 0.0 || !pivot.is_finite() {
+                return None;
+            }
+            let inv = 1.0 / pivot;
+            inv_pivot.push(inv);
+            prev_up = if i + 1 < n { upper[i] * inv } else { 0.0 };
+            up.push(prev_up);
+        }
+        Some(Thomas {
+            lower: lower.to_vec(),
+            inv_pivot,
+            upper: up,
+        })
+    }
+
+    /// Number of unknowns.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.inv_pivot.len()
+    }
+
+    /// True for the empty system.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.inv_pivot.is_empty()
+    }
+
+    /// Solves in place: on entry `rhs` holds the right-hand side, on return the
+    /// solution. `rhs.len()` must equal [`Self::len`]; other lengths leave `rhs`
+    /// untouched and return `false`.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) -> bool {
+        let n = self.len();
+        if rhs.len() != n {
+            return false;
+        }
+        if n == 0 {
+            return true;
+        }
+        rhs[0] *= self.inv_pivot[0];
+        for i in 1..n {
+            rhs[i] = (rhs[i] - self.lower[i] * rhs[i - 1]) * self.inv_pivot[i];
+        }
+        for i in (0..n - 1).rev() {
+            rhs[i] -= self.upper[i] * rhs[i + 1];
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mul(lower: &[f64], diag: &[f64], upper: &[f64], x: &[f64]) -> Vec<f64> {
+        let n = x.len();
+        (0..n)
+            .map(|i| {
+                let mut s = diag[i] * x[i];
+                if i > 0 {
+                    s += lower[i] * x[i - 1];
+                }
+                if i + 1 < n {
+                    s += upper[i] * x[i + 1];
+                }
+                s
+            })
+            .collect()
+    }
+
+    #[test]
+    fn solves_a_dominant_system() {
+        let n = 50;
+        let lower: Vec<f64> = (0..n).map(|i| -1.0 - (i % 3) as f64 * 0.1).collect();
+        let upper: Vec<f64> = (0..n).map(|i| -0.5 + (i % 5) as f64 * 0.05).collect();
+        let diag: Vec<f64> = (0..n).map(|i| 3.0 + (i % 7) as f64).collect();
+        let want: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
+        let mut x = mul(&lower, &diag, &upper, &want);
+        let t = Thomas::factor(&lower, &diag, &upper).expect("dominant");
+        assert!(t.solve_in_place(&mut x));
+        for (i, (a, b)) in x.iter().zip(&want).enumerate() {
+            assert!((a - b).abs() < 1e-12, "x[{i}]: want {b}, got {a}");
+        }
+    }
+
+    #[test]
+    fn rejects_singular_and_wrong_lengths() {
+        assert!(Thomas::factor(&[0.0], &[0.0], &[0.0]).is_none());
+        assert!(Thomas::factor(&[0.0], &[1.0, 2.0], &[0.0, 0.0]).is_none());
+        let t = Thomas::factor(&[0.0, 1.0], &[2.0, 2.0], &[1.0, 0.0]).unwrap();
+        let mut wrong = [1.0];
+        assert!(!t.solve_in_place(&mut wrong));
+        assert_eq!(wrong, [1.0]);
+        let mut empty: [f64; 0] = [];
+        assert!(Thomas::factor(&[], &[], &[])
+            .unwrap()
+            .solve_in_place(&mut empty));
+    }
+}
