@@ -67,7 +67,7 @@ fn dense_pieces(
     let mut a = vec![0.0; m * m];
     let mut b = vec![0.0; m];
     let mut row = 0;
-    let mut put = |row: usize, piece: usize, j: usize, v: f64, a: &mut Vec<f64>| {
+    let put = |row: usize, piece: usize, j: usize, v: f64, a: &mut Vec<f64>| {
         a[row * m + 4 * piece + j] += v;
     };
     for k in 0..pieces {

@@ -170,9 +170,9 @@ proptest! {
         prop_assert_eq!(segs.len(), s.len());
         prop_assert!(s.segment(s.len()).is_none());
         let m = d.max_abs();
-        for k in 0..s.len() {
+        for (k, listed) in segs.iter().enumerate() {
             let seg = s.segment(k).expect("piece k exists");
-            prop_assert_eq!(seg, segs[k]);
+            prop_assert_eq!(&seg, listed);
             let h = d.width(k);
             prop_assert_eq!(seg.p[0][0], d.knots[k]);
             prop_assert_eq!(seg.p[3][0], d.knots[k + 1]);
