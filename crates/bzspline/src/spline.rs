@@ -264,6 +264,21 @@ pub(crate) fn alpha_terms(a: f64) -> [f64; 4] {
     [r * r, 2.0 / a + 1.0, 2.0 / (1.0 - a) + 1.0, 1.0 / (r * r)]
 }
 
+/// `(hr / (hl + hr), hl / (hl + hr))` for the widths left and right of a knot.
+/// Each width is finite, but their sum can round above `f64::MAX` when the span
+/// is within rounding of it; then both are halved first (exact at that size).
+#[inline]
+pub(crate) fn neighbour_weights(hl: f64, hr: f64) -> (f64, f64) {
+    let sum = hl + hr;
+    if sum.is_finite() {
+        (hr / sum, hl / sum)
+    } else {
+        let (hl, hr) = (0.5 * hl, 0.5 * hr);
+        let sum = hl + hr;
+        (hr / sum, hl / sum)
+    }
+}
+
 impl OpenSystem {
     /// Builds and factors the row-scaled system (16) for interior knots.
     pub(crate) fn new(widths: &[f64], alphas: &[f64]) -> Self {
@@ -274,9 +289,7 @@ impl OpenSystem {
         let mut upper = Vec::with_capacity(m);
         let mut p_all = Vec::with_capacity(m);
         for k in 1..n - 1 {
-            let (hl, hr) = (widths[k - 1], widths[k]);
-            let p = hr / (hl + hr);
-            let q = hl / (hl + hr);
+            let (p, q) = neighbour_weights(widths[k - 1], widths[k]);
             let [al, b1, _, _] = alpha_terms(alphas[k - 1]);
             let [_, _, b2, cr] = alpha_terms(alphas[k]);
             lower.push(-p * al);
@@ -1129,6 +1142,27 @@ mod tests {
             Spline::new(&[-1e308, 1e308], &[0.0, 1.0]),
             Err(Error::SpanOverflow { .. })
         ));
+    }
+
+    #[test]
+    fn span_at_the_top_of_the_range_keeps_the_system_regular() {
+        // Both widths are finite but their sum rounds to infinity; the knot
+        // values must match the same data on knots scaled down by 2^-1000.
+        let knots = [2.2250738585072014e-308, 5.376052040422133e307, f64::MAX];
+        assert!((knots[1] - knots[0]) + (knots[2] - knots[1]) == f64::INFINITY);
+        let f = [0.0, 0.0, 1.0];
+        let a = [ALPHA_MIN, ALPHA_MAX];
+        let s = Spline::with_alphas(&knots, &f, &a).unwrap();
+        let down = 2f64.powi(-1000);
+        let small: Vec<f64> = knots.iter().map(|x| x * down).collect();
+        let t = Spline::with_alphas(&small, &f, &a).unwrap();
+        for (got, want) in s.knot_values().iter().zip(t.knot_values()) {
+            assert!(close(*got, want, 1e-14), "want {want}, got {got}");
+        }
+        assert!(s.knot_values()[1] < 0.1, "{:?}", s.knot_values());
+        let (p, q) = neighbour_weights(f64::MAX, f64::MAX);
+        assert_eq!((p, q), (0.5, 0.5));
+        assert_eq!(neighbour_weights(1.0, 3.0), (0.75, 0.25));
     }
 
     #[test]
