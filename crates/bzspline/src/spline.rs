@@ -834,7 +834,9 @@ impl Spline {
                     continue;
                 }
                 let x = (self.knots[k] + t * h).min(self.knots[k + 1]);
-                let y = horner(c, t) * self.scale;
+                // Inside the hull the true value is finite; rounding above
+                // f64::MAX is held at it, as in `eval`.
+                let y = (horner(c, t) * self.scale).clamp(-f64::MAX, f64::MAX);
                 let curv = poly_deriv(c, t, 2);
                 let kind = if curv > 0.0 {
                     ExtremumKind::Minimum
@@ -1163,6 +1165,29 @@ mod tests {
         let (p, q) = neighbour_weights(f64::MAX, f64::MAX);
         assert_eq!((p, q), (0.5, 0.5));
         assert_eq!(neighbour_weights(1.0, 3.0), (0.75, 0.25));
+    }
+
+    #[test]
+    fn extrema_near_f64_max_are_finite() {
+        // A maximum between two knots valued f64::MAX rounds above it.
+        let knots = [
+            -859.3884755308262,
+            0.0,
+            365.72855093326575,
+            436.5118599248209,
+            767.2605905654594,
+        ];
+        let f = [0.0, 0.0, -f64::MAX, f64::MAX, f64::MAX];
+        let s = Spline::with_alphas(&knots, &f, &[ALPHA_MAX, ALPHA_MIN, 0.5, 0.5]).unwrap();
+        let ex = s.extrema();
+        assert!(ex.iter().any(|e| e.y == f64::MAX), "{ex:?}");
+        assert!(ex.iter().all(|e| e.y.is_finite()), "{ex:?}");
+        let ((_, lo), (_, hi)) = s.range();
+        assert!(lo.is_finite() && hi == f64::MAX, "range [{lo}, {hi}]");
+        for e in ex {
+            let y = s.eval(e.x).unwrap();
+            assert!(close(y, e.y, 1e-12), "S({}) = {y}, extremum {}", e.x, e.y);
+        }
     }
 
     #[test]
