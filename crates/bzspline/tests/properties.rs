@@ -2,7 +2,7 @@
 //! fixed case counts): convex hull, Bezier export, derivative, invariance under
 //! linear functions and scaling, exact straight lines, extreme knot spacing.
 
-use bzspline::{Spline, ALPHA_MAX, ALPHA_MIN};
+use bzspline::{Extrapolate, Spline, ALPHA_MAX, ALPHA_MIN};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -147,6 +147,27 @@ fn config() -> ProptestConfig {
         ))),
         ..ProptestConfig::with_cases(CASES)
     }
+}
+
+/// Any double of any magnitude, with the edges of the range often.
+fn wild() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        -1e3..=1e3f64,
+        (-1e3..=1e3f64).prop_map(|x| x * 1e-300),
+        (-300.0..=308.0f64, any::<bool>()).prop_map(|(e, neg)| {
+            let v = 10f64.powf(e);
+            if neg {
+                -v
+            } else {
+                v
+            }
+        }),
+        Just(0.0),
+        Just(f64::MAX),
+        Just(-f64::MAX),
+        Just(f64::MIN_POSITIVE),
+        Just(5e-324),
+    ]
 }
 
 proptest! {
@@ -332,5 +353,57 @@ proptest! {
             }
         }
         assert_in_hull(&d, &s)?;
+    }
+
+    #[test]
+    fn any_accepted_data_gives_finite_results_or_typed_errors(
+        knots in vec(wild(), 2..8),
+        values in vec(wild(), 8),
+        alphas in vec(alpha(), 7),
+        queries in vec(wild(), 0..12),
+    ) {
+        let mut knots = knots;
+        knots.sort_by(f64::total_cmp);
+        knots.dedup();
+        let n = knots.len();
+        let values = &values[..n];
+        let alphas = &alphas[..n - 1];
+        // Refusals are covered elsewhere; here only what is accepted.
+        let Ok(s) = Spline::with_alphas(&knots, values, alphas) else {
+            return Ok(());
+        };
+        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let tol = 1e-12 * lo.abs().max(hi.abs());
+        prop_assert!(s.knot_values().iter().all(|v| v.is_finite()));
+        prop_assert!(s.tangent_points().iter().all(|(x, y)| x.is_finite() && y.is_finite()));
+        prop_assert!(s.extrema().iter().all(|e| e.x.is_finite() && e.y.is_finite()));
+        let ((_, rlo), (_, rhi)) = s.range();
+        prop_assert!(rlo >= lo - tol && rhi <= hi + tol, "range [{rlo}, {rhi}] vs [{lo}, {hi}]");
+        let (a, b) = s.domain();
+        for i in 0..=64 {
+            let x = (a + (b - a) * f64::from(i) / 64.0).clamp(a, b);
+            let y = s.eval(x)?;
+            prop_assert!(y >= lo - tol && y <= hi + tol, "S({x}) = {y} outside [{lo}, {hi}]");
+        }
+        for policy in [Extrapolate::Error, Extrapolate::Clamp, Extrapolate::Extend] {
+            let s = s.clone().with_extrapolation(policy);
+            for &q in &queries {
+                for order in 0..4 {
+                    if let Ok(v) = s.deriv(q, order) {
+                        prop_assert!(v.is_finite(), "{policy:?}: S^({order})({q}) = {v}");
+                    }
+                }
+                if let Ok(v) = s.integral(a, q) {
+                    prop_assert!(v.is_finite(), "{policy:?}: integral to {q} = {v}");
+                }
+            }
+            let mut out = vec![0.0; queries.len()];
+            if s.eval_many(&queries, &mut out).is_ok() {
+                for (q, y) in queries.iter().zip(&out) {
+                    prop_assert_eq!(s.eval(*q).ok(), Some(*y));
+                }
+            }
+        }
     }
 }
