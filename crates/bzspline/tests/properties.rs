@@ -406,4 +406,53 @@ proptest! {
             }
         }
     }
+
+    #[test]
+    fn integral_is_simpsons_rule_on_each_piece(d in moderate(), u in 0.0..=1.0f64, v in 0.0..=1.0f64) {
+        // Simpson's rule is exact for cubics.
+        let s = d.spline();
+        let m = d.max_abs();
+        let (a, b) = s.domain();
+        let span = b - a;
+        let mut total = 0.0;
+        let mut scale = 0.0;
+        for k in 0..s.len() {
+            let (x0, x1) = (d.knots[k], d.knots[k + 1]);
+            let mid = s.eval(0.5 * (x0 + x1))?;
+            let piece = (x1 - x0) / 6.0 * (s.eval(x0)? + 4.0 * mid + s.eval(x1)?);
+            let got = s.integral(x0, x1)?;
+            let tol = 1e-12 * m * (x1 - x0) * (1.0 + x0.abs().max(x1.abs()) / (x1 - x0));
+            prop_assert!((got - piece).abs() <= tol, "piece {k}: integral {got}, Simpson {piece}");
+            total += piece;
+            scale += m * (x1 - x0) * (1.0 + x0.abs().max(x1.abs()) / (x1 - x0));
+        }
+        let whole = s.integral(a, b)?;
+        prop_assert!((whole - total).abs() <= 1e-12 * scale, "whole {whole}, sum {total}");
+        // Additive over a split, antisymmetric in its bounds.
+        let (p, q) = (a + u * span, a + v * span);
+        let (p, q) = (p.min(b), q.min(b));
+        let split = s.integral(a, p)? + s.integral(p, q)? + s.integral(q, b)?;
+        prop_assert!((split - whole).abs() <= 1e-12 * scale, "split {split}, whole {whole}");
+        prop_assert_eq!(s.integral(q, p)?, -s.integral(p, q)?);
+    }
+
+    #[test]
+    fn range_is_attained_and_bounds_the_curve(d in moderate()) {
+        let s = d.spline();
+        let ((xlo, lo), (xhi, hi)) = s.range();
+        let tol = 1e-12 * d.max_abs();
+        prop_assert!((s.eval(xlo)? - lo).abs() <= tol, "minimum {lo} at {xlo}");
+        prop_assert!((s.eval(xhi)? - hi).abs() <= tol, "maximum {hi} at {xhi}");
+        for k in 0..s.len() {
+            for (_, x) in d.samples(k, 32) {
+                let y = s.eval(x.min(d.knots[d.knots.len() - 1]))?;
+                prop_assert!(y >= lo - tol && y <= hi + tol, "S({x}) = {y} outside [{lo}, {hi}]");
+            }
+        }
+        for e in s.extrema() {
+            let h = d.near_width(s.piece_index(e.x));
+            let slope = s.deriv(e.x, 1)?;
+            prop_assert!(slope.abs() <= 1e-9 * d.max_abs() / h, "S'({}) = {slope}", e.x);
+        }
+    }
 }
