@@ -235,6 +235,29 @@ fn interval_of_1e_15_of_the_span_is_accepted_with_finite_results() {
 }
 
 #[test]
+fn first_interval_of_1e_15_of_the_span_is_accepted_with_finite_results() {
+    let x = [0.0, 1e-15, 1.0];
+    let s = Spline::new(&x, &[0.0, 1.0, 0.0]).expect("1e-15 of the span is accepted");
+    let phi = s.knot_values();
+    assert!(phi.iter().all(|v| v.is_finite()), "{phi:?}");
+    assert!(phi[1] > 0.0 && phi[1] < 1.0, "{phi:?}");
+    for i in 0..=1000 {
+        let q = if i <= 100 {
+            1e-15 * f64::from(i) / 100.0
+        } else {
+            f64::from(i - 100) / 900.0
+        };
+        let all = s.eval_all(q).expect("finite");
+        assert!(all.iter().all(|v| v.is_finite()), "at {q}: {all:?}");
+        assert!(
+            (0.0..=1.0).contains(&all[0]),
+            "S({q}) = {} outside the hull",
+            all[0]
+        );
+    }
+}
+
+#[test]
 fn span_overflow() {
     assert_eq!(
         Spline::new(&[-1e308, 1e308], &[0.0, 1.0]).err(),
