@@ -113,6 +113,12 @@ pub enum Error {
         /// Position of the second of the two equal points.
         index: usize,
     },
+    /// The last control point of a closed curve coincides with the first, so the
+    /// closing leg has no direction.
+    RepeatedClosingPoint {
+        /// Position of the last point.
+        last: usize,
+    },
     /// A query lies outside the spline's domain and the extrapolation policy is
     /// [`Extrapolate::Error`](crate::Extrapolate::Error).
     OutOfDomain {
@@ -186,6 +192,10 @@ impl fmt::Display for Error {
                 f,
                 "points[{index}] repeats points[{}]: consecutive control points must differ",
                 index - 1
+            ),
+            Error::RepeatedClosingPoint { last } => write!(
+                f,
+                "points[{last}] repeats points[0]: a closed curve closes by itself, do not repeat the first point"
             ),
             Error::OutOfDomain { x, min, max } => {
                 write!(f, "x = {x} is outside the domain [{min}, {max}]")

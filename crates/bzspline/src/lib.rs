@@ -50,14 +50,18 @@
 //! ```
 
 mod bezier;
+pub mod curve;
 mod error;
+pub mod flatten;
 pub mod spline;
 mod tridiag;
 
 pub use bezier::CubicBez;
+pub use curve::{BBox, Curve, CurveBuilder, Nearest, Param, Repeats, DEFAULT_ACCURACY};
 pub use error::{Error, Field};
+pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
 pub use spline::{
     Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
     MIN_RELATIVE_INTERVAL,
 };
-pub use tridiag::Thomas;
+pub use tridiag::{CyclicThomas, Thomas};

@@ -84,6 +84,94 @@ impl Thomas {
     }
 }
 
+/// A cyclic tridiagonal matrix factored for repeated solves: the Thomas
+/// factorization of a modified matrix plus one Sherman-Morrison correction.
+///
+/// Row `i` reads `lower[i] * x[i-1] + diag[i] * x[i] + upper[i] * x[i+1] = r[i]`
+/// with indices taken modulo `n`, so `lower[0]` couples to `x[n-1]` and
+/// `upper[n-1]` to `x[0]`. A closed curve's continuity system has this form.
+///
+/// With `gamma = -diag[0]`, the matrix is `B + u v^T` where `B` is tridiagonal
+/// with `diag[0] - gamma` and `diag[n-1] - lower[0] upper[n-1] / gamma` on the
+/// ends of its diagonal, `u = (gamma, 0, .., upper[n-1])` and
+/// `v = (1, 0, .., lower[0] / gamma)`. `B` stays diagonally dominant when the
+/// cyclic matrix is, so each solve is two Thomas sweeps and one update.
+#[derive(Clone, Debug)]
+pub struct CyclicThomas {
+    thomas: Thomas,
+    /// `B^-1 u`.
+    z: Vec<f64>,
+    /// `lower[0] / gamma`, the last entry of `v`.
+    v_last: f64,
+    /// `1 + v . z`.
+    denom: f64,
+}
+
+impl CyclicThomas {
+    /// Factors the cyclic matrix. The three slices must have the same length
+    /// `n >= 3`.
+    ///
+    /// Returns `None` for other lengths, or when a pivot or the
+    /// Sherman-Morrison denominator is zero or not finite (which cannot happen
+    /// for a strictly diagonally dominant matrix).
+    #[must_use]
+    pub fn factor(lower: &[f64], diag: &[f64], upper: &[f64]) -> Option<Self> {
+        let n = diag.len();
+        if n < 3 || lower.len() != n || upper.len() != n {
+            return None;
+        }
+        let gamma = -diag[0];
+        if gamma == 0.0 || !gamma.is_finite() {
+            return None;
+        }
+        let mut d = diag.to_vec();
+        d[0] -= gamma;
+        d[n - 1] -= lower[0] * upper[n - 1] / gamma;
+        let thomas = Thomas::factor(lower, &d, upper)?;
+        let mut z = vec![0.0; n];
+        z[0] = gamma;
+        z[n - 1] = upper[n - 1];
+        thomas.solve_in_place(&mut z);
+        let v_last = lower[0] / gamma;
+        let denom = 1.0 + z[0] + v_last * z[n - 1];
+        if denom == 0.0 || !denom.is_finite() {
+            return None;
+        }
+        Some(CyclicThomas {
+            thomas,
+            z,
+            v_last,
+            denom,
+        })
+    }
+
+    /// Number of unknowns.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.z.len()
+    }
+
+    /// Always false: a cyclic system has at least three unknowns.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.z.is_empty()
+    }
+
+    /// Solves in place, as [`Thomas::solve_in_place`]: wrong lengths leave `rhs`
+    /// untouched and return `false`.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) -> bool {
+        let n = self.len();
+        if !self.thomas.solve_in_place(rhs) {
+            return false;
+        }
+        let factor = (rhs[0] + self.v_last * rhs[n - 1]) / self.denom;
+        for (r, z) in rhs.iter_mut().zip(&self.z) {
+            *r -= factor * z;
+        }
+        true
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,5 +219,40 @@ mod tests {
         assert!(Thomas::factor(&[], &[], &[])
             .unwrap()
             .solve_in_place(&mut empty));
+    }
+
+    fn mul_cyclic(lower: &[f64], diag: &[f64], upper: &[f64], x: &[f64]) -> Vec<f64> {
+        let n = x.len();
+        (0..n)
+            .map(|i| diag[i] * x[i] + lower[i] * x[(i + n - 1) % n] + upper[i] * x[(i + 1) % n])
+            .collect()
+    }
+
+    #[test]
+    fn solves_a_cyclic_dominant_system() {
+        for n in [3, 4, 5, 17, 64] {
+            let lower: Vec<f64> = (0..n).map(|i| -1.0 - (i % 3) as f64 * 0.3).collect();
+            let upper: Vec<f64> = (0..n).map(|i| -0.7 + (i % 5) as f64 * 0.1).collect();
+            let diag: Vec<f64> = (0..n).map(|i| 2.5 + (i % 7) as f64).collect();
+            let want: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
+            let mut x = mul_cyclic(&lower, &diag, &upper, &want);
+            let t = CyclicThomas::factor(&lower, &diag, &upper).expect("dominant");
+            assert_eq!(t.len(), n);
+            assert!(t.solve_in_place(&mut x));
+            for (i, (a, b)) in x.iter().zip(&want).enumerate() {
+                assert!((a - b).abs() < 1e-12, "n={n} x[{i}]: want {b}, got {a}");
+            }
+        }
+    }
+
+    #[test]
+    fn cyclic_rejects_short_and_mismatched() {
+        assert!(CyclicThomas::factor(&[1.0; 2], &[4.0; 2], &[1.0; 2]).is_none());
+        assert!(CyclicThomas::factor(&[1.0; 3], &[4.0; 4], &[1.0; 4]).is_none());
+        assert!(CyclicThomas::factor(&[1.0; 3], &[0.0; 3], &[1.0; 3]).is_none());
+        let t = CyclicThomas::factor(&[-1.0; 3], &[4.0; 3], &[-1.0; 3]).unwrap();
+        let mut wrong = [1.0; 2];
+        assert!(!t.solve_in_place(&mut wrong));
+        assert_eq!(wrong, [1.0; 2]);
     }
 }

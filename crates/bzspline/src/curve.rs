@@ -1,0 +1,2073 @@
+//! Parametric curves in `R^d`, open or closed, built coordinate by coordinate on
+//! one shared parameter grid.
+//!
+//! # Open curves
+//!
+//! Control points `P_0 .. P_{n-1}` (n >= 2) get parameters `tau_0 < .. < tau_{n-1}`
+//! ([`Param`]) and one shape parameter per leg `P_k -> P_{k+1}`. Each coordinate
+//! is the spline of [`crate::spline`] on that grid; the continuity matrix depends
+//! only on the parameter steps and the alphas, so it is factored once and solved
+//! for one right-hand side per coordinate. Because every coordinate uses the same
+//! linear map, the curve touches leg `k` at the parameter
+//! `x_k = tau_{k+1} - alpha_k h_k`, at the point `alpha_k P_k + (1 - alpha_k) P_{k+1}`,
+//! and starts at `P_0` and ends at `P_{n-1}`.
+//!
+//! # Closed curves
+//!
+//! Control points `P_0 .. P_{n-1}` (n >= 3) with the closing leg `P_{n-1} -> P_0`
+//! get `n + 1` parameters; `tau_n` closes the loop. Every knot is interior: the
+//! row-scaled continuity equation of [`crate::spline`] holds at every knot with
+//! indices taken cyclically, `d` is fixed nowhere, and the system is cyclic
+//! tridiagonal and diagonally dominant in the theorem's range. It is solved in
+//! O(n) by [`CyclicThomas`](crate::CyclicThomas). The curve is C1 across the
+//! closing knot too. A closed curve answers at every finite parameter: it is
+//! periodic with period `tau_n - tau_0`.
+//!
+//! # Numbers
+//!
+//! Each coordinate is divided by its own power of two (exact) before solving, as
+//! the y(x) spline does, so coordinates near `1e308` do not overflow. Geometric
+//! quantities that mix coordinates (lengths, distances, curvature) are computed
+//! in units of the largest of these powers of two and converted back at the end.
+
+use crate::bezier::CubicBez;
+use crate::error::{Error, Field};
+use crate::flatten::Polyline;
+use crate::spline::{
+    alpha_terms, check_finite, piece_coefs, power_of_two_scale, quadratic_roots, resolve_alphas,
+    validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
+};
+use crate::tridiag::{CyclicThomas, Thomas};
+use std::sync::OnceLock;
+
+/// Default absolute accuracy of arc lengths and their inverse, in the curve's
+/// units.
+pub const DEFAULT_ACCURACY: f64 = 1e-9;
+
+/// How the parameters `tau` of the control points are chosen.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Param {
+    /// `tau_i = i`. The default.
+    #[default]
+    Uniform,
+    /// `tau_{i+1} - tau_i = |P_{i+1} - P_i|` (chord lengths), `tau_0 = 0`.
+    Chordal,
+    /// `tau_{i+1} - tau_i = |P_{i+1} - P_i|^(1/2)`, `tau_0 = 0`.
+    Centripetal,
+    /// The given parameters: one per point for an open curve, one more for a
+    /// closed curve (the last closes the loop). Strictly increasing.
+    Given(Vec<f64>),
+}
+
+/// What to do with a control point equal to the one before it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Repeats {
+    /// Refuse with [`Error::RepeatedPoint`] (or [`Error::RepeatedClosingPoint`]
+    /// for a closed curve whose last point is its first). The default.
+    #[default]
+    Reject,
+    /// Drop the repeat (with its parameter, when given, and the alpha of the
+    /// empty leg); [`Curve::dropped`] lists the indices dropped.
+    Drop,
+}
+
+/// Collects the inputs of a [`Curve`] and builds it.
+///
+/// # Examples
+///
+/// ```
+/// use bzspline::{Curve, Param};
+/// let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+/// let c = Curve::builder_from(&square)
+///     .closed(true)
+///     .param(Param::Chordal)
+///     .alpha(0.5)
+///     .build()?;
+/// assert_eq!(c.len(), 4); // four segments, one per leg
+/// # Ok::<(), bzspline::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurveBuilder {
+    dim: usize,
+    points: Vec<f64>,
+    closed: bool,
+    param: Param,
+    alpha: f64,
+    alphas: Option<Vec<f64>>,
+    repeats: Repeats,
+}
+
+impl CurveBuilder {
+    /// A builder for the points stored flat, `dim` coordinates per point.
+    #[must_use]
+    pub fn new(points: &[f64], dim: usize) -> Self {
+        CurveBuilder {
+            dim,
+            points: points.to_vec(),
+            closed: false,
+            param: Param::Uniform,
+            alpha: DEFAULT_ALPHA,
+            alphas: None,
+            repeats: Repeats::Reject,
+        }
+    }
+
+    /// Open (`false`, the default) or closed.
+    #[must_use]
+    pub fn closed(mut self, closed: bool) -> Self {
+        self.closed = closed;
+        self
+    }
+
+    /// The parameter choice (default [`Param::Uniform`]).
+    #[must_use]
+    pub fn param(mut self, param: Param) -> Self {
+        self.param = param;
+        self
+    }
+
+    /// The same alpha on every leg (default [`DEFAULT_ALPHA`]).
+    #[must_use]
+    pub fn alpha(mut self, alpha: f64) -> Self {
+        self.alpha = alpha;
+        self.alphas = None;
+        self
+    }
+
+    /// One alpha per leg: `n - 1` for an open curve, `n` for a closed one (the
+    /// last is the closing leg's).
+    #[must_use]
+    pub fn alphas(mut self, alphas: &[f64]) -> Self {
+        self.alphas = Some(alphas.to_vec());
+        self
+    }
+
+    /// What to do with repeated consecutive points (default [`Repeats::Reject`]).
+    #[must_use]
+    pub fn repeats(mut self, repeats: Repeats) -> Self {
+        self.repeats = repeats;
+        self
+    }
+
+    /// Validates the inputs and solves.
+    ///
+    /// # Errors
+    ///
+    /// - [`Error::InvalidArgument`] for dimension 0;
+    /// - [`Error::LengthMismatch`] (field [`Field::Coordinate`]) when the number
+    ///   of coordinates is not a multiple of the dimension; with
+    ///   [`Field::Alpha`] or [`Field::Knot`] for a wrong number of alphas or
+    ///   given parameters;
+    /// - [`Error::NonFinite`] with [`Field::Coordinate`] and the point's index for
+    ///   a NaN or infinite coordinate (or with the field of a bad alpha or
+    ///   parameter);
+    /// - [`Error::TooFewPoints`] for fewer than 2 points (3 for a closed curve),
+    ///   also after dropping repeats;
+    /// - [`Error::RepeatedPoint`] / [`Error::RepeatedClosingPoint`] for repeated
+    ///   consecutive points under [`Repeats::Reject`];
+    /// - [`Error::AlphaOutOfRange`] for an alpha outside `[1/3, 2/3]`;
+    /// - the knot errors of [`crate::Spline::with_alphas`] for the parameters
+    ///   (not increasing, an interval too small relative to the span).
+    pub fn build(self) -> Result<Curve, Error> {
+        Curve::build_from(self)
+    }
+}
+
+/// How a curve was built, kept so that it can be rebuilt after a point moves.
+#[derive(Clone, Debug, PartialEq)]
+enum ParamKind {
+    Uniform,
+    Chordal,
+    Centripetal,
+    Given,
+}
+
+/// A curve in `R^d` made of one cubic segment per leg of its control polygon:
+/// C1, touching every leg, inside the convex hull of its control points for
+/// alphas in `[1/3, 2/3]`. Immutable except through [`Curve::move_point`].
+///
+/// Segment `k` runs over `[tau_k, tau_{k+1}]`, from knot point `k` to knot point
+/// `k + 1` (point 0 for the closing segment of a closed curve), and answers on
+/// the half-open interval `[tau_k, tau_{k+1})`; the last one also at its end.
+///
+/// # Examples
+///
+/// ```
+/// use bzspline::Curve;
+/// let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])?;
+/// assert_eq!(c.eval(0.0)?, vec![0.0, 0.0]);
+/// assert_eq!(c.eval(3.0)?, vec![4.0, 0.0]);
+/// // Leg 1 is touched at its middle, where the curve runs parallel to it.
+/// let (t, p) = &c.tangent_points()[1];
+/// assert_eq!(*t, 1.5);
+/// assert_eq!(p, &vec![2.0, 2.0]);
+/// assert!(c.deriv(*t, 1)?[1].abs() < 1e-12);
+/// # Ok::<(), bzspline::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    dim: usize,
+    closed: bool,
+    kind: ParamKind,
+    /// Control points, flat, `dim` per point.
+    points: Vec<f64>,
+    /// Indices (in the caller's array) of points dropped as repeats.
+    dropped: Vec<usize>,
+    /// `n` parameters (open) or `n + 1` (closed).
+    knots: Vec<f64>,
+    /// One per leg.
+    alphas: Vec<f64>,
+    /// Power of two per coordinate.
+    scales: Vec<f64>,
+    /// The largest of `scales`: the unit of mixed-coordinate geometry.
+    gscale: f64,
+    /// Scaled control points `P / scale`, flat.
+    f: Vec<f64>,
+    /// Scaled deviations, flat: knot point `i` is `(f + d)[i] * scale`.
+    d: Vec<f64>,
+    /// Power-basis coefficients in `t` of segment `k`, coordinate `c`, at
+    /// `k * dim + c`, scaled.
+    coefs: Vec<[f64; 4]>,
+}
+
+/// The axis-aligned box spanned by a curve.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct BBox {
+    /// Smallest value of each coordinate.
+    pub min: Vec<f64>,
+    /// Largest value of each coordinate.
+    pub max: Vec<f64>,
+}
+
+/// The point of a curve nearest to a query point.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Nearest {
+    /// Its parameter.
+    pub param: f64,
+    /// The point.
+    pub point: Vec<f64>,
+    /// Its distance from the query.
+    pub distance: f64,
+}
+
+/// Euclidean norm without overflow or underflow in the squares.
+fn norm(v: &[f64]) -> f64 {
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    let s: f64 = v.iter().map(|x| (x / m) * (x / m)).sum();
+    m * s.sqrt()
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+#[inline]
+fn horner(c: &[f64; 4], t: f64) -> f64 {
+    c[0] + t * (c[1] + t * (c[2] + t * c[3]))
+}
+
+#[inline]
+fn poly_deriv(c: &[f64; 4], t: f64, order: u32) -> f64 {
+    match order {
+        0 => horner(c, t),
+        1 => c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]),
+        2 => 2.0 * c[2] + 6.0 * t * c[3],
+        3 => 6.0 * c[3],
+        _ => 0.0,
+    }
+}
+
+fn check_tolerance(what: &'static str, tol: f64) -> Result<(), Error> {
+    if !tol.is_finite() {
+        return Err(Error::NonFinite {
+            field: Field::Tolerance,
+            index: 0,
+            value: tol,
+        });
+    }
+    if tol < 0.0 {
+        return Err(Error::InvalidArgument { what, value: tol });
+    }
+    Ok(())
+}
+
+/// Checks a query point of the curve's dimension.
+fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
+    if q.len() != dim {
+        return Err(Error::LengthMismatch {
+            field: Field::Query,
+            expected: dim,
+            found: q.len(),
+        });
+    }
+    check_finite(Field::Query, q)
+}
+
+/// Row `i` of the row-scaled continuity system for the knot between legs of
+/// widths `hl`, `hr` and alphas `al`, `ar`: `(lower, diag, upper, p)`.
+#[inline]
+fn row(hl: f64, hr: f64, al: f64, ar: f64) -> (f64, f64, f64, f64) {
+    let p = hr / (hl + hr);
+    let q = hl / (hl + hr);
+    let [a, b1, _, _] = alpha_terms(al);
+    let [_, _, b2, c] = alpha_terms(ar);
+    (-p * a, p * b1 + q * b2, -q * c, p)
+}
+
+/// The factored cyclic system of a closed curve.
+struct ClosedSystem {
+    p: Vec<f64>,
+    solver: Option<CyclicThomas>,
+}
+
+impl ClosedSystem {
+    fn new(widths: &[f64], alphas: &[f64]) -> Self {
+        let n = widths.len();
+        let (mut lower, mut diag, mut upper, mut ps) = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
+        for i in 0..n {
+            let l = (i + n - 1) % n;
+            let (lo, di, up, p) = row(widths[l], widths[i], alphas[l], alphas[i]);
+            lower.push(lo);
+            diag.push(di);
+            upper.push(up);
+            ps.push(p);
+        }
+        ClosedSystem {
+            p: ps,
+            solver: CyclicThomas::factor(&lower, &diag, &upper),
+        }
+    }
+
+    /// Deviations of the scaled closed polygon `f` (one coordinate).
+    fn solve(&self, f: &[f64], d: &mut [f64]) {
+        let n = f.len();
+        for i in 0..n {
+            let p = self.p[i];
+            let q = 1.0 - p;
+            let (prev, next) = (f[(i + n - 1) % n], f[(i + 1) % n]);
+            d[i] = q * (next - f[i]) - p * (f[i] - prev);
+        }
+        // Diagonal dominance keeps the factorization valid for alphas in range;
+        // the fallback (no correction) is unreachable but never panics.
+        match &self.solver {
+            Some(s) => {
+                s.solve_in_place(d);
+            }
+            None => d.iter_mut().for_each(|v| *v = 0.0),
+        }
+    }
+}
+
+/// Gauss-Legendre nodes and weights on `[-1, 1]`.
+fn gauss_legendre() -> &'static ([f64; GL_N], [f64; GL_N]) {
+    static TABLE: OnceLock<([f64; GL_N], [f64; GL_N])> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let n = GL_N;
+        let mut x = [0.0; GL_N];
+        let mut w = [0.0; GL_N];
+        for i in 0..n {
+            let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, z);
+                for j in 2..=n {
+                    let jf = j as f64;
+                    let p2 = ((2.0 * jf - 1.0) * z * p1 - (jf - 1.0) * p0) / jf;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
+                let dz = p1 / dp;
+                z -= dz;
+                if dz.abs() < 1e-16 {
+                    break;
+                }
+            }
+            x[i] = z;
+            w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+        }
+        (x, w)
+    })
+}
+
+const GL_N: usize = 8;
+const MAX_DEPTH: u32 = 40;
+
+/// Real roots in `[lo, hi]` of the polynomial with power coefficients `c`
+/// (lowest first), by isolating them between the roots of its derivative:
+/// between two consecutive critical points the polynomial is monotone, so a
+/// sign change brackets exactly one root, found by bisection.
+pub(crate) fn real_roots_in(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
+    let eval = |t: f64| c.iter().rev().fold(0.0, |acc, v| acc * t + v);
+    if c.len() <= 3 {
+        let (a, b, c0) = (
+            c.get(2).copied().unwrap_or(0.0),
+            c.get(1).copied().unwrap_or(0.0),
+            c.first().copied().unwrap_or(0.0),
+        );
+        return quadratic_roots(a, b, c0)
+            .into_iter()
+            .filter(|t| (lo..=hi).contains(t))
+            .collect();
+    }
+    let dc: Vec<f64> = c
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, v)| i as f64 * v)
+        .collect();
+    let mut crit = real_roots_in(&dc, lo, hi);
+    crit.sort_by(f64::total_cmp);
+    let mut pts = Vec::with_capacity(crit.len() + 2);
+    pts.push(lo);
+    pts.extend(crit);
+    pts.push(hi);
+    let mut out = Vec::new();
+    for w in pts.windows(2) {
+        let (mut a, mut b) = (w[0], w[1]);
+        let (mut fa, fb) = (eval(a), eval(b));
+        if fa == 0.0 {
+            out.push(a);
+            continue;
+        }
+        if fb == 0.0 || fa.signum() == fb.signum() {
+            continue;
+        }
+        for _ in 0..200 {
+            let m = 0.5 * (a + b);
+            if m <= a || m >= b {
+                break;
+            }
+            let fm = eval(m);
+            if fm == 0.0 {
+                a = m;
+                b = m;
+                break;
+            }
+            if fm.signum() == fa.signum() {
+                a = m;
+                fa = fm;
+            } else {
+                b = m;
+            }
+        }
+        out.push(0.5 * (a + b));
+    }
+    if eval(hi) == 0.0 {
+        out.push(hi);
+    }
+    out
+}
+
+impl Curve {
+    /// A builder for points stored flat, `dim` coordinates per point.
+    #[must_use]
+    pub fn builder(points: &[f64], dim: usize) -> CurveBuilder {
+        CurveBuilder::new(points, dim)
+    }
+
+    /// A builder for points given as arrays (`[[f64; 2]]`, `[[f64; 3]]`, ...).
+    #[must_use]
+    pub fn builder_from<const D: usize>(points: &[[f64; D]]) -> CurveBuilder {
+        CurveBuilder::new(points.as_flattened(), D)
+    }
+
+    /// The open curve through `points` with uniform parameters and alpha 1/2.
+    ///
+    /// # Errors
+    ///
+    /// See [`CurveBuilder::build`].
+    pub fn open<const D: usize>(points: &[[f64; D]]) -> Result<Self, Error> {
+        Self::builder_from(points).build()
+    }
+
+    /// The closed curve around `points` with uniform parameters and alpha 1/2.
+    ///
+    /// # Errors
+    ///
+    /// See [`CurveBuilder::build`].
+    pub fn closed<const D: usize>(points: &[[f64; D]]) -> Result<Self, Error> {
+        Self::builder_from(points).closed(true).build()
+    }
+
+    fn build_from(b: CurveBuilder) -> Result<Self, Error> {
+        let dim = b.dim;
+        if dim == 0 {
+            return Err(Error::InvalidArgument {
+                what: "the dimension must be at least 1",
+                value: 0.0,
+            });
+        }
+        if b.points.len() % dim != 0 {
+            return Err(Error::LengthMismatch {
+                field: Field::Coordinate,
+                expected: b.points.len() / dim * dim + dim,
+                found: b.points.len(),
+            });
+        }
+        if let Some(i) = b.points.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                field: Field::Coordinate,
+                index: i / dim,
+                value: b.points[i],
+            });
+        }
+        let n = b.points.len() / dim;
+        let min = if b.closed { 3 } else { 2 };
+        if n < min {
+            return Err(Error::TooFewPoints { found: n, min });
+        }
+        let legs = if b.closed { n } else { n - 1 };
+        let alphas = match &b.alphas {
+            Some(a) => resolve_alphas(Alphas::PerInterval(a), legs)?,
+            None => resolve_alphas(Alphas::Uniform(b.alpha), legs)?,
+        };
+        let (kind, given) = match b.param {
+            Param::Uniform => (ParamKind::Uniform, None),
+            Param::Chordal => (ParamKind::Chordal, None),
+            Param::Centripetal => (ParamKind::Centripetal, None),
+            Param::Given(g) => {
+                let want = if b.closed { n + 1 } else { n };
+                if g.len() != want {
+                    return Err(Error::LengthMismatch {
+                        field: Field::Knot,
+                        expected: want,
+                        found: g.len(),
+                    });
+                }
+                check_finite(Field::Knot, &g)?;
+                (ParamKind::Given, Some(g))
+            }
+        };
+        // Keep-list: drop or refuse repeats.
+        let pt = |i: usize| &b.points[i * dim..(i + 1) * dim];
+        let mut keep: Vec<usize> = Vec::with_capacity(n);
+        let mut dropped = Vec::new();
+        for i in 0..n {
+            if let Some(&last) = keep.last() {
+                if pt(i) == pt(last) {
+                    match b.repeats {
+                        Repeats::Reject => return Err(Error::RepeatedPoint { index: i }),
+                        Repeats::Drop => {
+                            dropped.push(i);
+                            continue;
+                        }
+                    }
+                }
+            }
+            keep.push(i);
+        }
+        if b.closed {
+            while keep.len() > 1 {
+                let last = keep[keep.len() - 1];
+                if pt(last) != pt(keep[0]) {
+                    break;
+                }
+                match b.repeats {
+                    Repeats::Reject => return Err(Error::RepeatedClosingPoint { last }),
+                    Repeats::Drop => {
+                        dropped.push(last);
+                        keep.pop();
+                    }
+                }
+            }
+            dropped.sort_unstable();
+        }
+        if keep.len() < min {
+            return Err(Error::TooFewPoints {
+                found: keep.len(),
+                min,
+            });
+        }
+        let nk = keep.len();
+        let points: Vec<f64> = keep.iter().flat_map(|&i| pt(i).iter().copied()).collect();
+        // Each kept leg keeps the alpha of the one original leg of nonzero length
+        // it stands for: the leg that leaves the run of copies of its start.
+        let legs_kept = if b.closed { nk } else { nk - 1 };
+        let alphas: Vec<f64> = keep[..legs_kept]
+            .iter()
+            .map(|&a| {
+                let mut e = a + 1;
+                while e < n && pt(e) == pt(a) {
+                    e += 1;
+                }
+                alphas[e - 1]
+            })
+            .collect();
+        let given = given.map(|g| {
+            let mut v: Vec<f64> = keep.iter().map(|&i| g[i]).collect();
+            if b.closed {
+                v.push(g[n]);
+            }
+            v
+        });
+        Self::solve_new(dim, b.closed, kind, points, dropped, given, alphas)
+    }
+
+    /// Parameters for the kind, validates them, and solves.
+    fn solve_new(
+        dim: usize,
+        closed: bool,
+        kind: ParamKind,
+        points: Vec<f64>,
+        dropped: Vec<usize>,
+        given: Option<Vec<f64>>,
+        alphas: Vec<f64>,
+    ) -> Result<Self, Error> {
+        let n = points.len() / dim;
+        let legs = if closed { n } else { n - 1 };
+        let knots = match (&kind, given) {
+            (ParamKind::Given, Some(g)) => g,
+            (ParamKind::Uniform, _) | (ParamKind::Given, None) => {
+                (0..=legs).map(|i| i as f64).collect()
+            }
+            (ParamKind::Chordal | ParamKind::Centripetal, _) => {
+                let s = power_of_two_scale(&points);
+                let inv = 1.0 / s;
+                let mut chord = vec![0.0; dim];
+                let mut steps = Vec::with_capacity(legs);
+                for k in 0..legs {
+                    let j = (k + 1) % n;
+                    for (c, ch) in chord.iter_mut().enumerate() {
+                        *ch = points[j * dim + c] * inv - points[k * dim + c] * inv;
+                    }
+                    let len = norm(&chord);
+                    steps.push(if kind == ParamKind::Chordal {
+                        len
+                    } else {
+                        len.sqrt()
+                    });
+                }
+                let unit = if kind == ParamKind::Chordal {
+                    s
+                } else {
+                    s.sqrt()
+                };
+                let mut knots = Vec::with_capacity(legs + 1);
+                let mut acc = 0.0;
+                knots.push(0.0);
+                for h in &steps {
+                    acc += h;
+                    knots.push(acc);
+                }
+                // Back to the points' units unless the total would overflow.
+                if (acc * unit).is_finite() {
+                    for k in &mut knots {
+                        *k *= unit;
+                    }
+                }
+                knots
+            }
+        };
+        let widths = validate_knots(&knots)?;
+        let scales: Vec<f64> = (0..dim)
+            .map(|c| power_of_two_scale(points.iter().skip(c).step_by(dim)))
+            .collect();
+        let gscale = scales.iter().fold(0.0f64, |m, s| m.max(*s));
+        let f: Vec<f64> = points
+            .iter()
+            .enumerate()
+            .map(|(i, v)| v * (1.0 / scales[i % dim]))
+            .collect();
+        let mut curve = Curve {
+            dim,
+            closed,
+            kind,
+            points,
+            dropped,
+            knots,
+            alphas,
+            scales,
+            gscale,
+            f,
+            d: Vec::new(),
+            coefs: Vec::new(),
+        };
+        curve.solve_all(&widths);
+        Ok(curve)
+    }
+
+    /// Solves every coordinate and rebuilds every segment.
+    fn solve_all(&mut self, widths: &[f64]) {
+        let (n, dim) = (self.points.len() / self.dim, self.dim);
+        self.d = vec![0.0; n * dim];
+        let mut col = vec![0.0; n];
+        let mut dev = Vec::with_capacity(n);
+        if self.closed {
+            let sys = ClosedSystem::new(widths, &self.alphas);
+            dev.resize(n, 0.0);
+            for c in 0..dim {
+                for (i, v) in col.iter_mut().enumerate() {
+                    *v = self.f[i * dim + c];
+                }
+                sys.solve(&col, &mut dev);
+                for (i, v) in dev.iter().enumerate() {
+                    self.d[i * dim + c] = *v;
+                }
+            }
+        } else {
+            let sys = OpenSystem::new(widths, &self.alphas);
+            for c in 0..dim {
+                for (i, v) in col.iter_mut().enumerate() {
+                    *v = self.f[i * dim + c];
+                }
+                sys.solve(&col, &mut dev);
+                for (i, v) in dev.iter().enumerate() {
+                    self.d[i * dim + c] = *v;
+                }
+            }
+        }
+        self.coefs = vec![[0.0; 4]; self.len() * dim];
+        for k in 0..self.len() {
+            self.update_segment(k);
+        }
+    }
+
+    fn update_segment(&mut self, k: usize) {
+        let (n, dim) = (self.n_points(), self.dim);
+        let j = (k + 1) % n;
+        for c in 0..dim {
+            self.coefs[k * dim + c] = piece_coefs(
+                self.f[k * dim + c],
+                self.f[j * dim + c],
+                self.d[k * dim + c],
+                self.d[j * dim + c],
+                self.alphas[k],
+            );
+        }
+    }
+
+    fn n_points(&self) -> usize {
+        self.points.len() / self.dim
+    }
+
+    /// The unit of mixed-coordinate geometry (a power of two).
+    pub(crate) fn unit(&self) -> f64 {
+        self.gscale
+    }
+
+    /// The largest `|d^2 r / dt^2|` on segment `k`, in units of [`Self::unit`].
+    pub(crate) fn accel_bound(&self, k: usize) -> f64 {
+        let mut a = vec![0.0; self.dim];
+        self.local(k, 0.0, 2, &mut a);
+        let m0 = norm(&a);
+        self.local(k, 1.0, 2, &mut a);
+        m0.max(norm(&a))
+    }
+
+    /// The point of segment `k` at local `t`, in the curve's units.
+    pub(crate) fn segment_point(&self, k: usize, t: f64) -> Vec<f64> {
+        let mut p = vec![0.0; self.dim];
+        self.local(k, t, 0, &mut p);
+        p.iter()
+            .map(|v| (v * self.gscale).clamp(-f64::MAX, f64::MAX))
+            .collect()
+    }
+
+    /// The dimension `d` of the space.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// True for a closed curve.
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// Number of segments (legs): `n - 1` open, `n` closed.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.knots.len() - 1
+    }
+
+    /// Always false: a curve has at least one segment.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.knots.len() < 2
+    }
+
+    /// The control points (after dropping repeats), flat, [`Curve::dim`] per
+    /// point.
+    #[must_use]
+    pub fn points(&self) -> &[f64] {
+        &self.points
+    }
+
+    /// Control point `i`.
+    #[must_use]
+    pub fn point(&self, i: usize) -> Option<&[f64]> {
+        self.points.get(i * self.dim..(i + 1) * self.dim)
+    }
+
+    /// Number of control points (after dropping repeats).
+    #[must_use]
+    pub fn point_count(&self) -> usize {
+        self.n_points()
+    }
+
+    /// Indices, in the array given to the builder, of the points dropped as
+    /// repeats under [`Repeats::Drop`]; empty otherwise.
+    #[must_use]
+    pub fn dropped(&self) -> &[usize] {
+        &self.dropped
+    }
+
+    /// The parameters `tau`: one per point, and one more for a closed curve.
+    #[must_use]
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// The shape parameters, one per leg.
+    #[must_use]
+    pub fn alphas(&self) -> &[f64] {
+        &self.alphas
+    }
+
+    /// The parameter domain `[tau_0, tau_last]`.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[0], self.knots[self.knots.len() - 1])
+    }
+
+    /// Segment and local parameter of `s`.
+    fn locate(&self, s: f64) -> Result<(usize, f64), Error> {
+        if !s.is_finite() {
+            return Err(Error::NonFinite {
+                field: Field::Query,
+                index: 0,
+                value: s,
+            });
+        }
+        let (lo, hi) = self.domain();
+        let mut s = s;
+        if !(lo..=hi).contains(&s) {
+            if !self.closed {
+                return Err(Error::OutOfDomain {
+                    x: s,
+                    min: lo,
+                    max: hi,
+                });
+            }
+            s = lo + (s - lo).rem_euclid(hi - lo);
+            if !(lo..=hi).contains(&s) {
+                s = lo;
+            }
+        }
+        let i = self.knots.partition_point(|&k| k <= s);
+        let k = i.saturating_sub(1).min(self.len() - 1);
+        let t = ((s - self.knots[k]) / (self.knots[k + 1] - self.knots[k])).clamp(0.0, 1.0);
+        Ok((k, t))
+    }
+
+    /// Derivative of order `order` in the local `t` of segment `k`, in units of
+    /// `gscale`, into `out`.
+    fn local(&self, k: usize, t: f64, order: u32, out: &mut [f64]) {
+        let dim = self.dim;
+        let j = (k + 1) % self.n_points();
+        for (c, o) in out.iter_mut().enumerate() {
+            let rel = self.scales[c] / self.gscale;
+            let v = if order == 0 && t == 1.0 {
+                self.f[j * dim + c] + self.d[j * dim + c]
+            } else {
+                poly_deriv(&self.coefs[k * dim + c], t, order)
+            };
+            *o = v * rel;
+        }
+    }
+
+    /// The point at parameter `s`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a NaN or infinite `s`; [`Error::OutOfDomain`]
+    /// outside the domain of an open curve (a closed curve is periodic).
+    pub fn eval(&self, s: f64) -> Result<Vec<f64>, Error> {
+        let (k, t) = self.locate(s)?;
+        let dim = self.dim;
+        let j = (k + 1) % self.n_points();
+        Ok((0..dim)
+            .map(|c| {
+                let v = if t == 1.0 {
+                    self.f[j * dim + c] + self.d[j * dim + c]
+                } else {
+                    horner(&self.coefs[k * dim + c], t)
+                };
+                let v = v * self.scales[c];
+                if v.is_infinite() {
+                    // Rounding above the largest double inside the hull.
+                    f64::MAX.copysign(v)
+                } else {
+                    v
+                }
+            })
+            .collect())
+    }
+
+    /// The derivative of order `order` (0..=3; higher ones are 0) with respect
+    /// to the parameter at `s`. At a knot, orders 2 and 3 are those of the
+    /// segment to the right.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::eval`]; [`Error::Overflow`] when a derivative exceeds the
+    /// range of a double.
+    pub fn deriv(&self, s: f64, order: u32) -> Result<Vec<f64>, Error> {
+        if order == 0 {
+            return self.eval(s);
+        }
+        let (k, t) = self.locate(s)?;
+        let h = self.knots[k + 1] - self.knots[k];
+        let dim = self.dim;
+        let mut out = Vec::with_capacity(dim);
+        for c in 0..dim {
+            let mut v = poly_deriv(&self.coefs[k * dim + c], t, order) * self.scales[c];
+            for _ in 0..order.min(4) {
+                v /= h;
+            }
+            if !v.is_finite() {
+                return Err(Error::Overflow {
+                    what: "the derivative",
+                });
+            }
+            out.push(v);
+        }
+        Ok(out)
+    }
+
+    /// The unit tangent at `s` (the zero vector where the derivative vanishes).
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::eval`].
+    pub fn tangent(&self, s: f64) -> Result<Vec<f64>, Error> {
+        let (k, t) = self.locate(s)?;
+        let mut v = vec![0.0; self.dim];
+        self.local(k, t, 1, &mut v);
+        let m = norm(&v);
+        if m > 0.0 {
+            v.iter_mut().for_each(|x| *x /= m);
+        }
+        Ok(v)
+    }
+
+    /// The unit normal at `s`. In the plane it is the tangent turned by +90
+    /// degrees, `(-t_y, t_x)`. In other dimensions it is the part of the second
+    /// derivative orthogonal to the tangent, normalised (the principal normal);
+    /// the zero vector where the curve is straight or the derivative vanishes.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::eval`].
+    pub fn normal(&self, s: f64) -> Result<Vec<f64>, Error> {
+        let tan = self.tangent(s)?;
+        if self.dim == 2 {
+            return Ok(vec![-tan[1], tan[0]]);
+        }
+        let (k, t) = self.locate(s)?;
+        let mut a = vec![0.0; self.dim];
+        self.local(k, t, 2, &mut a);
+        let along = dot(&a, &tan);
+        for (x, u) in a.iter_mut().zip(&tan) {
+            *x -= along * u;
+        }
+        let m = norm(&a);
+        if m > 0.0 && m.is_finite() && tan.iter().any(|x| *x != 0.0) {
+            a.iter_mut().for_each(|x| *x /= m);
+        } else {
+            a.iter_mut().for_each(|x| *x = 0.0);
+        }
+        Ok(a)
+    }
+
+    /// The curvature `|r' x r''| / |r'|^3` at `s` (unsigned; 0 on a straight
+    /// part).
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::eval`]; [`Error::Overflow`] where the derivative vanishes or
+    /// the curvature exceeds the range of a double.
+    pub fn curvature(&self, s: f64) -> Result<f64, Error> {
+        let (k, t) = self.locate(s)?;
+        let mut v = vec![0.0; self.dim];
+        let mut a = vec![0.0; self.dim];
+        self.local(k, t, 1, &mut v);
+        self.local(k, t, 2, &mut a);
+        let speed = norm(&v);
+        if speed == 0.0 {
+            return Err(Error::Overflow {
+                what: "the curvature where the derivative vanishes",
+            });
+        }
+        let u: Vec<f64> = v.iter().map(|x| x / speed).collect();
+        let along = dot(&a, &u);
+        for (x, u) in a.iter_mut().zip(&u) {
+            *x -= along * u;
+        }
+        let kappa = norm(&a) / speed / speed / self.gscale;
+        if kappa.is_finite() {
+            Ok(kappa)
+        } else {
+            Err(Error::Overflow {
+                what: "the curvature",
+            })
+        }
+    }
+
+    /// Speed `|dr/dt|` of segment `k` at local `t`, in units of `gscale`.
+    fn speed(&self, k: usize, t: f64, buf: &mut [f64]) -> f64 {
+        self.local(k, t, 1, buf);
+        norm(buf)
+    }
+
+    fn gl(&self, k: usize, a: f64, b: f64, buf: &mut [f64]) -> f64 {
+        let (x, w) = gauss_legendre();
+        let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
+        let mut s = 0.0;
+        for (xi, wi) in x.iter().zip(w) {
+            s += wi * self.speed(k, m + r * xi, buf);
+        }
+        s * r
+    }
+
+    /// Length of segment `k` from local `a` to `b`, in units of `gscale`, with
+    /// absolute error about `tol` (same units).
+    fn seg_length(&self, k: usize, a: f64, b: f64, tol: f64) -> f64 {
+        let mut buf = vec![0.0; self.dim];
+        let whole = self.gl(k, a, b, &mut buf);
+        self.adapt(k, a, b, whole, tol, 0, &mut buf)
+    }
+
+    #[allow(clippy::too_many_arguments)] // recursion state: segment, interval, estimate, tolerance, depth, scratch
+    fn adapt(
+        &self,
+        k: usize,
+        a: f64,
+        b: f64,
+        whole: f64,
+        tol: f64,
+        depth: u32,
+        buf: &mut [f64],
+    ) -> f64 {
+        let m = 0.5 * (a + b);
+        let l = self.gl(k, a, m, buf);
+        let r = self.gl(k, m, b, buf);
+        let both = l + r;
+        let floor = 8.0 * f64::EPSILON * both.abs();
+        if (both - whole).abs() <= tol.max(floor) || depth >= MAX_DEPTH || m <= a || m >= b {
+            return both;
+        }
+        self.adapt(k, a, m, l, tol * 0.5, depth + 1, buf)
+            + self.adapt(k, m, b, r, tol * 0.5, depth + 1, buf)
+    }
+
+    /// Segment lengths in `gscale` units, each to `tol` (same units).
+    fn seg_lengths(&self, tol: f64) -> Vec<f64> {
+        (0..self.len())
+            .map(|k| self.seg_length(k, 0.0, 1.0, tol))
+            .collect()
+    }
+
+    fn to_units(&self, v: f64, what: &'static str) -> Result<f64, Error> {
+        let r = v * self.gscale;
+        if r.is_finite() {
+            Ok(r)
+        } else {
+            Err(Error::Overflow { what })
+        }
+    }
+
+    /// The length of the whole curve, with absolute error at most about
+    /// `accuracy` (adaptive 8-point Gauss-Legendre per segment).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for an accuracy that is
+    /// not a finite positive number; [`Error::Overflow`] when the length exceeds
+    /// the range of a double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, DEFAULT_ACCURACY};
+    /// // A straight polygon is reproduced exactly.
+    /// let c = Curve::open(&[[0.0, 0.0], [3.0, 4.0], [6.0, 8.0]])?;
+    /// assert!((c.arclen(DEFAULT_ACCURACY)? - 10.0).abs() < 1e-9);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn arclen(&self, accuracy: f64) -> Result<f64, Error> {
+        let (lo, hi) = self.domain();
+        self.arclen_range(lo, hi, accuracy)
+    }
+
+    fn check_accuracy(accuracy: f64) -> Result<(), Error> {
+        check_tolerance("the accuracy must be positive", accuracy)?;
+        if accuracy == 0.0 {
+            return Err(Error::InvalidArgument {
+                what: "the accuracy must be positive",
+                value: accuracy,
+            });
+        }
+        Ok(())
+    }
+
+    /// The length of the curve between parameters `a` and `b` (negative when
+    /// `b < a`), both inside the domain, with absolute error about `accuracy`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::arclen`]; as [`Curve::eval`] for `a` and `b`, except that
+    /// a closed curve also refuses them outside its domain.
+    pub fn arclen_range(&self, a: f64, b: f64, accuracy: f64) -> Result<f64, Error> {
+        Self::check_accuracy(accuracy)?;
+        if b < a {
+            return self.arclen_range(b, a, accuracy).map(|v| -v);
+        }
+        let (lo, hi) = self.domain();
+        for (i, x) in [a, b].into_iter().enumerate() {
+            if !x.is_finite() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: i,
+                    value: x,
+                });
+            }
+            if !(lo..=hi).contains(&x) {
+                return Err(Error::OutOfDomain {
+                    x,
+                    min: lo,
+                    max: hi,
+                });
+            }
+        }
+        let (ka, ta) = self.locate(a)?;
+        let (kb, tb) = self.locate(b)?;
+        let tol = accuracy / self.gscale / (kb - ka + 1) as f64;
+        let mut total = 0.0;
+        for k in ka..=kb {
+            let t0 = if k == ka { ta } else { 0.0 };
+            let t1 = if k == kb { tb } else { 1.0 };
+            if t1 > t0 {
+                total += self.seg_length(k, t0, t1, tol);
+            }
+        }
+        self.to_units(total, "the arc length")
+    }
+
+    /// Local parameter in segment `k` at which the length from its start is
+    /// `target` (units of `gscale`), to `tol`.
+    fn solve_length(&self, k: usize, target: f64, seg_len: f64, tol: f64) -> f64 {
+        if target <= 0.0 {
+            return 0.0;
+        }
+        if target >= seg_len {
+            return 1.0;
+        }
+        let mut buf = vec![0.0; self.dim];
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        let mut t = target / seg_len;
+        for _ in 0..100 {
+            let f = self.seg_length(k, 0.0, t, tol * 0.5) - target;
+            if f.abs() <= tol {
+                return t;
+            }
+            if f > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let sp = self.speed(k, t, &mut buf);
+            let newton = t - f / sp;
+            t = if sp > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if hi - lo <= f64::EPSILON {
+                break;
+            }
+        }
+        t
+    }
+
+    /// The parameter at which the length from the start is `length` (the
+    /// inverse of [`Curve::arclen_range`] from the start), to `accuracy` in
+    /// length, by safeguarded Newton steps.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::arclen`]; [`Error::NonFinite`] for a non-finite length and
+    /// [`Error::OutOfDomain`] for one outside `[0, arclen]`.
+    pub fn param_at_length(&self, length: f64, accuracy: f64) -> Result<f64, Error> {
+        let mut v = self.params_at_lengths(&[length], accuracy)?;
+        Ok(v.pop().unwrap_or(self.knots[0]))
+    }
+
+    fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
+        Self::check_accuracy(accuracy)?;
+        let tol = accuracy / self.gscale / (2 * self.len()) as f64;
+        let segs = self.seg_lengths(tol);
+        let mut cum = Vec::with_capacity(segs.len() + 1);
+        let mut acc = 0.0;
+        cum.push(0.0);
+        for s in &segs {
+            acc += s;
+            cum.push(acc);
+        }
+        let total = acc * self.gscale;
+        let mut out = Vec::with_capacity(lengths.len());
+        for (i, &len) in lengths.iter().enumerate() {
+            if !len.is_finite() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: i,
+                    value: len,
+                });
+            }
+            if !(0.0..=total).contains(&len) {
+                return Err(Error::OutOfDomain {
+                    x: len,
+                    min: 0.0,
+                    max: total,
+                });
+            }
+            let target = len / self.gscale;
+            let k = cum
+                .partition_point(|&c| c <= target)
+                .saturating_sub(1)
+                .min(self.len() - 1);
+            let t = self.solve_length(k, target - cum[k], segs[k], 0.5 * accuracy / self.gscale);
+            let h = self.knots[k + 1] - self.knots[k];
+            out.push((self.knots[k] + t * h).min(self.knots[k + 1]));
+        }
+        Ok(out)
+    }
+
+    /// `count >= 2` points at equal arc-length steps from the start to the end
+    /// (a closed curve's last point is its first), with their parameters.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] for `count < 2`; as [`Curve::arclen`].
+    pub fn resample(&self, count: usize, accuracy: f64) -> Result<Polyline, Error> {
+        if count < 2 {
+            return Err(Error::InvalidArgument {
+                what: "resampling needs at least 2 points",
+                value: count as f64,
+            });
+        }
+        let total = self.arclen(accuracy)?;
+        let lengths: Vec<f64> = (0..count)
+            .map(|i| (total * (i as f64 / (count - 1) as f64)).min(total))
+            .collect();
+        let mut params = self.params_at_lengths(&lengths, accuracy)?;
+        params[count - 1] = self.domain().1;
+        let mut coords = Vec::with_capacity(count * self.dim);
+        for &s in &params {
+            coords.extend(self.eval(s)?);
+        }
+        Ok(Polyline::new(self.dim, coords, params))
+    }
+
+    /// The exact axis-aligned bounding box: per segment and coordinate, the
+    /// segment's ends and the roots of its derivative (a quadratic) inside it.
+    #[must_use]
+    pub fn bbox(&self) -> BBox {
+        let dim = self.dim;
+        let mut min = vec![f64::INFINITY; dim];
+        let mut max = vec![f64::NEG_INFINITY; dim];
+        for k in 0..self.len() {
+            let j = (k + 1) % self.n_points();
+            for c in 0..dim {
+                let co = &self.coefs[k * dim + c];
+                let mut vals = vec![
+                    self.f[k * dim + c] + self.d[k * dim + c],
+                    self.f[j * dim + c] + self.d[j * dim + c],
+                ];
+                for t in quadratic_roots(3.0 * co[3], 2.0 * co[2], co[1]) {
+                    if t > 0.0 && t < 1.0 {
+                        vals.push(horner(co, t));
+                    }
+                }
+                for v in vals {
+                    let v = (v * self.scales[c]).clamp(-f64::MAX, f64::MAX);
+                    min[c] = min[c].min(v);
+                    max[c] = max[c].max(v);
+                }
+            }
+        }
+        BBox { min, max }
+    }
+
+    /// The point of the curve nearest to `q`: per segment, the roots of the
+    /// derivative of the squared distance (a quintic, isolated between the
+    /// roots of its derivatives) and the segment's ends.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] when `q` does not have [`Curve::dim`]
+    /// coordinates; [`Error::NonFinite`] for a non-finite coordinate;
+    /// [`Error::Overflow`] when the distance exceeds the range of a double.
+    pub fn nearest(&self, q: &[f64]) -> Result<Nearest, Error> {
+        check_query(q, self.dim)?;
+        let dim = self.dim;
+        let qs: Vec<f64> = q.iter().map(|v| v / self.gscale).collect();
+        let mut best = (f64::INFINITY, 0usize, 0.0f64);
+        let mut diff = vec![0.0; dim];
+        for k in 0..self.len() {
+            // g(t) = (r(t) - q) . r'(t), degree 5, lowest coefficient first.
+            let mut g = [0.0f64; 6];
+            for (c, qc) in qs.iter().enumerate() {
+                let rel = self.scales[c] / self.gscale;
+                let co = self.coefs[k * dim + c].map(|v| v * rel);
+                let p = [co[0] - qc, co[1], co[2], co[3]];
+                let dp = [co[1], 2.0 * co[2], 3.0 * co[3]];
+                for (i, a) in p.iter().enumerate() {
+                    for (j, b) in dp.iter().enumerate() {
+                        g[i + j] += a * b;
+                    }
+                }
+            }
+            let mut cands = real_roots_in(&g, 0.0, 1.0);
+            cands.push(0.0);
+            cands.push(1.0);
+            for t in cands {
+                self.local(k, t, 0, &mut diff);
+                for (x, qc) in diff.iter_mut().zip(&qs) {
+                    *x -= qc;
+                }
+                let dist = norm(&diff);
+                if dist < best.0 {
+                    best = (dist, k, t);
+                }
+            }
+        }
+        let (dist, k, t) = best;
+        let h = self.knots[k + 1] - self.knots[k];
+        let param = (self.knots[k] + t * h).min(self.knots[k + 1]);
+        let point = self.eval(param)?;
+        let distance = self.to_units(dist, "the distance")?;
+        Ok(Nearest {
+            param,
+            point,
+            distance,
+        })
+    }
+
+    /// Where the curve touches each leg: `(x_k, alpha_k P_k + (1 - alpha_k)
+    /// P_{k+1})` with `x_k = tau_{k+1} - alpha_k h_k` (method.md, misprint 1).
+    #[must_use]
+    pub fn tangent_points(&self) -> Vec<(f64, Vec<f64>)> {
+        let (dim, n) = (self.dim, self.n_points());
+        (0..self.len())
+            .map(|k| {
+                let a = self.alphas[k];
+                let h = self.knots[k + 1] - self.knots[k];
+                let j = (k + 1) % n;
+                let p = (0..dim)
+                    .map(|c| {
+                        (a * self.f[k * dim + c] + (1.0 - a) * self.f[j * dim + c]) * self.scales[c]
+                    })
+                    .collect();
+                (self.knots[k + 1] - a * h, p)
+            })
+            .collect()
+    }
+
+    /// The knot points `S(tau_i)`, one per control point; an open curve's first
+    /// and last are its end control points exactly.
+    #[must_use]
+    pub fn knot_points(&self) -> Vec<Vec<f64>> {
+        let dim = self.dim;
+        (0..self.n_points())
+            .map(|i| {
+                (0..dim)
+                    .map(|c| {
+                        ((self.f[i * dim + c] + self.d[i * dim + c]) * self.scales[c])
+                            .clamp(-f64::MAX, f64::MAX)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The four Bezier control points of segment `k`, each coordinate
+    /// multiplied back, flat (`4 * dim` numbers), or `None` past the end.
+    /// Consecutive segments share their end points bit for bit.
+    #[must_use]
+    pub fn segment_points(&self, k: usize) -> Option<Vec<f64>> {
+        if k >= self.len() {
+            return None;
+        }
+        let (dim, n) = (self.dim, self.n_points());
+        let j = (k + 1) % n;
+        let a = self.alphas[k];
+        let [al, b1, b2, cr] = alpha_terms(a);
+        let mut ctrl = vec![0.0; 4 * dim];
+        for c in 0..dim {
+            let (f0, f1) = (self.f[k * dim + c], self.f[j * dim + c]);
+            let (d0, d1) = (self.d[k * dim + c], self.d[j * dim + c]);
+            let df = f1 - f0;
+            let s0 = df - d0 * b2 + d1 * cr;
+            let s1 = df + d1 * b1 - d0 * al;
+            let (p0, p3) = (f0 + d0, f1 + d1);
+            let s = self.scales[c];
+            ctrl[c] = p0 * s;
+            ctrl[dim + c] = (p0 + s0 / 3.0) * s;
+            ctrl[2 * dim + c] = (p3 - s1 / 3.0) * s;
+            ctrl[3 * dim + c] = p3 * s;
+        }
+        Some(ctrl)
+    }
+
+    /// Segment `k` as a [`CubicBez<D>`]; `None` past the end or when `D` is not
+    /// the curve's dimension.
+    #[must_use]
+    pub fn segment<const D: usize>(&self, k: usize) -> Option<CubicBez<D>> {
+        if D != self.dim {
+            return None;
+        }
+        let v = self.segment_points(k)?;
+        let mut p = [[0.0; D]; 4];
+        for (j, pj) in p.iter_mut().enumerate() {
+            pj.copy_from_slice(&v[j * D..(j + 1) * D]);
+        }
+        Some(CubicBez::new(p))
+    }
+
+    /// Every segment as a [`CubicBez<D>`]; `None` when `D` is not the curve's
+    /// dimension.
+    #[must_use]
+    pub fn segments<const D: usize>(&self) -> Option<Vec<CubicBez<D>>> {
+        (0..self.len()).map(|k| self.segment::<D>(k)).collect()
+    }
+
+    /// Moves control point `index` to `new_point` and updates the curve,
+    /// returning the indices of the knots whose knot point moved by more than
+    /// `tol` (largest coordinate change), in increasing order.
+    ///
+    /// The continuity system is linear, so with uniform or given parameters
+    /// (the matrix does not change) the change of the deviations solves the same
+    /// system for a right-hand side that is nonzero in at most three rows. It
+    /// decays by about 0.1 per knot at alpha 1/2, so it is solved on a window
+    /// around `index` that grows until the change at the window's edges is below
+    /// `tol`; knots outside the window keep their old deviations (they would
+    /// change by less than about `tol`). The window falls back to the whole
+    /// curve when it must. With chordal or centripetal parameters, and when the
+    /// point changes a coordinate's power-of-two scale, the parameters or the
+    /// scaling change too and the curve is solved again in full.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] for an index past the last point;
+    /// [`Error::LengthMismatch`] / [`Error::NonFinite`] (field
+    /// [`Field::Query`]) for a point of the wrong dimension or with a
+    /// non-finite coordinate; [`Error::NonFinite`] / [`Error::InvalidArgument`]
+    /// for a tolerance that is not finite and non-negative;
+    /// [`Error::RepeatedPoint`] / [`Error::RepeatedClosingPoint`] when the new
+    /// point equals a neighbour. On error the curve is unchanged.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let pts: Vec<[f64; 2]> = (0..40).map(|i| [i as f64, (i % 2) as f64]).collect();
+    /// let mut c = Curve::open(&pts)?;
+    /// let changed = c.move_point(20, &[20.0, 5.0], 1e-12)?;
+    /// assert!(changed.contains(&20));
+    /// assert!(changed.len() < 30); // far knots move by less than 1e-12
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn move_point(
+        &mut self,
+        index: usize,
+        new_point: &[f64],
+        tol: f64,
+    ) -> Result<Vec<usize>, Error> {
+        let (n, dim) = (self.n_points(), self.dim);
+        if index >= n {
+            return Err(Error::InvalidArgument {
+                what: "no control point with this index",
+                value: index as f64,
+            });
+        }
+        check_query(new_point, dim)?;
+        check_tolerance("the tolerance must not be negative", tol)?;
+        let neighbours = [
+            (index > 0 || self.closed).then(|| (index + n - 1) % n),
+            (index + 1 < n || self.closed).then(|| (index + 1) % n),
+        ];
+        for nb in neighbours {
+            let Some(j) = nb else { continue };
+            if self.point(j) == Some(new_point) {
+                let (a, b) = (index.min(j), index.max(j));
+                return Err(if self.closed && a == 0 && b == n - 1 {
+                    Error::RepeatedClosingPoint { last: b }
+                } else {
+                    Error::RepeatedPoint { index: b }
+                });
+            }
+        }
+        let old = self.knot_points();
+        let mut points = self.points.clone();
+        points[index * dim..(index + 1) * dim].copy_from_slice(new_point);
+        let rescaled = (0..dim)
+            .any(|c| power_of_two_scale(points.iter().skip(c).step_by(dim)) != self.scales[c]);
+        let full = rescaled || matches!(self.kind, ParamKind::Chordal | ParamKind::Centripetal);
+        if full {
+            let given = (self.kind == ParamKind::Given).then(|| self.knots.clone());
+            let rebuilt = Self::solve_new(
+                dim,
+                self.closed,
+                self.kind.clone(),
+                points,
+                self.dropped.clone(),
+                given,
+                self.alphas.clone(),
+            )?;
+            *self = rebuilt;
+            let new = self.knot_points();
+            return Ok((0..n)
+                .filter(|&i| {
+                    old[i]
+                        .iter()
+                        .zip(&new[i])
+                        .any(|(a, b)| (a - b).abs() > tol || a.is_nan() != b.is_nan())
+                })
+                .collect());
+        }
+        self.points = points;
+        let mut touched: Vec<usize> = vec![index];
+        for (c, &v) in new_point.iter().enumerate() {
+            let inv = 1.0 / self.scales[c];
+            let delta = v * inv - self.f[index * dim + c];
+            self.f[index * dim + c] = v * inv;
+            if delta == 0.0 {
+                continue;
+            }
+            let tol_c = tol * inv;
+            for (i, dd) in self.local_change(index, delta, tol_c) {
+                self.d[i * dim + c] += dd;
+                touched.push(i);
+            }
+        }
+        touched.sort_unstable();
+        touched.dedup();
+        let mut legs: Vec<usize> = Vec::with_capacity(2 * touched.len());
+        for &i in &touched {
+            if i < self.len() {
+                legs.push(i);
+            }
+            if i > 0 {
+                legs.push(i - 1);
+            } else if self.closed {
+                legs.push(n - 1);
+            }
+        }
+        legs.sort_unstable();
+        legs.dedup();
+        for k in legs {
+            self.update_segment(k);
+        }
+        Ok(touched
+            .into_iter()
+            .filter(|&i| {
+                (0..dim).any(|c| {
+                    let now = (self.f[i * dim + c] + self.d[i * dim + c]) * self.scales[c];
+                    (now - old[i][c]).abs() > tol
+                })
+            })
+            .collect())
+    }
+
+    /// Row of the continuity system at knot `i` (interior for an open curve).
+    fn system_row(&self, i: usize) -> (f64, f64, f64, f64) {
+        let n = self.n_points();
+        let l = if i == 0 { n - 1 } else { i - 1 };
+        let h = |k: usize| self.knots[k + 1] - self.knots[k];
+        row(h(l), h(i), self.alphas[l], self.alphas[i])
+    }
+
+    /// The change of the deviations (one coordinate, scaled) when scaled point
+    /// `index` moves by `delta`: `(knot, change)` pairs over the window used.
+    fn local_change(&self, index: usize, delta: f64, tol: f64) -> Vec<(usize, f64)> {
+        let n = self.n_points();
+        // Unknowns: knots 1..n-1 (open) or 0..n (closed), the rows of the system.
+        let (first, last) = if self.closed {
+            (0, n - 1)
+        } else {
+            (1, n.saturating_sub(2))
+        };
+        if n < 3 || last < first {
+            return Vec::new();
+        }
+        let count = last - first + 1;
+        // Right-hand side change: rows index-1, index, index+1.
+        let rhs_at = |i: usize| -> f64 {
+            let (_, _, _, p) = self.system_row(i);
+            if i == index {
+                -delta
+            } else if (i + 1) % n == index {
+                (1.0 - p) * delta
+            } else if (index + 1) % n == i {
+                p * delta
+            } else {
+                0.0
+            }
+        };
+        let mut radius = 8usize;
+        loop {
+            if 2 * radius + 1 >= count {
+                // The whole system.
+                let idx: Vec<usize> = (first..=last).collect();
+                let (mut lo, mut di, mut up) = (vec![], vec![], vec![]);
+                for &i in &idx {
+                    let (l, d, u, _) = self.system_row(i);
+                    lo.push(l);
+                    di.push(d);
+                    up.push(u);
+                }
+                let mut r: Vec<f64> = idx.iter().map(|&i| rhs_at(i)).collect();
+                let ok = if self.closed {
+                    CyclicThomas::factor(&lo, &di, &up).is_some_and(|s| s.solve_in_place(&mut r))
+                } else {
+                    Thomas::factor(&lo, &di, &up).is_some_and(|s| s.solve_in_place(&mut r))
+                };
+                return if ok {
+                    idx.into_iter().zip(r).collect()
+                } else {
+                    Vec::new()
+                };
+            }
+            // Window of unknowns around index (cyclic for a closed curve, clipped
+            // for an open one).
+            let idx: Vec<usize> = if self.closed {
+                (0..=2 * radius)
+                    .map(|j| (index + n + j - radius) % n)
+                    .collect()
+            } else {
+                let lo = index.saturating_sub(radius).max(first);
+                let hi = (index + radius).min(last);
+                (lo..=hi).collect()
+            };
+            let (mut lo, mut di, mut up) = (vec![], vec![], vec![]);
+            for &i in &idx {
+                let (l, d, u, _) = self.system_row(i);
+                lo.push(l);
+                di.push(d);
+                up.push(u);
+            }
+            let mut r: Vec<f64> = idx.iter().map(|&i| rhs_at(i)).collect();
+            if !Thomas::factor(&lo, &di, &up).is_some_and(|s| s.solve_in_place(&mut r)) {
+                radius = count;
+                continue;
+            }
+            let m = r.len();
+            let left_open = self.closed || idx[0] > first;
+            let right_open = self.closed || idx[m - 1] < last;
+            let edge_ok = (!left_open || r[0].abs() <= tol && r[1.min(m - 1)].abs() <= tol)
+                && (!right_open || r[m - 1].abs() <= tol && r[m.saturating_sub(2)].abs() <= tol);
+            if edge_ok {
+                return idx.into_iter().zip(r).collect();
+            }
+            radius *= 2;
+        }
+    }
+
+    /// The SVG path data of a planar curve: `M x y C x1 y1 x2 y2 x y ...`,
+    /// closed with `Z`. Numbers are printed in Rust's shortest round-trip form,
+    /// so they parse back to the same doubles.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] when the curve is not planar;
+    /// [`Error::Overflow`] when a Bezier control point exceeds the range of a
+    /// double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// let d = c.to_svg_path()?;
+    /// assert!(d.starts_with("M 0 0 C "), "{d}");
+    /// assert_eq!(d.matches('C').count(), 2);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn to_svg_path(&self) -> Result<String, Error> {
+        use std::fmt::Write;
+        if self.dim != 2 {
+            return Err(Error::InvalidArgument {
+                what: "an SVG path needs a planar curve; dimension",
+                value: self.dim as f64,
+            });
+        }
+        let mut out = String::new();
+        for k in 0..self.len() {
+            let p = self.segment_points(k).unwrap_or_default();
+            if p.iter().any(|v| !v.is_finite()) {
+                return Err(Error::Overflow {
+                    what: "a Bezier control point",
+                });
+            }
+            if k == 0 {
+                let _ = write!(out, "M {} {}", p[0], p[1]);
+            }
+            let _ = write!(
+                out,
+                " C {} {} {} {} {} {}",
+                p[2], p[3], p[4], p[5], p[6], p[7]
+            );
+        }
+        if self.closed {
+            out.push_str(" Z");
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::{Spline, ALPHA_MAX, ALPHA_MIN};
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)
+    }
+
+    const SQUARE: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+
+    #[test]
+    fn unit_square_knots_are_pulled_a_tenth_inside() {
+        let c = Curve::closed(&SQUARE).unwrap();
+        let want = [[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]];
+        for (k, w) in c.knot_points().iter().zip(want) {
+            for i in 0..2 {
+                assert!(close(k[i], w[i], 1e-14), "want {w:?}, got {k:?}");
+            }
+        }
+        // Periodic evaluation and C1 across the closing knot.
+        let a = c.eval(4.0).unwrap();
+        let b = c.eval(0.0).unwrap();
+        assert_eq!(a, b);
+        let l = c.deriv(4.0 - 1e-9, 1).unwrap();
+        let r = c.deriv(1e-9, 1).unwrap();
+        for i in 0..2 {
+            assert!((l[i] - r[i]).abs() < 1e-7, "{l:?} vs {r:?}");
+        }
+        assert_eq!(c.eval(5.5).unwrap(), c.eval(1.5).unwrap());
+    }
+
+    #[test]
+    fn open_curve_matches_per_coordinate_splines() {
+        let pts = [[0.0, 1.0], [2.0, 3.0], [3.0, -1.0], [7.0, 0.5], [8.0, 4.0]];
+        let alphas = [0.4, ALPHA_MIN, 0.6, ALPHA_MAX];
+        for param in [Param::Uniform, Param::Chordal, Param::Centripetal] {
+            let c = Curve::builder_from(&pts)
+                .param(param.clone())
+                .alphas(&alphas)
+                .build()
+                .unwrap();
+            let kp = c.knot_points();
+            for dim in 0..2 {
+                let v: Vec<f64> = pts.iter().map(|p| p[dim]).collect();
+                let s = Spline::with_alphas(c.knots(), &v, &alphas).unwrap();
+                for (i, want) in s.knot_values().iter().enumerate() {
+                    assert!(
+                        close(kp[i][dim], *want, 1e-12),
+                        "{param:?} knot {i}: want {want}, got {}",
+                        kp[i][dim]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn chordal_and_centripetal_parameters() {
+        let pts = [[0.0, 0.0], [3.0, 4.0], [3.0, 13.0]];
+        let c = Curve::builder_from(&pts)
+            .param(Param::Chordal)
+            .build()
+            .unwrap();
+        assert_eq!(c.knots(), &[0.0, 5.0, 14.0]);
+        let c = Curve::builder_from(&pts)
+            .param(Param::Centripetal)
+            .build()
+            .unwrap();
+        assert!(close(c.knots()[1], 5f64.sqrt(), 1e-15));
+        assert!(close(c.knots()[2], 5f64.sqrt() + 3.0, 1e-15));
+    }
+
+    #[test]
+    fn errors_name_the_point() {
+        let e = Curve::open(&[[0.0, 0.0], [1.0, f64::NAN], [2.0, 0.0]]).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::NonFinite {
+                    field: Field::Coordinate,
+                    index: 1,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [1.0, 1.0]]).unwrap_err();
+        assert_eq!(e, Error::RepeatedPoint { index: 2 });
+        let e = Curve::closed(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [0.0, 0.0]]).unwrap_err();
+        assert_eq!(e, Error::RepeatedClosingPoint { last: 3 });
+        assert!(e.to_string().contains("points[3]"));
+        assert!(matches!(
+            Curve::closed(&[[0.0, 0.0], [1.0, 1.0]]),
+            Err(Error::TooFewPoints { found: 2, min: 3 })
+        ));
+        assert!(matches!(
+            Curve::builder(&[1.0, 2.0, 3.0], 2).build(),
+            Err(Error::LengthMismatch { .. })
+        ));
+        assert!(Curve::builder(&[1.0, 2.0], 0).build().is_err());
+        assert!(matches!(
+            Curve::builder_from(&SQUARE).alpha(0.7).build(),
+            Err(Error::AlphaOutOfRange { .. })
+        ));
+        assert!(matches!(
+            Curve::builder_from(&SQUARE)
+                .closed(true)
+                .param(Param::Given(vec![0.0, 1.0, 2.0, 3.0]))
+                .build(),
+            Err(Error::LengthMismatch {
+                field: Field::Knot,
+                expected: 5,
+                found: 4
+            })
+        ));
+    }
+
+    #[test]
+    fn repeats_can_be_dropped() {
+        let pts = [
+            [0.0, 0.0],
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 1.0],
+            [0.0, 1.0],
+            [0.0, 0.0],
+        ];
+        let alphas = [0.5, 0.4, 0.6, 0.5, 0.5, 0.45, 0.55, 0.35];
+        let c = Curve::builder_from(&pts)
+            .closed(true)
+            .param(Param::Chordal)
+            .alphas(&alphas)
+            .repeats(Repeats::Drop)
+            .build()
+            .unwrap();
+        assert_eq!(c.dropped(), &[1, 4, 5, 7]);
+        assert_eq!(c.point_count(), 4);
+        assert_eq!(c.alphas(), &[0.4, 0.6, 0.45, 0.55]);
+        let d = Curve::builder_from(&SQUARE)
+            .closed(true)
+            .param(Param::Chordal)
+            .alphas(&[0.4, 0.6, 0.45, 0.55])
+            .build()
+            .unwrap();
+        assert_eq!(c.knot_points(), d.knot_points());
+    }
+
+    #[test]
+    fn geometry_of_a_circle_like_curve() {
+        let n = 64;
+        let pts: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        let c = Curve::closed(&pts).unwrap();
+        // Nearly a circle of radius a little below 1.
+        let len = c.arclen(1e-12).unwrap();
+        assert!((len - std::f64::consts::TAU).abs() < 1e-2, "{len}");
+        let k = c.curvature(10.3).unwrap();
+        assert!((k - 1.0).abs() < 2e-2, "{k}");
+        // Normal points inwards (counter-clockwise curve).
+        let p = c.eval(10.3).unwrap();
+        let nrm = c.normal(10.3).unwrap();
+        assert!(nrm[0] * p[0] + nrm[1] * p[1] < -0.99);
+        let bb = c.bbox();
+        assert!(bb.max[0] <= 1.0 && bb.max[0] > 0.99, "{bb:?}");
+        // Arc length inverse.
+        let s = c.param_at_length(len / 4.0, 1e-10).unwrap();
+        let back = c.arclen_range(0.0, s, 1e-12).unwrap();
+        assert!((back - len / 4.0).abs() < 1e-9, "{back}");
+        let r = c.resample(9, 1e-10).unwrap();
+        assert_eq!(r.len(), 9);
+        let near = c.nearest(&[2.0, 0.0]).unwrap();
+        assert!((near.distance - 1.0).abs() < 1e-2, "{near:?}");
+        assert!(near.param.abs() < 1e-9 || (near.param - 64.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn space_curve_normal_is_orthogonal_to_tangent() {
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 1.0, 2.0],
+            [0.0, 1.0, 3.0],
+        ];
+        let c = Curve::open(&pts).unwrap();
+        for s in [0.2, 1.0, 1.7, 2.9] {
+            let t = c.tangent(s).unwrap();
+            let n = c.normal(s).unwrap();
+            assert!((norm(&t) - 1.0).abs() < 1e-14);
+            assert!((norm(&n) - 1.0).abs() < 1e-14);
+            assert!(dot(&t, &n).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn move_point_agrees_with_a_fresh_solve() {
+        let pts: Vec<[f64; 2]> = (0..200).map(|i| [i as f64, ((i * 7) % 5) as f64]).collect();
+        for closed in [false, true] {
+            for param in [Param::Uniform, Param::Chordal] {
+                let mut c = Curve::builder_from(&pts)
+                    .closed(closed)
+                    .param(param.clone())
+                    .alpha(0.45)
+                    .build()
+                    .unwrap();
+                let old = c.knot_points();
+                let mut moved = pts.clone();
+                for (idx, p) in [
+                    (30usize, [30.5, 2.5]),
+                    (0, [-1.0, 3.0]),
+                    (199, [200.0, 1.0]),
+                ] {
+                    moved[idx] = p;
+                    let changed = c.move_point(idx, &p, 1e-13).unwrap();
+                    assert!(changed.contains(&idx), "{changed:?}");
+                    if param == Param::Uniform {
+                        assert!(changed.len() < 40, "{changed:?}");
+                    }
+                    let fresh = Curve::builder_from(&moved)
+                        .closed(closed)
+                        .param(param.clone())
+                        .alpha(0.45)
+                        .build()
+                        .unwrap();
+                    for (i, (a, b)) in c.knot_points().iter().zip(fresh.knot_points()).enumerate() {
+                        for j in 0..2 {
+                            assert!(
+                                (a[j] - b[j]).abs() < 1e-11,
+                                "closed {closed} {param:?} knot {i}: want {}, got {}",
+                                b[j],
+                                a[j]
+                            );
+                        }
+                    }
+                    for s in [0.0, 12.3, 29.9, 58.7] {
+                        let (a, b) = (c.eval(s).unwrap(), fresh.eval(s).unwrap());
+                        assert!((a[0] - b[0]).abs() < 1e-11 && (a[1] - b[1]).abs() < 1e-11);
+                    }
+                }
+                if param == Param::Uniform {
+                    // Far knots did not move.
+                    let now = c.knot_points();
+                    assert_eq!(now[100], old[100]);
+                }
+            }
+        }
+        let mut c = Curve::open(&pts).unwrap();
+        assert!(matches!(
+            c.move_point(3, &pts[4], 0.0),
+            Err(Error::RepeatedPoint { index: 4 })
+        ));
+        assert!(c.move_point(200, &[0.0, 0.0], 0.0).is_err());
+        assert!(c.move_point(3, &[0.0], 0.0).is_err());
+    }
+
+    #[test]
+    fn exports_share_end_points() {
+        let c = Curve::closed(&SQUARE).unwrap();
+        let segs = c.segments::<2>().unwrap();
+        assert_eq!(segs.len(), 4);
+        for k in 0..4 {
+            assert_eq!(segs[k].p[3], segs[(k + 1) % 4].p[0]);
+        }
+        assert!(c.segments::<3>().is_none());
+        let svg = c.to_svg_path().unwrap();
+        assert!(
+            svg.starts_with("M 0.1 0.1 C") && svg.ends_with(" Z"),
+            "{svg}"
+        );
+        let c3 = Curve::open(&[[0.0; 3], [1.0, 2.0, 3.0]]).unwrap();
+        assert!(c3.to_svg_path().is_err());
+        assert_eq!(c3.segment::<3>(0).unwrap().p[3], [1.0, 2.0, 3.0]);
+    }
+
+    #[test]
+    fn huge_coordinates_stay_finite() {
+        let pts = [
+            [1e308, -1e308],
+            [-1e308, 1.5e308],
+            [1.7e308, 0.0],
+            [0.0, 1e308],
+        ];
+        for closed in [false, true] {
+            for param in [Param::Uniform, Param::Chordal, Param::Centripetal] {
+                let c = Curve::builder_from(&pts)
+                    .closed(closed)
+                    .param(param)
+                    .build()
+                    .unwrap();
+                let (lo, hi) = c.domain();
+                for i in 0..=50 {
+                    let s = lo + (hi - lo) * i as f64 / 50.0;
+                    assert!(c.eval(s).unwrap().iter().all(|v| v.is_finite()));
+                    assert!(c.tangent(s).unwrap().iter().all(|v| v.is_finite()));
+                }
+                assert!(c.bbox().max.iter().all(|v| v.is_finite()));
+                assert!(c.arclen(1e300).is_err() || c.arclen(1e300).unwrap().is_finite());
+            }
+        }
+    }
+
+    #[test]
+    fn root_isolation_finds_close_roots() {
+        // (t - 0.3)(t - 0.30001)(t - 0.7)(t + 2)(t - 0.9)
+        let roots = [0.3, 0.30001, 0.7, -2.0, 0.9];
+        let mut c = vec![1.0];
+        for r in roots {
+            let mut next = vec![0.0; c.len() + 1];
+            for (i, v) in c.iter().enumerate() {
+                next[i + 1] += v;
+                next[i] -= r * v;
+            }
+            c = next;
+        }
+        let mut got = real_roots_in(&c, 0.0, 1.0);
+        got.sort_by(f64::total_cmp);
+        assert_eq!(got.len(), 4, "{got:?}");
+        for (g, w) in got.iter().zip([0.3, 0.30001, 0.7, 0.9]) {
+            // The close pair is ill-conditioned: rounding moves it by ~1e-11.
+            assert!((g - w).abs() < 1e-9, "want {w}, got {g}");
+        }
+    }
+}

@@ -1,0 +1,329 @@
+//! Flattening: a polyline within a given distance of a curve.
+//!
+//! On a segment with local parameter `t` in `[0, 1]`, the chord between the
+//! points at `t0` and `t0 + delta` deviates from the curve by at most
+//! `delta^2 / 8 * max |r''(t)|` (the interpolation error of a straight line,
+//! which holds for vectors as for scalars). `r''` of a cubic is linear in `t`,
+//! so its largest norm is at an end of the segment. With
+//! `m = ceil(sqrt(max |r''| / (8 tol)))` equal parameter steps per segment every
+//! point of the curve is within `tol` of the polyline; this is the fewest equal
+//! steps the bound allows. Vertices are points of the curve, and the first and
+//! last are the curve's ends exactly.
+
+use crate::curve::Curve;
+use crate::error::{Error, Field};
+use crate::spline::Spline;
+
+/// The most vertices one flattening may produce; a tolerance that would need
+/// more is refused.
+pub const MAX_FLATTEN_VERTICES: usize = 1 << 24;
+
+/// Points along a curve, with the parameter of each.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Polyline {
+    dim: usize,
+    coords: Vec<f64>,
+    params: Vec<f64>,
+}
+
+impl Polyline {
+    pub(crate) fn new(dim: usize, coords: Vec<f64>, params: Vec<f64>) -> Self {
+        Polyline {
+            dim,
+            coords,
+            params,
+        }
+    }
+
+    /// The dimension of the points.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Number of vertices.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.params.len()
+    }
+
+    /// True when there are no vertices.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.params.is_empty()
+    }
+
+    /// The vertices, flat, [`Polyline::dim`] numbers each.
+    #[must_use]
+    pub fn coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// The curve parameter of each vertex.
+    #[must_use]
+    pub fn params(&self) -> &[f64] {
+        &self.params
+    }
+
+    /// Vertex `i`.
+    #[must_use]
+    pub fn point(&self, i: usize) -> Option<&[f64]> {
+        self.coords.get(i * self.dim..(i + 1) * self.dim)
+    }
+
+    /// The vertices as arrays; `None` when `D` is not the dimension.
+    #[must_use]
+    pub fn to_arrays<const D: usize>(&self) -> Option<Vec<[f64; D]>> {
+        if D != self.dim {
+            return None;
+        }
+        Some(
+            self.coords
+                .chunks_exact(D)
+                .map(|c| {
+                    let mut a = [0.0; D];
+                    a.copy_from_slice(c);
+                    a
+                })
+                .collect(),
+        )
+    }
+}
+
+fn check_tol(tol: f64) -> Result<(), Error> {
+    if !tol.is_finite() {
+        return Err(Error::NonFinite {
+            field: Field::Tolerance,
+            index: 0,
+            value: tol,
+        });
+    }
+    if tol <= 0.0 {
+        return Err(Error::InvalidArgument {
+            what: "the flattening tolerance must be positive",
+            value: tol,
+        });
+    }
+    Ok(())
+}
+
+/// Steps for a segment whose `|r''|` is at most `accel`, for tolerance `tol`
+/// (same units). A small margin covers the rounding of the vertices.
+fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
+    let m = (accel / (8.0 * tol * 0.999)).sqrt().ceil();
+    // Also catches NaN.
+    if m.is_nan() || m >= MAX_FLATTEN_VERTICES as f64 {
+        return Err(Error::InvalidArgument {
+            what:
+                "the flattening tolerance is too small for the curve: too many vertices; tolerance",
+            value: tol,
+        });
+    }
+    Ok((m as usize).max(1))
+}
+
+impl Curve {
+    /// A polyline whose distance from the curve is at most `tol` everywhere,
+    /// with the fewest equal parameter steps per segment that the bound on the
+    /// second derivative allows (see [`crate::flatten`]). The first vertex is
+    /// the start of the curve and the last its end (the start again for a
+    /// closed curve), exactly.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for a tolerance that is
+    /// not a finite positive number, or one so small that more than
+    /// [`MAX_FLATTEN_VERTICES`] vertices would be needed.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::closed(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])?;
+    /// let p = c.flatten(1e-3)?;
+    /// assert_eq!(p.point(0), p.point(p.len() - 1)); // closed
+    /// assert!(p.len() > 8);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        check_tol(tol)?;
+        let scaled_tol = tol / self.unit();
+        let mut counts = Vec::with_capacity(self.len());
+        let mut total = 1usize;
+        for k in 0..self.len() {
+            let m = steps(self.accel_bound(k), scaled_tol)?;
+            total = total.saturating_add(m);
+            if total > MAX_FLATTEN_VERTICES {
+                return Err(Error::InvalidArgument {
+                    what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
+                    value: tol,
+                });
+            }
+            counts.push(m);
+        }
+        let dim = self.dim();
+        let mut coords = Vec::with_capacity(total * dim);
+        let mut params = Vec::with_capacity(total);
+        let knots = self.knots();
+        for (k, &m) in counts.iter().enumerate() {
+            let start = usize::from(k > 0);
+            let h = knots[k + 1] - knots[k];
+            for j in start..=m {
+                let t = j as f64 / m as f64;
+                coords.extend(self.segment_point(k, t));
+                params.push(if j == m {
+                    knots[k + 1]
+                } else {
+                    knots[k] + t * h
+                });
+            }
+        }
+        Ok(Polyline::new(dim, coords, params))
+    }
+}
+
+impl Spline {
+    /// The graph `(x, S(x))` flattened to a polyline within `tol` of it; see
+    /// [`Curve::flatten`]. Vertices' parameters are their abscissas.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::flatten`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Spline;
+    /// let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+    /// let p = s.flatten(1e-4)?;
+    /// assert_eq!(p.point(0), Some(&[0.0, 0.0][..]));
+    /// assert_eq!(p.point(p.len() - 1), Some(&[2.0, 0.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        check_tol(tol)?;
+        let knots = self.knots();
+        let mut coords = Vec::new();
+        let mut params = Vec::new();
+        for k in 0..self.len() {
+            let c = self.unit_coefficients(k).unwrap_or([0.0; 4]);
+            let accel = (2.0 * c[2]).abs().max((2.0 * c[2] + 6.0 * c[3]).abs());
+            let m = steps(accel, tol)?;
+            if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
+                return Err(Error::InvalidArgument {
+                    what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
+                    value: tol,
+                });
+            }
+            let h = knots[k + 1] - knots[k];
+            for j in usize::from(k > 0)..=m {
+                let x = if j == m {
+                    knots[k + 1]
+                } else {
+                    knots[k] + (j as f64 / m as f64) * h
+                };
+                let y = self.eval(x)?;
+                coords.push(x);
+                coords.push(y);
+                params.push(x);
+            }
+        }
+        Ok(Polyline::new(2, coords, params))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Distance from `p` to the segment `a`-`b`.
+    fn seg_dist(p: &[f64], a: &[f64], b: &[f64]) -> f64 {
+        let ab: Vec<f64> = a.iter().zip(b).map(|(a, b)| b - a).collect();
+        let ap: Vec<f64> = a.iter().zip(p).map(|(a, p)| p - a).collect();
+        let l2: f64 = ab.iter().map(|v| v * v).sum();
+        let t = if l2 > 0.0 {
+            (ab.iter().zip(&ap).map(|(u, v)| u * v).sum::<f64>() / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        ap.iter()
+            .zip(&ab)
+            .map(|(v, u)| (v - t * u) * (v - t * u))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    #[test]
+    fn curve_flattening_stays_within_tolerance() {
+        let pts = [[0.0, 0.0], [2.0, 3.0], [4.0, -1.0], [5.0, 2.0], [3.0, 5.0]];
+        for closed in [false, true] {
+            let c = Curve::builder_from(&pts).closed(closed).build().unwrap();
+            for tol in [1e-1, 1e-2, 1e-4] {
+                let p = c.flatten(tol).unwrap();
+                assert_eq!(p.point(0).unwrap(), c.eval(0.0).unwrap().as_slice());
+                let (lo, hi) = c.domain();
+                assert_eq!(
+                    p.point(p.len() - 1).unwrap(),
+                    c.eval(hi).unwrap().as_slice()
+                );
+                let params = p.params();
+                let mut worst = 0.0f64;
+                for i in 0..=4000 {
+                    let s = lo + (hi - lo) * i as f64 / 4000.0;
+                    let q = c.eval(s).unwrap();
+                    let j = params.partition_point(|&x| x <= s).clamp(1, p.len() - 1);
+                    let d = seg_dist(&q, p.point(j - 1).unwrap(), p.point(j).unwrap());
+                    worst = worst.max(d);
+                }
+                assert!(worst <= tol, "tol {tol}: distance {worst}");
+                // Not wastefully many vertices: the bound is within a factor of
+                // a few of what is needed.
+                assert!(worst > tol / 20.0, "tol {tol}: only {worst} reached");
+            }
+        }
+    }
+
+    #[test]
+    fn spline_flattening_stays_within_tolerance() {
+        let x = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+        let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0];
+        let s = Spline::new(&x, &f).unwrap();
+        let tol = 1e-3;
+        let p = s.flatten(tol).unwrap();
+        assert_eq!(p.point(0).unwrap(), &[1.0, 1.0]);
+        assert_eq!(p.point(p.len() - 1).unwrap(), &[6.0, 7.0]);
+        for i in 0..=5000 {
+            let xq = 1.0 + 5.0 * i as f64 / 5000.0;
+            let q = [xq, s.eval(xq).unwrap()];
+            let j = p
+                .params()
+                .partition_point(|&v| v <= xq)
+                .clamp(1, p.len() - 1);
+            let d = seg_dist(&q, p.point(j - 1).unwrap(), p.point(j).unwrap());
+            assert!(d <= tol, "at x = {xq}: {d}");
+        }
+    }
+
+    #[test]
+    fn bad_tolerances_are_refused() {
+        let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]).unwrap();
+        for tol in [0.0, -1.0] {
+            assert!(matches!(c.flatten(tol), Err(Error::InvalidArgument { .. })));
+        }
+        assert!(matches!(
+            c.flatten(f64::NAN),
+            Err(Error::NonFinite {
+                field: Field::Tolerance,
+                ..
+            })
+        ));
+        assert!(matches!(
+            c.flatten(1e-300),
+            Err(Error::InvalidArgument { .. })
+        ));
+        // A straight curve needs one step per segment.
+        let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]).unwrap();
+        assert_eq!(line.flatten(1e-9).unwrap().len(), 3);
+    }
+}
