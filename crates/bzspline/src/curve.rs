@@ -1213,13 +1213,19 @@ impl Curve {
     /// # Errors
     ///
     /// As [`Curve::arclen`]; [`Error::NonFinite`] for a non-finite length and
-    /// [`Error::OutOfDomain`] for one outside `[0, arclen]`.
+    /// [`Error::OutOfDomain`] for one outside `[0, arclen]` by more than the
+    /// accuracy (a length that close past an end gives that end).
     pub fn param_at_length(&self, length: f64, accuracy: f64) -> Result<f64, Error> {
-        let mut v = self.params_at_lengths(&[length], accuracy)?;
+        let mut v = self.params_at_lengths(|_| vec![length], accuracy)?;
         Ok(v.pop().unwrap_or(self.knots[0]))
     }
 
-    fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
+    /// Parameters at the lengths that `lengths` returns for the total length.
+    fn params_at_lengths(
+        &self,
+        lengths: impl FnOnce(f64) -> Vec<f64>,
+        accuracy: f64,
+    ) -> Result<Vec<f64>, Error> {
         Self::check_accuracy(accuracy)?;
         let tol = accuracy / self.gscale / (2 * self.len()) as f64;
         let segs = self.seg_lengths(tol);
@@ -1230,7 +1236,8 @@ impl Curve {
             acc += s;
             cum.push(acc);
         }
-        let total = acc * self.gscale;
+        let total = self.to_units(acc, "the arc length")?;
+        let lengths = lengths(total);
         let mut out = Vec::with_capacity(lengths.len());
         for (i, &len) in lengths.iter().enumerate() {
             if !len.is_finite() {
@@ -1240,14 +1247,16 @@ impl Curve {
                     value: len,
                 });
             }
-            if !(0.0..=total).contains(&len) {
+            // Within the accuracy of the total, a length past either end is
+            // taken as that end.
+            if !(-accuracy..=total + accuracy).contains(&len) {
                 return Err(Error::OutOfDomain {
                     x: len,
                     min: 0.0,
                     max: total,
                 });
             }
-            let target = len / self.gscale;
+            let target = len.clamp(0.0, total) / self.gscale;
             let k = cum
                 .partition_point(|&c| c <= target)
                 .saturating_sub(1)
@@ -1265,6 +1274,17 @@ impl Curve {
     /// # Errors
     ///
     /// [`Error::InvalidArgument`] for `count < 2`; as [`Curve::arclen`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// let r = c.resample(5, 1e-9)?;
+    /// assert_eq!(r.len(), 5);
+    /// assert_eq!(r.point(4), Some(&[2.0, 0.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
     pub fn resample(&self, count: usize, accuracy: f64) -> Result<Polyline, Error> {
         if count < 2 {
             return Err(Error::InvalidArgument {
@@ -1272,11 +1292,14 @@ impl Curve {
                 value: count as f64,
             });
         }
-        let total = self.arclen(accuracy)?;
-        let lengths: Vec<f64> = (0..count)
-            .map(|i| (total * (i as f64 / (count - 1) as f64)).min(total))
-            .collect();
-        let mut params = self.params_at_lengths(&lengths, accuracy)?;
+        let mut params = self.params_at_lengths(
+            |total| {
+                (0..count)
+                    .map(|i| (total * (i as f64 / (count - 1) as f64)).min(total))
+                    .collect()
+            },
+            accuracy,
+        )?;
         params[count - 1] = self.domain().1;
         let mut coords = Vec::with_capacity(count * self.dim);
         for &s in &params {
