@@ -194,6 +194,10 @@ enum ParamKind {
 /// `k + 1` (point 0 for the closing segment of a closed curve), and answers on
 /// the half-open interval `[tau_k, tau_{k+1})`; the last one also at its end.
 ///
+/// With the feature `serde` a curve serializes as its inputs (dimension,
+/// closedness, parameter choice, points after dropping repeats, alphas), and
+/// deserializing builds and validates it again.
+///
 /// # Examples
 ///
 /// ```
@@ -209,6 +213,11 @@ enum ParamKind {
 /// # Ok::<(), bzspline::Error>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "CurveData", into = "CurveData")
+)]
 pub struct Curve {
     dim: usize,
     closed: bool,
@@ -232,6 +241,49 @@ pub struct Curve {
     /// Power-basis coefficients in `t` of segment `k`, coordinate `c`, at
     /// `k * dim + c`, scaled.
     coefs: Vec<[f64; 4]>,
+}
+
+/// The serialized form of a [`Curve`]: its inputs. Deserializing solves again
+/// (and validates), so a stored curve cannot hold inconsistent numbers.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+struct CurveData {
+    dim: usize,
+    closed: bool,
+    param: Param,
+    points: Vec<f64>,
+    alphas: Vec<f64>,
+}
+
+#[cfg(feature = "serde")]
+impl From<Curve> for CurveData {
+    fn from(c: Curve) -> Self {
+        let param = match c.kind {
+            ParamKind::Uniform => Param::Uniform,
+            ParamKind::Chordal => Param::Chordal,
+            ParamKind::Centripetal => Param::Centripetal,
+            ParamKind::Given => Param::Given(c.knots),
+        };
+        CurveData {
+            dim: c.dim,
+            closed: c.closed,
+            param,
+            points: c.points,
+            alphas: c.alphas,
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<CurveData> for Curve {
+    type Error = Error;
+    fn try_from(d: CurveData) -> Result<Self, Error> {
+        Curve::builder(&d.points, d.dim)
+            .closed(d.closed)
+            .param(d.param)
+            .alphas(&d.alphas)
+            .build()
+    }
 }
 
 /// The axis-aligned box spanned by a curve.
@@ -2092,5 +2144,34 @@ mod tests {
             // The close pair is ill-conditioned: rounding moves it by ~1e-11.
             assert!((g - w).abs() < 1e-9, "want {w}, got {g}");
         }
+    }
+}
+
+#[cfg(all(test, feature = "serde"))]
+mod serde_tests {
+    use super::*;
+
+    #[test]
+    fn curve_round_trips_through_json() {
+        let pts = [[0.0, 0.0], [2.0, 1.0], [3.0, -1.0], [5.0, 0.5]];
+        for (closed, param) in [
+            (false, Param::Chordal),
+            (true, Param::Centripetal),
+            (true, Param::Given(vec![0.0, 1.0, 3.0, 4.0, 6.5])),
+        ] {
+            let c = Curve::builder_from(&pts)
+                .closed(closed)
+                .param(param)
+                .alphas(&[0.4, 0.5, 0.6, 0.45][..if closed { 4 } else { 3 }])
+                .build()
+                .unwrap();
+            let json = serde_json::to_string(&c).unwrap();
+            let back: Curve = serde_json::from_str(&json).unwrap();
+            assert_eq!(back, c, "{json}");
+        }
+        // Invalid input is refused on the way in.
+        let bad = r#"{"dim":2,"closed":false,"param":"Uniform","points":[0,0,0,0],"alphas":[0.5]}"#;
+        let e = serde_json::from_str::<Curve>(bad).unwrap_err();
+        assert!(e.to_string().contains("repeats"), "{e}");
     }
 }

@@ -21,6 +21,32 @@
 //! states the equations as implemented, including the three misprints of the
 //! paper that this crate does not copy.
 //!
+//! # Curves
+//!
+//! [`Curve`] applies the construction to every coordinate of control points in
+//! `R^d` on one shared parameter grid ([`Param`]: uniform, chordal, centripetal
+//! or given), open or closed; a closed curve solves one cyclic tridiagonal
+//! system ([`CyclicThomas`]) and is C1 across its closing knot too. The module
+//! [`curve`] adds tangents, normals, curvature, arc length and its inverse,
+//! equal-length resampling, the exact bounding box, the nearest point, a local
+//! re-solve after moving one control point, Bezier and SVG export; [`flatten`]
+//! turns curves and splines into polylines within a tolerance. Optional
+//! features: `serde` (Serialize/Deserialize on the data types) and `kurbo`
+//! (conversion into `kurbo::BezPath`).
+//!
+//! ```
+//! use bzspline::{Curve, DEFAULT_ACCURACY};
+//!
+//! let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+//! let c = Curve::closed(&square)?; // uniform parameters, alpha = 1/2
+//! // Knot points are pulled a tenth inside each corner.
+//! let k = c.knot_points();
+//! assert!((k[0][0] - 0.1).abs() < 1e-15 && (k[2][1] - 0.9).abs() < 1e-15);
+//! assert!(c.arclen(DEFAULT_ACCURACY)? < 4.0);
+//! assert!(c.to_svg_path()?.ends_with('Z'));
+//! # Ok::<(), bzspline::Error>(())
+//! ```
+//!
 //! Knots and intervals are numbered from 0 here (the paper numbers from 1):
 //! interval `k` runs from `knots[k]` to `knots[k + 1]` and has `alphas[k]`.
 //!
@@ -53,6 +79,8 @@ mod bezier;
 pub mod curve;
 mod error;
 pub mod flatten;
+#[cfg(feature = "kurbo")]
+mod kurbo_path;
 pub mod spline;
 mod tridiag;
 
