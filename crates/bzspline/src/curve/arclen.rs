@@ -1,0 +1,318 @@
+//! Arc length of a curve, its inverse, and resampling at equal arc-length
+//! steps: adaptive Gauss-Legendre quadrature of the speed `|dr/dt|` per segment.
+//!
+//! Each segment is integrated with an 8-point rule, then with the rule on both
+//! halves; where the two differ by more than the segment's share of the
+//! accuracy, each half is refined with half the tolerance (to a depth of 40, and
+//! never below the rounding of the sum).
+
+use super::{check_tolerance, norm, Curve};
+use crate::error::{Error, Field};
+use crate::flatten::Polyline;
+use std::sync::OnceLock;
+
+/// Gauss-Legendre nodes and weights on `[-1, 1]`.
+fn gauss_legendre() -> &'static ([f64; GL_N], [f64; GL_N]) {
+    static TABLE: OnceLock<([f64; GL_N], [f64; GL_N])> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let n = GL_N;
+        let mut x = [0.0; GL_N];
+        let mut w = [0.0; GL_N];
+        for i in 0..n {
+            let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, z);
+                for j in 2..=n {
+                    let jf = j as f64;
+                    let p2 = ((2.0 * jf - 1.0) * z * p1 - (jf - 1.0) * p0) / jf;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
+                let dz = p1 / dp;
+                z -= dz;
+                if dz.abs() < 1e-16 {
+                    break;
+                }
+            }
+            x[i] = z;
+            w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+        }
+        (x, w)
+    })
+}
+
+const GL_N: usize = 8;
+const MAX_DEPTH: u32 = 40;
+
+impl Curve {
+    /// Speed `|dr/dt|` of segment `k` at local `t`, in units of `gscale`.
+    fn speed(&self, k: usize, t: f64, buf: &mut [f64]) -> f64 {
+        self.local(k, t, 1, buf);
+        norm(buf)
+    }
+
+    fn gl(&self, k: usize, a: f64, b: f64, buf: &mut [f64]) -> f64 {
+        let (x, w) = gauss_legendre();
+        let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
+        let mut s = 0.0;
+        for (xi, wi) in x.iter().zip(w) {
+            s += wi * self.speed(k, m + r * xi, buf);
+        }
+        s * r
+    }
+
+    /// Length of segment `k` from local `a` to `b`, in units of `gscale`, with
+    /// absolute error about `tol` (same units).
+    fn seg_length(&self, k: usize, a: f64, b: f64, tol: f64) -> f64 {
+        let mut buf = vec![0.0; self.dim];
+        let whole = self.gl(k, a, b, &mut buf);
+        self.adapt(k, a, b, whole, tol, 0, &mut buf)
+    }
+
+    #[allow(clippy::too_many_arguments)] // recursion state: segment, interval, estimate, tolerance, depth, scratch
+    fn adapt(
+        &self,
+        k: usize,
+        a: f64,
+        b: f64,
+        whole: f64,
+        tol: f64,
+        depth: u32,
+        buf: &mut [f64],
+    ) -> f64 {
+        let m = 0.5 * (a + b);
+        let l = self.gl(k, a, m, buf);
+        let r = self.gl(k, m, b, buf);
+        let both = l + r;
+        let floor = 8.0 * f64::EPSILON * both.abs();
+        if (both - whole).abs() <= tol.max(floor) || depth >= MAX_DEPTH || m <= a || m >= b {
+            return both;
+        }
+        self.adapt(k, a, m, l, tol * 0.5, depth + 1, buf)
+            + self.adapt(k, m, b, r, tol * 0.5, depth + 1, buf)
+    }
+
+    /// Segment lengths in `gscale` units, each to `tol` (same units).
+    fn seg_lengths(&self, tol: f64) -> Vec<f64> {
+        (0..self.len())
+            .map(|k| self.seg_length(k, 0.0, 1.0, tol))
+            .collect()
+    }
+
+    /// The length of the whole curve, with absolute error at most about
+    /// `accuracy` (adaptive 8-point Gauss-Legendre per segment).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for an accuracy that is
+    /// not a finite positive number; [`Error::Overflow`] when the length exceeds
+    /// the range of a double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, DEFAULT_ACCURACY};
+    /// // A straight polygon is reproduced exactly.
+    /// let c = Curve::open(&[[0.0, 0.0], [3.0, 4.0], [6.0, 8.0]])?;
+    /// assert!((c.arclen(DEFAULT_ACCURACY)? - 10.0).abs() < 1e-9);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn arclen(&self, accuracy: f64) -> Result<f64, Error> {
+        let (lo, hi) = self.domain();
+        self.arclen_range(lo, hi, accuracy)
+    }
+
+    fn check_accuracy(accuracy: f64) -> Result<(), Error> {
+        check_tolerance("the accuracy must be positive", accuracy)?;
+        if accuracy == 0.0 {
+            return Err(Error::InvalidArgument {
+                what: "the accuracy must be positive",
+                value: accuracy,
+            });
+        }
+        Ok(())
+    }
+
+    /// The length of the curve between parameters `a` and `b` (negative when
+    /// `b < a`), both inside the domain, with absolute error about `accuracy`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::arclen`]; as [`Curve::eval`] for `a` and `b`, except that
+    /// a closed curve also refuses them outside its domain.
+    pub fn arclen_range(&self, a: f64, b: f64, accuracy: f64) -> Result<f64, Error> {
+        Self::check_accuracy(accuracy)?;
+        if b < a {
+            return self.arclen_range(b, a, accuracy).map(|v| -v);
+        }
+        let (lo, hi) = self.domain();
+        for (i, x) in [a, b].into_iter().enumerate() {
+            if !x.is_finite() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: i,
+                    value: x,
+                });
+            }
+            if !(lo..=hi).contains(&x) {
+                return Err(Error::OutOfDomain {
+                    x,
+                    min: lo,
+                    max: hi,
+                });
+            }
+        }
+        let (ka, ta) = self.locate(a)?;
+        let (kb, tb) = self.locate(b)?;
+        let tol = accuracy / self.gscale / (kb - ka + 1) as f64;
+        let mut total = 0.0;
+        for k in ka..=kb {
+            let t0 = if k == ka { ta } else { 0.0 };
+            let t1 = if k == kb { tb } else { 1.0 };
+            if t1 > t0 {
+                total += self.seg_length(k, t0, t1, tol);
+            }
+        }
+        self.to_units(total, "the arc length")
+    }
+
+    /// Local parameter in segment `k` at which the length from its start is
+    /// `target` (units of `gscale`), to `tol`.
+    fn solve_length(&self, k: usize, target: f64, seg_len: f64, tol: f64) -> f64 {
+        if target <= 0.0 {
+            return 0.0;
+        }
+        if target >= seg_len {
+            return 1.0;
+        }
+        let mut buf = vec![0.0; self.dim];
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        let mut t = target / seg_len;
+        for _ in 0..100 {
+            let f = self.seg_length(k, 0.0, t, tol * 0.5) - target;
+            if f.abs() <= tol {
+                return t;
+            }
+            if f > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let sp = self.speed(k, t, &mut buf);
+            let newton = t - f / sp;
+            t = if sp > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if hi - lo <= f64::EPSILON {
+                break;
+            }
+        }
+        t
+    }
+
+    /// The parameter at which the length from the start is `length` (the
+    /// inverse of [`Curve::arclen_range`] from the start), to `accuracy` in
+    /// length, by safeguarded Newton steps.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::arclen`]; [`Error::NonFinite`] for a non-finite length and
+    /// [`Error::OutOfDomain`] for one outside `[0, arclen]` by more than the
+    /// accuracy (a length that close past an end gives that end).
+    pub fn param_at_length(&self, length: f64, accuracy: f64) -> Result<f64, Error> {
+        let mut v = self.params_at_lengths(|_| vec![length], accuracy)?;
+        Ok(v.pop().unwrap_or(self.knots[0]))
+    }
+
+    /// Parameters at the lengths that `lengths` returns for the total length.
+    fn params_at_lengths(
+        &self,
+        lengths: impl FnOnce(f64) -> Vec<f64>,
+        accuracy: f64,
+    ) -> Result<Vec<f64>, Error> {
+        Self::check_accuracy(accuracy)?;
+        let tol = accuracy / self.gscale / (2 * self.len()) as f64;
+        let segs = self.seg_lengths(tol);
+        let mut cum = Vec::with_capacity(segs.len() + 1);
+        let mut acc = 0.0;
+        cum.push(0.0);
+        for s in &segs {
+            acc += s;
+            cum.push(acc);
+        }
+        let total = self.to_units(acc, "the arc length")?;
+        let lengths = lengths(total);
+        let mut out = Vec::with_capacity(lengths.len());
+        for (i, &len) in lengths.iter().enumerate() {
+            if !len.is_finite() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: i,
+                    value: len,
+                });
+            }
+            // Within the accuracy of the total, a length past either end is
+            // taken as that end.
+            if !(-accuracy..=total + accuracy).contains(&len) {
+                return Err(Error::OutOfDomain {
+                    x: len,
+                    min: 0.0,
+                    max: total,
+                });
+            }
+            let target = len.clamp(0.0, total) / self.gscale;
+            let k = cum
+                .partition_point(|&c| c <= target)
+                .saturating_sub(1)
+                .min(self.len() - 1);
+            let t = self.solve_length(k, target - cum[k], segs[k], 0.5 * accuracy / self.gscale);
+            let h = self.knots[k + 1] - self.knots[k];
+            out.push((self.knots[k] + t * h).min(self.knots[k + 1]));
+        }
+        Ok(out)
+    }
+
+    /// `count >= 2` points at equal arc-length steps from the start to the end
+    /// (a closed curve's last point is its first), with their parameters.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] for `count < 2`; as [`Curve::arclen`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// let r = c.resample(5, 1e-9)?;
+    /// assert_eq!(r.len(), 5);
+    /// assert_eq!(r.point(4), Some(&[2.0, 0.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn resample(&self, count: usize, accuracy: f64) -> Result<Polyline, Error> {
+        if count < 2 {
+            return Err(Error::InvalidArgument {
+                what: "resampling needs at least 2 points",
+                value: count as f64,
+            });
+        }
+        let mut params = self.params_at_lengths(
+            |total| {
+                (0..count)
+                    .map(|i| (total * (i as f64 / (count - 1) as f64)).min(total))
+                    .collect()
+            },
+            accuracy,
+        )?;
+        params[count - 1] = self.domain().1;
+        let mut coords = Vec::with_capacity(count * self.dim);
+        for &s in &params {
+            coords.extend(self.eval(s)?);
+        }
+        Ok(Polyline::new(self.dim, coords, params))
+    }
+}
