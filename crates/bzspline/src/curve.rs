@@ -236,6 +236,12 @@ pub struct Curve {
     scales: Vec<f64>,
     /// The largest of `scales`: the unit of mixed-coordinate geometry.
     gscale: f64,
+    /// The power of two chord lengths are measured in (chordal and
+    /// centripetal parameters; 1 otherwise).
+    chord_scale: f64,
+    /// What the parameter steps in `chord_scale` units were multiplied by
+    /// (1 when that would overflow the span).
+    knot_unit: f64,
     /// Scaled control points `P / scale`, flat.
     f: Vec<f64>,
     /// Scaled deviations, flat: knot point `i` is `(f + d)[i] * scale`.
@@ -364,6 +370,22 @@ fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
         });
     }
     check_finite(Field::Query, q)
+}
+
+/// The parameter step of the leg from `a` to `b` in units of `chord_scale`
+/// (before multiplying by the curve's `knot_unit`): the chord length, or its
+/// square root for centripetal parameters.
+fn chord_step(kind: &ParamKind, a: &[f64], b: &[f64], chord_scale: f64, buf: &mut [f64]) -> f64 {
+    let inv = 1.0 / chord_scale;
+    for ((d, x), y) in buf.iter_mut().zip(a).zip(b) {
+        *d = y * inv - x * inv;
+    }
+    let len = norm(buf);
+    if *kind == ParamKind::Centripetal {
+        len.sqrt()
+    } else {
+        len
+    }
 }
 
 /// Row `i` of the row-scaled continuity system for the knot between legs of
@@ -583,42 +605,38 @@ impl Curve {
     ) -> Result<Self, Error> {
         let n = points.len() / dim;
         let legs = if closed { n } else { n - 1 };
+        let mut chord_scale = 1.0;
+        let mut knot_unit = 1.0;
         let knots = match (&kind, given) {
             (ParamKind::Given, Some(g)) => g,
             (ParamKind::Uniform, _) | (ParamKind::Given, None) => {
                 (0..=legs).map(|i| i as f64).collect()
             }
             (ParamKind::Chordal | ParamKind::Centripetal, _) => {
-                let s = power_of_two_scale(&points);
-                let inv = 1.0 / s;
+                chord_scale = power_of_two_scale(&points);
                 let mut chord = vec![0.0; dim];
-                let mut steps = Vec::with_capacity(legs);
-                for k in 0..legs {
-                    let j = (k + 1) % n;
-                    for (c, ch) in chord.iter_mut().enumerate() {
-                        *ch = points[j * dim + c] * inv - points[k * dim + c] * inv;
-                    }
-                    let len = norm(&chord);
-                    steps.push(if kind == ParamKind::Chordal {
-                        len
-                    } else {
-                        len.sqrt()
-                    });
-                }
-                let unit = if kind == ParamKind::Chordal {
-                    s
-                } else {
-                    s.sqrt()
-                };
                 let mut knots = Vec::with_capacity(legs + 1);
                 let mut acc = 0.0;
                 knots.push(0.0);
-                for h in &steps {
-                    acc += h;
+                for k in 0..legs {
+                    let j = (k + 1) % n;
+                    acc += chord_step(
+                        &kind,
+                        &points[k * dim..(k + 1) * dim],
+                        &points[j * dim..(j + 1) * dim],
+                        chord_scale,
+                        &mut chord,
+                    );
                     knots.push(acc);
                 }
+                let unit = if kind == ParamKind::Chordal {
+                    chord_scale
+                } else {
+                    chord_scale.sqrt()
+                };
                 // Back to the points' units unless the total would overflow.
                 if (acc * unit).is_finite() {
+                    knot_unit = unit;
                     for k in &mut knots {
                         *k *= unit;
                     }
@@ -646,6 +664,8 @@ impl Curve {
             alphas,
             scales,
             gscale,
+            chord_scale,
+            knot_unit,
             f,
             d: Vec::new(),
             coefs: Vec::new(),

@@ -424,16 +424,20 @@ proptest! {
     #[test]
     fn move_point_matches_a_fresh_build(
         (pts, closed, alphas) in (polygon(2, 3, 30), any::<bool>(), prop::collection::vec(alpha(), 30)),
+        param in param(),
         which in 0usize..30,
         to in prop::collection::vec(-10.0f64..10.0, 2),
     ) {
-        let Some(mut c) = build(&pts, 2, closed, Param::Uniform, &alphas) else { return Ok(()) };
+        let Some(mut c) = build(&pts, 2, closed, param.clone(), &alphas) else { return Ok(()) };
         let i = which % c.point_count();
         let mut moved = pts.clone();
         moved[2 * i..2 * i + 2].copy_from_slice(&to);
-        let Some(fresh) = build(&moved, 2, closed, Param::Uniform, &alphas) else { return Ok(()) };
+        let Some(fresh) = build(&moved, 2, closed, param, &alphas) else { return Ok(()) };
         let before = c.knot_points();
         let changed = c.move_point(i, &to, 1e-12).unwrap();
+        for (a, b) in c.knots().iter().zip(fresh.knots()) {
+            prop_assert!((a - b).abs() <= 1e-10 * b.abs().max(1.0), "parameters: want {b}, got {a}");
+        }
         let after = c.knot_points();
         let want = fresh.knot_points();
         for k in 0..c.point_count() {
@@ -443,6 +447,14 @@ proptest! {
             }
             let moved_by = (0..2).map(|j| (after[k][j] - before[k][j]).abs()).fold(0.0, f64::max);
             prop_assert_eq!(changed.contains(&k), moved_by > 1e-12, "knot {} moved by {}", k, moved_by);
+        }
+        // The segments agree too (C1 everywhere after the update).
+        let (lo, hi) = c.domain();
+        let hi = hi.min(fresh.domain().1);
+        for m in 0..=100 {
+            let s = (lo + (hi - lo) * f64::from(m) / 100.0).min(hi);
+            let (a, b) = (c.eval(s).unwrap(), fresh.eval(s).unwrap());
+            prop_assert!(dist(&a, &b) <= 1e-9, "at {s}: {a:?} vs {b:?}");
         }
     }
 }

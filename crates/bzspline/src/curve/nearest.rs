@@ -8,7 +8,7 @@
 
 use super::{check_query, norm, Curve, Nearest};
 use crate::error::Error;
-use crate::spline::quadratic_roots;
+use crate::spline::{power_of_two_scale, quadratic_roots};
 
 /// Real roots in `[lo, hi]` of the polynomial with power coefficients `c`
 /// (lowest first), by isolating them between the roots of its derivative:
@@ -89,14 +89,17 @@ impl Curve {
     pub fn nearest(&self, q: &[f64]) -> Result<Nearest, Error> {
         check_query(q, self.dim)?;
         let dim = self.dim;
-        let qs: Vec<f64> = q.iter().map(|v| v / self.gscale).collect();
+        // One unit for the curve and the query, so that neither overflows.
+        let unit = self.gscale.max(power_of_two_scale(q));
+        let to_unit = self.gscale / unit;
+        let qs: Vec<f64> = q.iter().map(|v| v / unit).collect();
         let mut best = (f64::INFINITY, 0usize, 0.0f64);
         let mut diff = vec![0.0; dim];
         for k in 0..self.len() {
             // g(t) = (r(t) - q) . r'(t), degree 5, lowest coefficient first.
             let mut g = [0.0f64; 6];
             for (c, qc) in qs.iter().enumerate() {
-                let rel = self.scales[c] / self.gscale;
+                let rel = self.scales[c] / unit;
                 let co = self.coefs[k * dim + c].map(|v| v * rel);
                 let p = [co[0] - qc, co[1], co[2], co[3]];
                 let dp = [co[1], 2.0 * co[2], 3.0 * co[3]];
@@ -112,7 +115,7 @@ impl Curve {
             for t in cands {
                 self.local(k, t, 0, &mut diff);
                 for (x, qc) in diff.iter_mut().zip(&qs) {
-                    *x -= qc;
+                    *x = *x * to_unit - qc;
                 }
                 let dist = norm(&diff);
                 if dist < best.0 {
@@ -124,7 +127,12 @@ impl Curve {
         let h = self.knots[k + 1] - self.knots[k];
         let param = (self.knots[k] + t * h).min(self.knots[k + 1]);
         let point = self.eval(param)?;
-        let distance = self.to_units(dist, "the distance")?;
+        let distance = dist * unit;
+        if !distance.is_finite() {
+            return Err(Error::Overflow {
+                what: "the distance",
+            });
+        }
         Ok(Nearest {
             param,
             point,
@@ -136,6 +144,21 @@ impl Curve {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn far_queries_do_not_overflow() {
+        let c = Curve::open(&[[1e-3, 0.0], [2e-3, 1e-3], [3e-3, 0.0]]).unwrap();
+        let n = c.nearest(&[1e10, 0.0]).unwrap();
+        assert_eq!(n.point, vec![3e-3, 0.0]);
+        // So far away the whole curve is at one distance, to rounding.
+        let n = c.nearest(&[1e308, 0.0]).unwrap();
+        assert!((n.distance - 1e308).abs() <= 1e293, "{}", n.distance);
+        let n = c.nearest(&[-1e300, -1e300]).unwrap();
+        assert_eq!(n.param, 0.0);
+        assert!(c.nearest(&[f64::MAX, f64::MAX]).is_err());
+        assert!(c.nearest(&[0.0, f64::NAN]).is_err());
+        assert!(c.nearest(&[0.0]).is_err());
+    }
 
     #[test]
     fn root_isolation_finds_close_roots() {
