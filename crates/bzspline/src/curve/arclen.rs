@@ -316,3 +316,70 @@ impl Curve {
         Ok(Polyline::new(self.dim, coords, params))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::Param;
+
+    #[test]
+    fn near_cusp_length_is_accurate() {
+        // The speed drops to 7.7e-4 near t = 1.511: a near-cusp. Reference:
+        // chord sum over 4e6 equal parameter steps, 31.26661399927736 (a lower
+        // bound, converged to about 1e-11).
+        let pts = [
+            [-7.918765702598058, 1.9773139040955061],
+            [7.421934851492311, 7.098260581638757],
+            [6.242371725800509, 6.287957698500334],
+            [-0.6897702028788676, -1.650975371689305],
+        ];
+        let c = Curve::builder_from(&pts)
+            .closed(true)
+            .param(Param::Uniform)
+            .alphas(&[1.0 / 3.0, 1.0 / 3.0, 0.4099846507336324, 1.0 / 3.0])
+            .build()
+            .unwrap();
+        let want = 31.266_613_999_277_36;
+        for acc in [1e-3, 1e-6, 1e-9] {
+            let got = c.arclen(acc).unwrap();
+            assert!(
+                (got - want).abs() <= acc,
+                "accuracy {acc}: want {want}, got {got}"
+            );
+        }
+    }
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials_exactly() {
+        let (x, w) = gauss_legendre();
+        // An 8-point rule is exact to degree 15.
+        for deg in 0..16 {
+            let got: f64 = x.iter().zip(w).map(|(x, w)| w * x.powi(deg)).sum();
+            let want = if deg % 2 == 1 {
+                0.0
+            } else {
+                2.0 / f64::from(deg + 1)
+            };
+            assert!(
+                (got - want).abs() < 1e-14,
+                "degree {deg}: want {want}, got {got}"
+            );
+        }
+    }
+
+    #[test]
+    fn bad_accuracy_and_ranges_are_refused() {
+        let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]).unwrap();
+        assert!(c.arclen(0.0).is_err());
+        assert!(c.arclen(f64::NAN).is_err());
+        assert!(c.arclen_range(-1.0, 1.0, 1e-9).is_err());
+        let total = c.arclen(1e-12).unwrap();
+        assert!(c.param_at_length(total * 1.01, 1e-9).is_err());
+        let end = c.param_at_length(total, 1e-9).unwrap();
+        assert!((end - 2.0).abs() < 1e-9, "{end}");
+        assert_eq!(c.param_at_length(0.0, 1e-9).unwrap(), 0.0);
+        let back = c.arclen_range(1.5, 0.5, 1e-12).unwrap();
+        assert!(back < 0.0 && (back + c.arclen_range(0.5, 1.5, 1e-12).unwrap()).abs() < 1e-15);
+        assert!(c.resample(1, 1e-9).is_err());
+    }
+}
