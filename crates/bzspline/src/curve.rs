@@ -37,8 +37,8 @@ mod nearest;
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::spline::{
-    alpha_terms, check_finite, piece_coefs, power_of_two_scale, quadratic_roots, resolve_alphas,
-    validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
+    alpha_terms, check_finite, neighbour_weights, piece_coefs, power_of_two_scale, quadratic_roots,
+    resolve_alphas, validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
 };
 use crate::tridiag::CyclicThomas;
 
@@ -392,8 +392,7 @@ fn chord_step(kind: &ParamKind, a: &[f64], b: &[f64], chord_scale: f64, buf: &mu
 /// widths `hl`, `hr` and alphas `al`, `ar`: `(lower, diag, upper, p)`.
 #[inline]
 fn row(hl: f64, hr: f64, al: f64, ar: f64) -> (f64, f64, f64, f64) {
-    let p = hr / (hl + hr);
-    let q = hl / (hl + hr);
+    let (p, q) = neighbour_weights(hl, hr);
     let [a, b1, _, _] = alpha_terms(al);
     let [_, _, b2, c] = alpha_terms(ar);
     (-p * a, p * b1 + q * b2, -q * c, p)
@@ -1400,6 +1399,30 @@ mod tests {
         let c3 = Curve::open(&[[0.0; 3], [1.0, 2.0, 3.0]]).unwrap();
         assert!(c3.to_svg_path().is_err());
         assert_eq!(c3.segment::<3>(0).unwrap().p[3], [1.0, 2.0, 3.0]);
+    }
+
+    #[test]
+    fn parameters_spanning_the_whole_range_keep_the_system_regular() {
+        // Neighbouring steps whose sum rounds above f64::MAX: the knot points
+        // must match the same curve on parameters scaled down by 2^-1000.
+        let tri = [[0.0, 0.0], [1.0, 0.0], [0.5, 1.0]];
+        let big = vec![2.2250738585072014e-308, 5.376052040422133e307, f64::MAX];
+        assert!((big[1] - big[0]) + (big[2] - big[1]) == f64::INFINITY);
+        let down = 2f64.powi(-1000);
+        let small: Vec<f64> = big.iter().map(|x| x * down).collect();
+        let a = Curve::builder_from(&tri)
+            .param(Param::Given(big))
+            .build()
+            .unwrap();
+        let b = Curve::builder_from(&tri)
+            .param(Param::Given(small))
+            .build()
+            .unwrap();
+        for (p, q) in a.knot_points().iter().zip(b.knot_points()) {
+            for i in 0..2 {
+                assert!(close(p[i], q[i], 1e-14), "want {q:?}, got {p:?}");
+            }
+        }
     }
 
     #[test]

@@ -4,6 +4,18 @@
 
 use bzspline::{Curve, Error, Param, Spline, ALPHA_MAX, ALPHA_MIN};
 use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
+
+/// Fixed case count; failures are kept in `proptest-regressions/` of this crate
+/// (the default location is not found from a workspace member's `tests/`).
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "proptest-regressions/curves.txt",
+        ))),
+        ..ProptestConfig::with_cases(64)
+    }
+}
 
 fn alpha() -> impl Strategy<Value = f64> {
     prop_oneof![Just(ALPHA_MIN), Just(ALPHA_MAX), ALPHA_MIN..ALPHA_MAX]
@@ -198,7 +210,7 @@ fn parse_svg(d: &str) -> (Vec<[[f64; 2]; 4]>, bool) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(config())]
 
     #[test]
     fn touches_every_leg_and_is_c1(
