@@ -148,6 +148,16 @@ impl CurveBuilder {
         self
     }
 
+    /// The alphas as an [`Alphas`] choice, as [`crate::Spline::build`] takes
+    /// them (per-interval alphas are per leg here).
+    #[must_use]
+    pub fn alpha_choice(self, alphas: Alphas<'_>) -> Self {
+        match alphas {
+            Alphas::Uniform(a) => self.alpha(a),
+            Alphas::PerInterval(a) => self.alphas(a),
+        }
+    }
+
     /// What to do with repeated consecutive points (default [`Repeats::Reject`]).
     #[must_use]
     pub fn repeats(mut self, repeats: Repeats) -> Self {
@@ -1244,9 +1254,11 @@ mod tests {
         let pts = [[0.0, 0.0], [3.0, 4.0], [3.0, 13.0]];
         let c = Curve::builder_from(&pts)
             .param(Param::Chordal)
+            .alpha_choice(Alphas::Uniform(0.4))
             .build()
             .unwrap();
         assert_eq!(c.knots(), &[0.0, 5.0, 14.0]);
+        assert_eq!(c.alphas(), &[0.4, 0.4]);
         let c = Curve::builder_from(&pts)
             .param(Param::Centripetal)
             .build()
