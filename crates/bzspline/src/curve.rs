@@ -981,6 +981,15 @@ impl Curve {
     /// The curvature `|r' x r''| / |r'|^3` at `s` (unsigned; 0 on a straight
     /// part).
     ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])?;
+    /// assert_eq!(c.curvature(0.7)?, 0.0);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    ///
     /// # Errors
     ///
     /// As [`Curve::eval`]; [`Error::Overflow`] where the derivative vanishes or
@@ -1024,6 +1033,18 @@ impl Curve {
 
     /// The exact axis-aligned bounding box: per segment and coordinate, the
     /// segment's ends and the roots of its derivative (a quadratic) inside it.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])?;
+    /// let bb = c.bbox();
+    /// assert_eq!((bb.min[0], bb.max[0]), (0.0, 2.0));
+    /// // The top is below the middle control point: the curve does not reach it.
+    /// assert!(bb.max[1] > 0.5 && bb.max[1] < 2.0);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
     #[must_use]
     pub fn bbox(&self) -> BBox {
         let dim = self.dim;
@@ -1247,6 +1268,26 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn one_dimensional_curve_is_the_y_of_x_spline() {
+        // The paper's Example 1 without its repeated value (a curve refuses
+        // repeated points).
+        let f = [1.0, 3.0, 3.5, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+        let c = Curve::builder(&f, 1).build().unwrap();
+        let tau: Vec<f64> = (0..f.len()).map(|i| i as f64).collect();
+        let s = Spline::new(&tau, &f).unwrap();
+        for (k, v) in c.knot_points().iter().zip(s.knot_values()) {
+            assert_eq!(k[0], v);
+        }
+        for i in 0..=100 {
+            let x = 0.1 * f64::from(i);
+            let (a, b) = (c.eval(x).unwrap()[0], s.eval(x).unwrap());
+            assert!(close(a, b, 1e-14), "at {x}: want {b}, got {a}");
+        }
+        assert_eq!(c.normal(2.5).unwrap(), vec![0.0]);
+        assert!(c.tangent(2.5).unwrap()[0].abs() == 1.0);
     }
 
     #[test]

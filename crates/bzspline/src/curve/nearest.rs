@@ -86,6 +86,16 @@ impl Curve {
     /// [`Error::LengthMismatch`] when `q` does not have [`Curve::dim`]
     /// coordinates; [`Error::NonFinite`] for a non-finite coordinate;
     /// [`Error::Overflow`] when the distance exceeds the range of a double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])?;
+    /// let n = c.nearest(&[1.5, 3.0])?;
+    /// assert!((n.point[0] - 1.5).abs() < 1e-12 && (n.distance - 3.0).abs() < 1e-12);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
     pub fn nearest(&self, q: &[f64]) -> Result<Nearest, Error> {
         check_query(q, self.dim)?;
         let dim = self.dim;
