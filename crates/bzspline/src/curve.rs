@@ -36,6 +36,7 @@ mod nearest;
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
+use crate::flatten::Polyline;
 use crate::spline::{
     alpha_terms, check_finite, neighbour_weights, piece_coefs, power_of_two_scale, quadratic_roots,
     resolve_alphas, validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
@@ -1029,6 +1030,46 @@ impl Curve {
         } else {
             Err(Error::Overflow { what })
         }
+    }
+
+    /// `count >= 2` points at equal parameter steps from the start to the end
+    /// (a closed curve's last point is its first), with their parameters. For
+    /// equal arc-length steps see [`Curve::resample`].
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] for `count < 2`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// let p = c.sample(3)?;
+    /// assert_eq!(p.params(), &[0.0, 1.0, 2.0]);
+    /// assert_eq!(p.point(2), Some(&[2.0, 0.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn sample(&self, count: usize) -> Result<Polyline, Error> {
+        if count < 2 {
+            return Err(Error::InvalidArgument {
+                what: "sampling needs at least 2 points",
+                value: count as f64,
+            });
+        }
+        let (lo, hi) = self.domain();
+        let mut params = Vec::with_capacity(count);
+        let mut coords = Vec::with_capacity(count * self.dim);
+        for i in 0..count {
+            let s = if i + 1 == count {
+                hi
+            } else {
+                (lo + (hi - lo) * (i as f64 / (count - 1) as f64)).min(hi)
+            };
+            coords.extend(self.eval(s)?);
+            params.push(s);
+        }
+        Ok(Polyline::new(self.dim, coords, params))
     }
 
     /// The exact axis-aligned bounding box: per segment and coordinate, the
