@@ -19,7 +19,7 @@
 //! row-scaled continuity equation of [`crate::spline`] holds at every knot with
 //! indices taken cyclically, `d` is fixed nowhere, and the system is cyclic
 //! tridiagonal and diagonally dominant in the theorem's range. It is solved in
-//! O(n) by [`CyclicThomas`](crate::CyclicThomas). The curve is C1 across the
+//! O(n) by [`CyclicThomas`]. The curve is C1 across the
 //! closing knot too. A closed curve answers at every finite parameter: it is
 //! periodic with period `tau_n - tau_0`.
 //!
