@@ -1,5 +1,24 @@
-//! The `bzspline` command.
+//! The `bzspline` command: fit, evaluate, sample and plot the Bezier-type spline of
+//! Stelia, Potapenko and Sirenko, and smooth GeoJSON lines with it.
+
+use clap::Parser;
+
+mod cli;
+mod commands;
+mod input;
+mod model;
+mod output;
+mod plot;
+mod serve;
 
 fn main() {
-    println!("bzspline: command-line interface under construction");
+    let args = cli::Cli::parse();
+    if let Err(e) = commands::run(args) {
+        if output::is_broken_pipe(&e) {
+            std::process::exit(0);
+        }
+        let chain: Vec<String> = e.chain().map(ToString::to_string).collect();
+        eprintln!("error: {}", chain.join(": "));
+        std::process::exit(1);
+    }
 }

@@ -1,0 +1,344 @@
+//! Command-line arguments (clap derive; the doc comments are the help text) and
+//! their validation into the configuration the commands work from.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Result};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use crate::model::{Mode, ParamKind};
+
+/// Fit, evaluate, sample and plot the third-degree Bezier-type spline of Stelia,
+/// Potapenko and Sirenko: a C1 cubic that touches every leg of the control polygon.
+#[derive(Debug, Parser)]
+#[command(name = "bzspline", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Fit the spline and print its knots, knot values, tangent points and Bezier
+    /// segments (JSON), the segments' control points (CSV) or an SVG path.
+    Fit(FitArgs),
+    /// Evaluate the spline (and derivatives) at given abscissas.
+    Eval(EvalArgs),
+    /// Sample points along the spline.
+    Sample(SampleArgs),
+    /// Draw the control points, the control polygon and the spline as SVG.
+    Plot(crate::plot::PlotArgs),
+    /// Smooth the lines and rings of a GeoJSON document.
+    Smooth(SmoothArgs),
+    /// Serve an interactive editor over HTTP.
+    Serve(crate::serve::ServeArgs),
+}
+
+/// Where the control points come from.
+#[derive(Debug, Clone, Args)]
+pub struct InputArgs {
+    /// Input file (CSV, TSV, JSON or GeoJSON); `-` or nothing reads standard input.
+    #[arg(value_name = "FILE", conflicts_with = "example")]
+    pub file: Option<PathBuf>,
+    /// Use the paper's Example 1 (11 points on [1, 11]) or Example 2 (a semicircle).
+    #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
+    pub example: Option<u8>,
+    /// Input format; by default from the file's extension, else CSV.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub input_format: Option<InputFormat>,
+}
+
+/// Formats the readers understand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum InputFormat {
+    /// Comma-, semicolon- or tab-separated values.
+    Csv,
+    /// Tab-separated values.
+    Tsv,
+    /// A JSON array of points, or an object with `knots` and `values` (or `points`).
+    Json,
+    /// A GeoJSON document.
+    Geojson,
+    /// Newline-delimited GeoJSON, one feature or geometry per line.
+    Geojsonseq,
+}
+
+/// The shape of the spline.
+#[derive(Debug, Clone, Args)]
+pub struct ShapeArgs {
+    /// One shape parameter for every interval, in [1/3, 2/3] (default 1/2).
+    #[arg(
+        long,
+        value_name = "A",
+        allow_hyphen_values = true,
+        conflicts_with = "alphas"
+    )]
+    pub alpha: Option<f64>,
+    /// One shape parameter per interval, comma-separated (N-1 values for N points).
+    #[arg(
+        long,
+        value_name = "A1,...",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub alphas: Option<Vec<f64>>,
+    /// Treat rows as control points of a parametric curve (2D or 3D) instead of
+    /// (x, y) samples of a function.
+    #[arg(long)]
+    pub curve: bool,
+    /// Close the curve (implies --curve).
+    #[arg(long)]
+    pub closed: bool,
+    /// Curve parameters: uniform (tau = 0, 1, ...), chordal or centripetal.
+    #[arg(long, value_enum, value_name = "KIND", default_value_t = ParamArg::Uniform)]
+    pub param: ParamArg,
+}
+
+/// The `--param` choices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ParamArg {
+    /// Knots 0, 1, 2, ...
+    Uniform,
+    /// Steps equal to the distances between control points.
+    Chordal,
+    /// Steps equal to the square roots of those distances.
+    Centripetal,
+}
+
+/// Where the result goes.
+#[derive(Debug, Clone, Args)]
+pub struct OutputArgs {
+    /// Write to FILE (atomically: nothing is written on error) instead of
+    /// standard output.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+/// Arguments of `fit`.
+#[derive(Debug, Args)]
+pub struct FitArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    #[command(flatten)]
+    pub shape: ShapeArgs,
+    #[command(flatten)]
+    pub output: OutputArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = FitFormat::Json)]
+    pub format: FitFormat,
+}
+
+/// Output formats of `fit`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FitFormat {
+    /// One JSON object: knots, alphas, knot values, tangent points, segments.
+    Json,
+    /// The segments' control points, one per row, a column per coordinate.
+    Csv,
+    /// The SVG path string (`M ... C ...`).
+    Svg,
+}
+
+/// What evaluation does outside the data's span.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ExtrapolateArg {
+    /// Refuse queries outside the span.
+    Error,
+    /// Hold the end values (derivatives 0).
+    Clamp,
+    /// Continue the end pieces' cubics.
+    Extend,
+}
+
+/// Table formats of `eval` and `sample`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TableFormat {
+    /// Comma-separated values with a header line.
+    Csv,
+    /// A JSON object with one array per column.
+    Json,
+}
+
+/// Arguments of `eval`.
+#[derive(Debug, Args)]
+pub struct EvalArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    #[command(flatten)]
+    pub shape: ShapeArgs,
+    #[command(flatten)]
+    pub output: OutputArgs,
+    /// Abscissas (curve parameters with --curve), comma-separated.
+    #[arg(
+        long,
+        value_name = "X1,...",
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        required_unless_present = "at_file",
+        conflicts_with = "at_file"
+    )]
+    pub at: Option<Vec<f64>>,
+    /// Read the abscissas from a file, one per line (`#` comments allowed).
+    #[arg(long, value_name = "XS")]
+    pub at_file: Option<PathBuf>,
+    /// Also print this derivative (1, 2 or 3); repeat or give a list.
+    #[arg(long, value_name = "K", value_delimiter = ',',
+          value_parser = clap::value_parser!(u32).range(1..=3))]
+    pub derivative: Vec<u32>,
+    /// Outside the span: error, clamp to the end values, or extend the end cubics.
+    #[arg(long, value_enum, default_value_t = ExtrapolateArg::Error)]
+    pub extrapolate: ExtrapolateArg,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = TableFormat::Csv)]
+    pub format: TableFormat,
+}
+
+/// Arguments of `sample`.
+#[derive(Debug, Args)]
+pub struct SampleArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    #[command(flatten)]
+    pub shape: ShapeArgs,
+    #[command(flatten)]
+    pub output: OutputArgs,
+    /// Number of points, evenly spaced in x (in the parameter for curves).
+    #[arg(long, short = 'n', value_name = "K", group = "spacing")]
+    pub n: Option<usize>,
+    /// Distance along the curve between consecutive points.
+    #[arg(long, value_name = "S", group = "spacing")]
+    pub step: Option<f64>,
+    /// Largest distance between the curve and the polyline through the points.
+    #[arg(long, value_name = "T", group = "spacing")]
+    pub tolerance: Option<f64>,
+    /// Also print this derivative (1 or 2); repeat or give a list.
+    #[arg(long, value_name = "K", value_delimiter = ',',
+          value_parser = clap::value_parser!(u32).range(1..=2))]
+    pub derivative: Vec<u32>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = TableFormat::Csv)]
+    pub format: TableFormat,
+}
+
+/// Arguments of `smooth`.
+#[derive(Debug, Args)]
+pub struct SmoothArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    /// One shape parameter for every interval, in [1/3, 2/3] (default 1/2).
+    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    pub alpha: Option<f64>,
+    /// Curve parameters: uniform, chordal or centripetal.
+    #[arg(long, value_enum, value_name = "KIND", default_value_t = ParamArg::Centripetal)]
+    pub param: ParamArg,
+    /// Largest distance between the smooth curve and the output polyline, in
+    /// coordinate units.
+    #[arg(long, value_name = "T")]
+    pub tolerance: f64,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// The validated shape options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Shape {
+    /// Function or curve.
+    pub mode: Mode,
+    /// Closed curve.
+    pub closed: bool,
+    /// Parametrisation of a curve.
+    pub param: ParamKind,
+    /// One alpha for all intervals.
+    pub alpha: Option<f64>,
+    /// One alpha per interval.
+    pub alphas: Option<Vec<f64>>,
+}
+
+impl ShapeArgs {
+    /// Checks the shape options that do not depend on the data.
+    ///
+    /// # Errors
+    ///
+    /// A non-finite alpha, or `--param` other than uniform without `--curve`.
+    pub fn validate(&self) -> Result<Shape> {
+        if let Some(a) = self.alpha {
+            check_alpha("--alpha", a)?;
+        }
+        if let Some(list) = &self.alphas {
+            for (i, &a) in list.iter().enumerate() {
+                check_alpha(&format!("--alphas value {}", i + 1), a)?;
+            }
+        }
+        let curve = self.curve || self.closed;
+        if !curve && self.param != ParamArg::Uniform {
+            bail!("--param applies to curves only: add --curve");
+        }
+        Ok(Shape {
+            mode: if curve { Mode::Curve } else { Mode::Function },
+            closed: self.closed,
+            param: self.param.into(),
+            alpha: self.alpha,
+            alphas: self.alphas.clone(),
+        })
+    }
+}
+
+/// Rejects a non-finite alpha or one outside [1/3, 2/3] before any work.
+pub fn check_alpha(name: &str, a: f64) -> Result<()> {
+    if !a.is_finite() {
+        bail!("{name} = {a} is not a finite number");
+    }
+    if !(bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
+        bail!("{name} = {a} is outside [1/3, 2/3]");
+    }
+    Ok(())
+}
+
+impl From<ParamArg> for ParamKind {
+    fn from(p: ParamArg) -> Self {
+        match p {
+            ParamArg::Uniform => ParamKind::Uniform,
+            ParamArg::Chordal => ParamKind::Chordal,
+            ParamArg::Centripetal => ParamKind::Centripetal,
+        }
+    }
+}
+
+impl From<ExtrapolateArg> for bzspline::Extrapolate {
+    fn from(e: ExtrapolateArg) -> Self {
+        match e {
+            ExtrapolateArg::Error => bzspline::Extrapolate::Error,
+            ExtrapolateArg::Clamp => bzspline::Extrapolate::Clamp,
+            ExtrapolateArg::Extend => bzspline::Extrapolate::Extend,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn clap_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn alpha_and_alphas_conflict() {
+        let r = Cli::try_parse_from(["bzspline", "fit", "--alpha", "0.5", "--alphas", "0.5"]);
+        assert!(r.is_err(), "--alpha with --alphas must be refused");
+    }
+
+    #[test]
+    fn shape_validation_names_the_bad_alpha() {
+        let cli = Cli::try_parse_from(["bzspline", "fit", "--alphas", "0.5,0.9"]).unwrap();
+        let Command::Fit(f) = cli.command else {
+            panic!("parsed as another command")
+        };
+        let e = f.shape.validate().unwrap_err().to_string();
+        assert!(e.contains("--alphas value 2 = 0.9"), "{e}");
+    }
+}

@@ -1,0 +1,668 @@
+//! Readers for control points: CSV/TSV, JSON, GeoJSON and the paper's examples.
+//! Every point keeps where it came from, so that errors (the readers' own and the
+//! library's, which carry 0-based indices) name the file and line at fault.
+
+use std::fmt;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, Context, Result};
+use serde_json::Value;
+
+use crate::cli::{InputArgs, InputFormat};
+
+/// Where a point came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pos {
+    /// A line of a text table (1-based).
+    Line(usize),
+    /// An element of a JSON array (0-based).
+    Item(usize),
+    /// Coordinate `index` (0-based) of GeoJSON feature `feature` (0-based).
+    Coord {
+        /// The feature (or geometry) in the document.
+        feature: usize,
+        /// The position in its coordinate list.
+        index: usize,
+    },
+}
+
+impl fmt::Display for Pos {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Pos::Line(l) => write!(f, "line {l}"),
+            Pos::Item(i) => write!(f, "point [{i}]"),
+            Pos::Coord { feature, index } => write!(f, "feature {feature}, coordinate {index}"),
+        }
+    }
+}
+
+/// Points read from one source, each with its position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Points {
+    /// The source's name in messages: the path, `<stdin>` or `example 1`.
+    pub source: String,
+    /// The rows of numbers, all of one width.
+    pub rows: Vec<Vec<f64>>,
+    /// Where each row came from.
+    pub pos: Vec<Pos>,
+    /// Where the source ended (the last line of a table), for "no data" errors.
+    pub end: Pos,
+}
+
+impl Points {
+    /// `FILE:LINE` (or `FILE: point [i]`) for row `i`.
+    #[must_use]
+    pub fn at(&self, i: usize) -> String {
+        locate(&self.source, self.pos.get(i).copied().unwrap_or(self.end))
+    }
+
+    /// The position of row `i` in words (`line 4`).
+    #[must_use]
+    pub fn pos_words(&self, i: usize) -> String {
+        self.pos.get(i).copied().unwrap_or(self.end).to_string()
+    }
+}
+
+/// `FILE:LINE` for lines, `FILE: point [i]` otherwise.
+#[must_use]
+pub fn locate(source: &str, pos: Pos) -> String {
+    match pos {
+        Pos::Line(l) => format!("{source}:{l}"),
+        other => format!("{source}: {other}"),
+    }
+}
+
+/// The paper's Example 1: tau = 1..11.
+pub const EXAMPLE1: [f64; 11] = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+/// The paper's Example 2: points of `y = sqrt(x - x^2)` at x = 0, 0.1, ..., 1, with
+/// the digits the paper prints.
+pub const EXAMPLE2: [f64; 11] = [
+    0.0,
+    0.3,
+    0.4,
+    0.458257569,
+    0.489897949,
+    0.5,
+    0.4898979495,
+    0.458257569,
+    0.4,
+    0.3,
+    0.0,
+];
+
+/// The paper's example `n` (1 or 2) as points `(tau, F)`.
+#[must_use]
+pub fn example(n: u8) -> Points {
+    let rows: Vec<Vec<f64>> = if n == 1 {
+        EXAMPLE1
+            .iter()
+            .enumerate()
+            .map(|(i, &y)| vec![i as f64 + 1.0, y])
+            .collect()
+    } else {
+        // 0.1 * i, written as i / 10 so that 0.3 is the double nearest 0.3.
+        EXAMPLE2
+            .iter()
+            .enumerate()
+            .map(|(i, &y)| vec![i as f64 / 10.0, y])
+            .collect()
+    };
+    let pos = (0..rows.len()).map(Pos::Item).collect();
+    Points {
+        source: format!("example {n}"),
+        rows,
+        pos,
+        end: Pos::Item(11),
+    }
+}
+
+/// Reads all of a file (or standard input for `None` or `-`).
+///
+/// # Errors
+///
+/// The I/O error, with the file's name.
+pub fn read_source(file: Option<&Path>) -> Result<(String, Vec<u8>)> {
+    let mut bytes = Vec::new();
+    match file {
+        None => read_stdin(&mut bytes).map(|()| ("<stdin>".to_owned(), bytes)),
+        Some(p) if p == Path::new("-") => {
+            read_stdin(&mut bytes).map(|()| ("<stdin>".to_owned(), bytes))
+        }
+        Some(p) => {
+            let name = p.display().to_string();
+            let bytes = std::fs::read(p).with_context(|| format!("reading {name}"))?;
+            Ok((name, bytes))
+        }
+    }
+}
+
+fn read_stdin(bytes: &mut Vec<u8>) -> Result<()> {
+    std::io::stdin()
+        .lock()
+        .read_to_end(bytes)
+        .context("reading standard input")?;
+    Ok(())
+}
+
+/// The format of `file`: the explicit one, else by extension, else CSV.
+#[must_use]
+pub fn format_of(file: Option<&Path>, explicit: Option<InputFormat>) -> InputFormat {
+    if let Some(f) = explicit {
+        return f;
+    }
+    let ext = file
+        .and_then(Path::extension)
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("tsv" | "tab") => InputFormat::Tsv,
+        Some("json") => InputFormat::Json,
+        Some("geojson") => InputFormat::Geojson,
+        Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => InputFormat::Geojsonseq,
+        _ => InputFormat::Csv,
+    }
+}
+
+/// Loads the points named by the input arguments.
+///
+/// # Errors
+///
+/// I/O errors, and `FILE:LINE: ...` for anything wrong in the data.
+pub fn load(args: &InputArgs) -> Result<Points> {
+    if let Some(n) = args.example {
+        return Ok(example(n));
+    }
+    let file: Option<PathBuf> = args.file.clone();
+    let (name, bytes) = read_source(file.as_deref())?;
+    match format_of(file.as_deref(), args.input_format) {
+        InputFormat::Csv => parse_table(&name, &bytes, None),
+        InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t')),
+        InputFormat::Json => parse_json(&name, &bytes),
+        InputFormat::Geojson | InputFormat::Geojsonseq => parse_geojson_points(&name, &bytes),
+    }
+}
+
+/// The text of `bytes` without a UTF-8 byte-order mark.
+///
+/// # Errors
+///
+/// `FILE:LINE: not valid UTF-8` at the first bad byte.
+pub fn utf8<'a>(name: &str, bytes: &'a [u8]) -> Result<&'a str> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    std::str::from_utf8(bytes).map_err(|e| {
+        let good = &bytes[..e.valid_up_to()];
+        let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+        let col = good.len() - good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1) + 1;
+        let bad = bytes.get(e.valid_up_to()).copied().unwrap_or(0);
+        anyhow!("{name}:{line}: not valid UTF-8 (byte 0x{bad:02X} at column {col})")
+    })
+}
+
+/// Picks the separator from the first line that is not blank or a comment:
+/// a tab, else a semicolon, else a comma.
+fn sniff_delimiter(text: &str) -> u8 {
+    let first = text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#'))
+        .unwrap_or("");
+    if first.contains('\t') {
+        b'\t'
+    } else if first.contains(';') {
+        b';'
+    } else {
+        b','
+    }
+}
+
+/// The first byte at or after `from` that is not blank or in a comment line: the
+/// reader reports a record's position where it started reading, before the
+/// line ends and comments it skipped.
+fn skip_blank(text: &str, from: usize) -> usize {
+    let b = text.as_bytes();
+    let mut i = from;
+    while i < b.len() {
+        match b[i] {
+            b' ' | b'\t' | b'\r' | b'\n' => i += 1,
+            b'#' => {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            _ => break,
+        }
+    }
+    i
+}
+
+/// Parses one number of a table. Accepts what Rust's `f64` parser accepts
+/// (`1E-3`, `+2`, `.5`) but refuses NaN, infinities and overflow.
+fn parse_number(field: &str) -> std::result::Result<f64, String> {
+    if field.is_empty() {
+        return Err("empty field".to_owned());
+    }
+    match field.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(format!("'{field}' is not a finite number")),
+        Err(_) => Err(format!("'{field}' is not a number")),
+    }
+}
+
+/// Parses a table of numbers: an optional header line, `#` comments, blank lines,
+/// CRLF, a BOM, spaces around fields; `delimiter` or one sniffed from the data.
+///
+/// # Errors
+///
+/// `FILE:LINE: ...` for invalid UTF-8, a field that is not a finite number, a row
+/// with another number of fields than the first, a header after data.
+pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Points> {
+    let text = utf8(name, bytes)?;
+    let delimiter = delimiter.unwrap_or_else(|| sniff_delimiter(text));
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(delimiter)
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut pos = Vec::new();
+    let mut header_line: Option<usize> = None;
+    let mut first_width: Option<(usize, usize)> = None;
+    let mut record = csv::StringRecord::new();
+    let line_starts: Vec<usize> = std::iter::once(0)
+        .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+        .collect();
+    loop {
+        let more = reader
+            .read_record(&mut record)
+            .map_err(|e| anyhow!("{name}: {e}"))?;
+        if !more {
+            break;
+        }
+        // The reader's own line count skips comments; count newlines instead.
+        let byte = record
+            .position()
+            .map_or(0, |p| usize::try_from(p.byte()).unwrap_or(usize::MAX));
+        let line = line_starts.partition_point(|&start| start <= skip_blank(text, byte));
+        if record.iter().all(str::is_empty) || record.get(0).is_some_and(|f| f.starts_with('#')) {
+            continue; // a line of spaces, or an indented comment
+        }
+        let parsed: Vec<std::result::Result<f64, String>> =
+            record.iter().map(parse_number).collect();
+        let numeric = parsed.iter().filter(|r| r.is_ok()).count();
+        if rows.is_empty() && header_line.is_none() && numeric == 0 {
+            header_line = Some(line);
+            continue;
+        }
+        let mut row = Vec::with_capacity(parsed.len());
+        for (i, r) in parsed.into_iter().enumerate() {
+            match r {
+                Ok(v) => row.push(v),
+                Err(msg) => {
+                    let hint = if numeric == 0 {
+                        " (a header line in the middle of the data?)"
+                    } else {
+                        ""
+                    };
+                    return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", i + 1));
+                }
+            }
+        }
+        match first_width {
+            None => first_width = Some((row.len(), line)),
+            Some((w, first)) if w != row.len() => {
+                let hint = if delimiter == b',' && row.len() > w {
+                    " (a comma used as the decimal separator?)"
+                } else {
+                    ""
+                };
+                return Err(anyhow!(
+                    "{name}:{line}: {} fields, but line {first} has {w}{hint}",
+                    row.len()
+                ));
+            }
+            Some(_) => {}
+        }
+        rows.push(row);
+        pos.push(Pos::Line(line));
+    }
+    let last_line = text.lines().count().max(1);
+    Ok(Points {
+        source: name.to_owned(),
+        rows,
+        pos,
+        end: Pos::Line(last_line),
+    })
+}
+
+fn json_number(source: &str, at: &str, v: &Value) -> Result<f64> {
+    let x = v
+        .as_f64()
+        .ok_or_else(|| anyhow!("{source}: {at}: expected a number, found {v}"))?;
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(anyhow!("{source}: {at}: {x} is not a finite number"))
+    }
+}
+
+fn json_rows(source: &str, items: &[Value], what: &str) -> Result<Vec<Vec<f64>>> {
+    let mut rows = Vec::with_capacity(items.len());
+    for (i, item) in items.iter().enumerate() {
+        let row = match item {
+            Value::Array(a) => a
+                .iter()
+                .enumerate()
+                .map(|(j, v)| json_number(source, &format!("{what}[{i}][{j}]"), v))
+                .collect::<Result<Vec<f64>>>()?,
+            Value::Number(_) => vec![json_number(source, &format!("{what}[{i}]"), item)?],
+            other => {
+                return Err(anyhow!(
+                    "{source}: {what}[{i}]: expected a point (an array of numbers), found {other}"
+                ))
+            }
+        };
+        if let Some(first) = rows.first().map(Vec::len) {
+            if row.len() != first {
+                return Err(anyhow!(
+                    "{source}: {what}[{i}]: {} coordinates, but {what}[0] has {first}",
+                    row.len()
+                ));
+            }
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+fn parse_json_value(name: &str, bytes: &[u8]) -> Result<Value> {
+    let text = utf8(name, bytes)?;
+    serde_json::from_str(text).map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))
+}
+
+/// Parses JSON: an array of points (`[[x, y], ...]` or coordinates for curves),
+/// an object with `points`, or an object with `knots` and `values` (the form
+/// `fit` prints).
+///
+/// # Errors
+///
+/// `FILE:LINE: invalid JSON`, or `FILE: points[i]: ...` for a bad element.
+pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
+    let v = parse_json_value(name, bytes)?;
+    let rows = match &v {
+        Value::Array(items) => json_rows(name, items, "points")?,
+        Value::Object(o) => {
+            if let Some(Value::Array(items)) = o.get("points") {
+                json_rows(name, items, "points")?
+            } else if let (Some(Value::Array(k)), Some(Value::Array(vals))) =
+                (o.get("knots"), o.get("values"))
+            {
+                if k.len() != vals.len() {
+                    return Err(anyhow!(
+                        "{name}: {} knots but {} values",
+                        k.len(),
+                        vals.len()
+                    ));
+                }
+                let knots = json_rows(name, k, "knots")?;
+                let values = json_rows(name, vals, "values")?;
+                knots
+                    .into_iter()
+                    .zip(values)
+                    .map(|(mut k, v)| {
+                        k.extend(v);
+                        k
+                    })
+                    .collect()
+            } else {
+                return Err(anyhow!(
+                    "{name}: expected an array of points, or an object with \"points\" or with \"knots\" and \"values\""
+                ));
+            }
+        }
+        _ => return Err(anyhow!("{name}: expected an array of points")),
+    };
+    let pos = (0..rows.len()).map(Pos::Item).collect();
+    Ok(Points {
+        source: name.to_owned(),
+        end: Pos::Item(rows.len()),
+        rows,
+        pos,
+    })
+}
+
+/// Reads the control points of the first line in a GeoJSON document: a
+/// LineString, a MultiPoint, the outer ring of a Polygon, or the Point features
+/// of a collection in order.
+///
+/// # Errors
+///
+/// `FILE:LINE: invalid JSON`, or `FILE: feature i, coordinate j: ...`.
+pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
+    let v = parse_json_value(name, bytes)?;
+    let features: Vec<&Value> = match v.get("type").and_then(Value::as_str) {
+        Some("FeatureCollection") => v
+            .get("features")
+            .and_then(Value::as_array)
+            .map(|f| f.iter().collect())
+            .unwrap_or_default(),
+        _ => vec![&v],
+    };
+    let geometry = |f: &'_ Value| -> Option<Value> {
+        match f.get("type").and_then(Value::as_str) {
+            Some("Feature") => f.get("geometry").cloned(),
+            _ => Some(f.clone()),
+        }
+    };
+    let mut rows = Vec::new();
+    let mut pos = Vec::new();
+    for (fi, f) in features.iter().enumerate() {
+        let Some(g) = geometry(f) else { continue };
+        let coords = g.get("coordinates");
+        let kind = g.get("type").and_then(Value::as_str).unwrap_or("");
+        let list = match (kind, coords) {
+            ("Point", Some(c)) => {
+                let row = json_rows(
+                    name,
+                    std::slice::from_ref(c),
+                    &format!("feature {fi}: coordinates"),
+                )?;
+                rows.extend(row);
+                pos.push(Pos::Coord {
+                    feature: fi,
+                    index: 0,
+                });
+                continue;
+            }
+            ("LineString" | "MultiPoint", Some(Value::Array(c))) => c.clone(),
+            ("Polygon", Some(Value::Array(rings))) => match rings.first() {
+                Some(Value::Array(c)) => c.clone(),
+                _ => continue,
+            },
+            _ => continue,
+        };
+        if !rows.is_empty() {
+            break;
+        }
+        rows = json_rows(name, &list, &format!("feature {fi}: coordinates"))?;
+        pos = (0..rows.len())
+            .map(|index| Pos::Coord { feature: fi, index })
+            .collect();
+        break;
+    }
+    if let Some(w) = rows.first().map(Vec::len) {
+        if let Some(i) = rows.iter().position(|r| r.len() != w) {
+            return Err(anyhow!(
+                "{}: {} coordinates, expected {w}",
+                locate(name, pos[i]),
+                rows[i].len()
+            ));
+        }
+    }
+    Ok(Points {
+        source: name.to_owned(),
+        end: Pos::Item(rows.len()),
+        rows,
+        pos,
+    })
+}
+
+/// Checks that every row has `allowed` columns.
+///
+/// # Errors
+///
+/// `FILE:LINE: N columns, expected ...` at the first row that does not.
+pub fn check_columns(points: &Points, allowed: &[usize], what: &str) -> Result<()> {
+    if let Some(i) = points.rows.iter().position(|r| !allowed.contains(&r.len())) {
+        return Err(anyhow!(
+            "{}: {} columns, expected {what}",
+            points.at(i),
+            points.rows[i].len()
+        ));
+    }
+    Ok(())
+}
+
+/// Turns a library error (0-based row indices) into a message naming the source
+/// and line at fault.
+#[must_use]
+pub fn explain(points: &Points, e: &bzspline::Error) -> anyhow::Error {
+    use bzspline::{Error as E, Field};
+    let n = points.rows.len();
+    match *e {
+        E::TooFewPoints { found: 0, .. } => anyhow!(
+            "{}: no data points (need at least 2)",
+            locate(&points.source, points.end)
+        ),
+        E::TooFewPoints { found, min } => anyhow!(
+            "{}: only {found} point{}, need at least {min}",
+            points.at(found.saturating_sub(1)),
+            if found == 1 { "" } else { "s" }
+        ),
+        E::NonFinite {
+            field: Field::Alpha,
+            index,
+            value,
+        } => anyhow!(
+            "--alphas value {} = {value} is not a finite number",
+            index + 1
+        ),
+        E::NonFinite { index, value, .. } => {
+            anyhow!("{}: {value} is not a finite number", points.at(index))
+        }
+        E::NotIncreasing {
+            index,
+            previous,
+            value,
+        } => anyhow!(
+            "{}: x = {value} does not exceed x = {previous} on {}: x must be strictly increasing",
+            points.at(index),
+            points.pos_words(index.saturating_sub(1))
+        ),
+        E::IntervalTooSmall {
+            interval,
+            width,
+            span,
+        } => anyhow!(
+            "{}: too close to {} (gap {width:e} in a span of {span:e})",
+            points.at(interval + 1),
+            points.pos_words(interval)
+        ),
+        E::SpanOverflow { first, last } => anyhow!(
+            "{}: the span from {first:e} to {last:e} overflows a double",
+            points.at(n.saturating_sub(1))
+        ),
+        E::AlphaOutOfRange { interval, value } => anyhow!(
+            "alpha {} = {value} (the interval from {} to {}) is outside [1/3, 2/3]",
+            interval + 1,
+            points.pos_words(interval),
+            points.pos_words(interval + 1)
+        ),
+        E::LengthMismatch {
+            field: Field::Alpha,
+            expected,
+            found,
+        } => anyhow!(
+            "--alphas has {found} value{}, but {n} points ({}) need {expected}, one per interval",
+            if found == 1 { "" } else { "s" },
+            points.source
+        ),
+        E::RepeatedPoint { index } => anyhow!(
+            "{}: repeats the point on {}: consecutive control points must differ",
+            points.at(index),
+            points.pos_words(index.saturating_sub(1))
+        ),
+        ref other => anyhow!("{}: {other}", points.source),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(s: &str) -> Result<Points> {
+        parse_table("t.csv", s.as_bytes(), None)
+    }
+
+    #[test]
+    fn tables_accept_headers_comments_bom_crlf_and_separators() {
+        let p = table(
+            "\u{feff}# c\r\nx, y\r\n\r\n1E-3 ; +2\r\n"
+                .replace(';', ",")
+                .as_str(),
+        )
+        .unwrap();
+        assert_eq!(p.rows, vec![vec![1e-3, 2.0]]);
+        assert_eq!(p.pos, vec![Pos::Line(4)]);
+        let p = table("x;y\n.5;1\n  # indented comment\n2;3\n").unwrap();
+        assert_eq!(p.rows, vec![vec![0.5, 1.0], vec![2.0, 3.0]]);
+        let p = table("1\t2\n3\t4\n").unwrap();
+        assert_eq!(p.rows.len(), 2);
+    }
+
+    #[test]
+    fn table_errors_name_the_line() {
+        let e = table("x,y\n1,2\n2,nan\n").unwrap_err().to_string();
+        assert!(e.starts_with("t.csv:3: field 2"), "{e}");
+        let e = table("1,2\n2,3\nx,y\n").unwrap_err().to_string();
+        assert!(e.contains("t.csv:3:") && e.contains("header"), "{e}");
+        let e = table("1,2\n2,1,5\n").unwrap_err().to_string();
+        assert!(e.starts_with("t.csv:2: 3 fields, but line 1 has 2"), "{e}");
+        let e = table("1,2\n2,1e400\n").unwrap_err().to_string();
+        assert!(e.contains("t.csv:2:") && e.contains("not a finite"), "{e}");
+        let e = parse_table("t.csv", b"1,2\n3,\xff\n", None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("t.csv:2: not valid UTF-8"), "{e}");
+    }
+
+    #[test]
+    fn library_errors_map_to_lines() {
+        let p = table("x,y\n1,2\n# gap\n3,4\n3,5\n").unwrap();
+        let e = explain(
+            &p,
+            &bzspline::Error::NotIncreasing {
+                index: 2,
+                previous: 3.0,
+                value: 3.0,
+            },
+        )
+        .to_string();
+        assert!(
+            e.starts_with("t.csv:5: x = 3 does not exceed x = 3 on line 4"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn json_accepts_pairs_and_the_fit_form() {
+        let p = parse_json("a.json", b"[[0, 1], [1, 2.5]]").unwrap();
+        assert_eq!(p.rows, vec![vec![0.0, 1.0], vec![1.0, 2.5]]);
+        let p = parse_json("a.json", br#"{"knots": [0, 1], "values": [3, 4]}"#).unwrap();
+        assert_eq!(p.rows, vec![vec![0.0, 3.0], vec![1.0, 4.0]]);
+        let e = parse_json("a.json", b"[[0, 1],\n [1, \"x\"]]").unwrap_err();
+        assert!(e.to_string().contains("points[1][1]"), "{e}");
+    }
+}
