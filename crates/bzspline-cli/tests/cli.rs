@@ -1,0 +1,495 @@
+//! Runs the real `bzspline` binary on the fixture files and checks its output
+//! against the library.
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use bzspline::Spline;
+use serde_json::Value;
+
+const BIN: &str = env!("CARGO_BIN_EXE_bzspline");
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name)
+}
+
+struct Out {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+/// Runs the binary in the fixtures folder (so messages name the file as given).
+fn run(args: &[&str], stdin: Option<&[u8]>) -> Out {
+    let mut cmd = Command::new(BIN);
+    cmd.args(args)
+        .current_dir(fixture(""))
+        .stdin(if stdin.is_some() {
+            Stdio::piped()
+        } else {
+            Stdio::null()
+        })
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    let mut child = cmd.spawn().expect("the binary runs");
+    if let Some(bytes) = stdin {
+        let mut si = child.stdin.take().expect("stdin is piped");
+        si.write_all(bytes).expect("writing stdin");
+    }
+    let out = child.wait_with_output().expect("the binary finishes");
+    Out {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+fn ok(args: &[&str]) -> String {
+    let o = run(args, None);
+    assert_eq!(o.code, 0, "{args:?} failed: {}", o.stderr);
+    assert!(
+        o.stderr.is_empty(),
+        "{args:?} wrote to stderr: {}",
+        o.stderr
+    );
+    o.stdout
+}
+
+fn example1() -> Spline {
+    let x: Vec<f64> = (1..=11).map(f64::from).collect();
+    let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+    Spline::new(&x, &f).unwrap()
+}
+
+fn example2() -> Spline {
+    let x: Vec<f64> = (0..=10).map(|i| f64::from(i) / 10.0).collect();
+    let f = [
+        0.0,
+        0.3,
+        0.4,
+        0.458257569,
+        0.489897949,
+        0.5,
+        0.4898979495,
+        0.458257569,
+        0.4,
+        0.3,
+        0.0,
+    ];
+    Spline::new(&x, &f).unwrap()
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("an array")
+        .iter()
+        .map(|x| x.as_f64().expect("a number"))
+        .collect()
+}
+
+/// Checks the fit object against the library's spline, number for number.
+fn check_fit_json(text: &str, s: &Spline) {
+    let v: Value = serde_json::from_str(text).expect("fit prints JSON");
+    for key in [
+        "knots",
+        "alphas",
+        "knot_values",
+        "tangent_points",
+        "segments",
+        "closed",
+        "dimension",
+        "svg_path",
+    ] {
+        assert!(v.get(key).is_some(), "key {key} missing in {text}");
+    }
+    let n = s.knots().len();
+    assert_eq!(numbers(&v["knots"]), s.knots());
+    assert_eq!(numbers(&v["alphas"]), s.alphas());
+    // serde_json prints the shortest form that parses back to the same double,
+    // so equality is exact.
+    assert_eq!(numbers(&v["knot_values"]), s.knot_values());
+    let tp = v["tangent_points"].as_array().unwrap();
+    assert_eq!(tp.len(), n - 1);
+    for (p, (x, f)) in tp.iter().zip(s.tangent_points()) {
+        assert_eq!(numbers(p), vec![x, f]);
+    }
+    let segs = v["segments"].as_array().unwrap();
+    assert_eq!(segs.len(), n - 1);
+    for (seg, want) in segs.iter().zip(s.segments()) {
+        let pts = seg.as_array().unwrap();
+        assert_eq!(pts.len(), 4);
+        for (p, w) in pts.iter().zip(want.p) {
+            assert_eq!(numbers(p), w.to_vec());
+        }
+    }
+    assert_eq!(v["closed"], Value::Bool(false));
+    assert_eq!(v["dimension"], 1);
+}
+
+#[test]
+fn fit_prints_both_examples_as_the_library_computes_them() {
+    check_fit_json(&ok(&["fit", "--example", "1"]), &example1());
+    check_fit_json(
+        &ok(&["fit", "--example", "2", "--format", "json"]),
+        &example2(),
+    );
+}
+
+#[test]
+fn fit_reads_a_file_and_stdin_alike() {
+    let from_file = ok(&["fit", "example1.csv"]);
+    check_fit_json(&from_file, &example1());
+    let bytes = std::fs::read(fixture("example1.csv")).unwrap();
+    for args in [&["fit"][..], &["fit", "-"][..]] {
+        let o = run(args, Some(&bytes));
+        assert_eq!(o.code, 0, "{}", o.stderr);
+        assert_eq!(o.stdout, from_file, "stdin and file differ for {args:?}");
+    }
+}
+
+#[test]
+fn fit_accepts_messy_tables_tsv_and_json() {
+    let csv = ok(&["fit", "messy.csv", "--format", "csv"]);
+    let first: Vec<&str> = csv.lines().take(2).collect();
+    assert_eq!(first, ["x,y", "0,0.001"]);
+    // 3 segments of 4 control points, after the header.
+    assert_eq!(csv.lines().count(), 1 + 3 * 4);
+    let s = Spline::new(&[0.0, 0.5, 1.5, 2.0], &[1e-3, 2.0, -1.0, 0.25]).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    let want: Vec<Vec<f64>> = s
+        .segments()
+        .iter()
+        .flat_map(|b| b.p.map(|p| p.to_vec()))
+        .collect();
+    assert_eq!(rows, want);
+
+    let tsv = ok(&["fit", "tabs.tsv", "--format", "svg"]);
+    let txt = ok(&[
+        "fit",
+        "tabs.txt",
+        "--input-format",
+        "tsv",
+        "--format",
+        "svg",
+    ]);
+    assert_eq!(tsv, txt);
+    assert!(tsv.starts_with("M 0 0 C "), "{tsv}");
+    assert_eq!(tsv.matches(" C ").count(), 2);
+
+    let json = ok(&["fit", "points.json"]);
+    let s = Spline::new(&[0.0, 1.0, 2.0, 3.0], &[0.0, 1.0, 0.0, 2.0]).unwrap();
+    check_fit_json(&json, &s);
+}
+
+#[test]
+fn fit_json_output_reads_back_as_input() {
+    let first = ok(&["fit", "--example", "1", "-o", "-"]);
+    let o = run(&["fit", "--input-format", "json"], Some(first.as_bytes()));
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert_eq!(o.stdout, first);
+}
+
+#[test]
+fn alphas_per_interval_reach_the_library() {
+    let alphas = "0.4,0.5,0.6,0.5,0.4,0.6,0.5,0.45,0.55,0.5";
+    let text = ok(&["fit", "--example", "1", "--alphas", alphas]);
+    let a: Vec<f64> = alphas.split(',').map(|v| v.parse().unwrap()).collect();
+    let x: Vec<f64> = (1..=11).map(f64::from).collect();
+    let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+    check_fit_json(&text, &Spline::with_alphas(&x, &f, &a).unwrap());
+    let text = ok(&["fit", "--example", "1", "--alpha", "0.4"]);
+    check_fit_json(&text, &Spline::with_alpha(&x, &f, 0.4).unwrap());
+}
+
+/// A data error: exit code 1, one line on stderr naming the place, nothing on
+/// stdout, and no file created by `-o`.
+fn assert_data_error(args: &[&str], stdin: Option<&[u8]>, wants: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.txt");
+    let mut all: Vec<&str> = args.to_vec();
+    let out_s = out.to_str().unwrap().to_owned();
+    all.extend(["-o", &out_s]);
+    let o = run(&all, stdin);
+    assert_eq!(o.code, 1, "{args:?}: exit code; stderr {}", o.stderr);
+    assert!(o.stdout.is_empty(), "{args:?}: stdout {}", o.stdout);
+    assert_eq!(o.stderr.lines().count(), 1, "{args:?}: {}", o.stderr);
+    assert!(o.stderr.starts_with("error: "), "{args:?}: {}", o.stderr);
+    for w in wants {
+        assert!(
+            o.stderr.contains(w),
+            "{args:?}: wanted {w:?} in {}",
+            o.stderr
+        );
+    }
+    assert!(!out.exists(), "{args:?}: -o file was written");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "{args:?}: a temporary file was left behind"
+    );
+}
+
+#[test]
+fn bad_tables_name_the_file_and_line() {
+    let cases: &[(&str, &[&str])] = &[
+        ("bad_nan.csv", &["bad_nan.csv:3:", "not a finite number"]),
+        ("bad_inf.csv", &["bad_inf.csv:4:", "not a finite number"]),
+        ("bad_overflow.csv", &["bad_overflow.csv:3:", "1e400"]),
+        (
+            "bad_not_increasing.csv",
+            &["bad_not_increasing.csv:6:", "on line 4", "increasing"],
+        ),
+        (
+            "bad_decreasing.csv",
+            &["bad_decreasing.csv:4:", "on line 3"],
+        ),
+        ("bad_one_point.csv", &["bad_one_point.csv:2:", "at least 2"]),
+        (
+            "bad_ragged.csv",
+            &["bad_ragged.csv:3:", "3 fields", "line 2 has 2"],
+        ),
+        (
+            "bad_comma_decimal.csv",
+            &["bad_comma_decimal.csv:3:", "decimal separator"],
+        ),
+        (
+            "bad_header_middle.csv",
+            &["bad_header_middle.csv:4:", "header"],
+        ),
+        (
+            "bad_field.csv",
+            &["bad_field.csv:4:", "'x' is not a number"],
+        ),
+        ("empty.csv", &["empty.csv:1:", "no data"]),
+        ("only_comments.csv", &["only_comments.csv:3:", "no data"]),
+        ("bad_utf8.csv", &["bad_utf8.csv:3:", "UTF-8"]),
+        ("bad_syntax.json", &["bad_syntax.json:4:", "invalid JSON"]),
+        (
+            "bad_not_increasing.json",
+            &["bad_not_increasing.json: point [2]", "point [1]"],
+        ),
+    ];
+    for (file, wants) in cases {
+        for cmd in [
+            &["fit", file][..],
+            &["eval", file, "--at", "1"][..],
+            &["sample", file, "--n", "3"][..],
+        ] {
+            assert_data_error(cmd, None, wants);
+        }
+    }
+}
+
+#[test]
+fn bad_stdin_is_named_stdin() {
+    assert_data_error(
+        &["fit"],
+        Some(b"1,2\n3,4\n2,1\n"),
+        &["<stdin>:3:", "on line 2"],
+    );
+}
+
+#[test]
+fn bad_alphas_name_which() {
+    assert_data_error(
+        &["fit", "--example", "1", "--alpha", "0.9"],
+        None,
+        &["--alpha = 0.9", "[1/3, 2/3]"],
+    );
+    assert_data_error(
+        &["fit", "--example", "1", "--alphas", "0.5,0.5,0.2"],
+        None,
+        &["--alphas value 3 = 0.2"],
+    );
+    assert_data_error(
+        &["fit", "--example", "1", "--alphas", "0.5,0.5"],
+        None,
+        &["--alphas has 2 values", "need 10"],
+    );
+    assert_data_error(
+        &["fit", "example1.csv", "--alphas", "0.5,0.5"],
+        None,
+        &["--alphas has 2 values", "example1.csv"],
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        &["fit", "--alpha", "0.5", "--alphas", "0.5"][..],
+        &["fit", "--example", "3"][..],
+        &["eval", "--example", "1"][..],
+        &["fit", "--format", "xml"][..],
+        &["nonsense"][..],
+    ] {
+        let o = run(args, None);
+        assert_eq!(o.code, 2, "{args:?}: {}", o.stderr);
+        assert!(o.stdout.is_empty());
+    }
+}
+
+#[test]
+fn output_file_is_written_on_success() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit.json");
+    let o = run(
+        &["fit", "--example", "2", "-o", out.to_str().unwrap()],
+        None,
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert!(o.stdout.is_empty(), "stdout should be empty with -o");
+    let text = std::fs::read_to_string(&out).unwrap();
+    check_fit_json(&text, &example2());
+}
+
+fn csv_rows(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .expect("a header")
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|c| c.parse().expect("a number")).collect())
+        .collect();
+    (header, rows)
+}
+
+#[test]
+fn eval_matches_the_library() {
+    let s = example1();
+    let text = ok(&[
+        "eval",
+        "--example",
+        "1",
+        "--at",
+        "1,1.5,2.5,7.25,11",
+        "--derivative",
+        "1",
+        "--derivative",
+        "2,3",
+    ]);
+    let (header, rows) = csv_rows(&text);
+    assert_eq!(header, ["x", "y", "dy", "d2y", "d3y"]);
+    assert_eq!(rows.len(), 5);
+    for r in &rows {
+        let x = r[0];
+        assert_eq!(r[1], s.eval(x).unwrap(), "y at {x}");
+        for k in 1..=3 {
+            assert_eq!(r[1 + k as usize], s.deriv(x, k).unwrap(), "d{k}y at {x}");
+        }
+    }
+    let text = ok(&[
+        "eval",
+        "example1.csv",
+        "--at-file",
+        "xs.txt",
+        "--format",
+        "json",
+    ]);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(numbers(&v["x"]), [1.5, 2.5, 10.75]);
+    let want: Vec<f64> = [1.5, 2.5, 10.75]
+        .iter()
+        .map(|&x| s.eval(x).unwrap())
+        .collect();
+    assert_eq!(numbers(&v["y"]), want);
+}
+
+#[test]
+fn eval_outside_the_span_follows_the_policy() {
+    assert_data_error(
+        &["eval", "--example", "1", "--at-file", "xs_outside.txt"],
+        None,
+        &["xs_outside.txt:2:", "outside the domain [1, 11]"],
+    );
+    assert_data_error(
+        &["eval", "--example", "1", "--at", "2,0"],
+        None,
+        &["--at value 2", "outside"],
+    );
+    let (_, rows) = csv_rows(&ok(&[
+        "eval",
+        "--example",
+        "1",
+        "--at",
+        "0,12",
+        "--extrapolate",
+        "clamp",
+    ]));
+    assert_eq!(rows, [vec![0.0, 1.0], vec![12.0, 1.5]]);
+    let s = example1().with_extrapolation(bzspline::Extrapolate::Extend);
+    let (_, rows) = csv_rows(&ok(&[
+        "eval",
+        "--example",
+        "1",
+        "--at",
+        "0.5",
+        "--extrapolate",
+        "extend",
+    ]));
+    assert_eq!(rows[0][1], s.eval(0.5).unwrap());
+}
+
+#[test]
+fn sample_n_matches_the_library() {
+    let s = example2();
+    let text = ok(&["sample", "--example", "2", "--n", "21", "--derivative", "1"]);
+    let (header, rows) = csv_rows(&text);
+    assert_eq!(header, ["x", "y", "dy"]);
+    assert_eq!(rows.len(), 21);
+    assert_eq!(rows[0][0], 0.0);
+    assert_eq!(rows[20][0], 1.0, "the last point is the end of the span");
+    for r in &rows {
+        assert_eq!(r[1], s.eval(r[0]).unwrap());
+        assert_eq!(r[2], s.deriv(r[0], 1).unwrap());
+    }
+}
+
+#[test]
+fn sample_tolerance_keeps_the_knots_and_the_chords_close() {
+    let s = example1();
+    let text = ok(&["sample", "--example", "1", "--tolerance", "0.01"]);
+    let (_, rows) = csv_rows(&text);
+    let xs: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    for k in s.knots() {
+        assert!(xs.contains(k), "knot {k} missing");
+    }
+    for w in rows.windows(2) {
+        let xm = 0.5 * (w[0][0] + w[1][0]);
+        let chord = 0.5 * (w[0][1] + w[1][1]);
+        let slope = (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]);
+        let dist = (s.eval(xm).unwrap() - chord).abs() / slope.hypot(1.0);
+        assert!(dist <= 0.01 * 1.0001, "distance {dist} at x = {xm}");
+    }
+}
+
+#[test]
+fn a_closed_pipe_is_not_an_error() {
+    let mut child = Command::new(BIN)
+        .args(["sample", "--example", "1", "--n", "1000000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = child.stdout.take().unwrap();
+    let mut first = [0u8; 16];
+    stdout.read_exact(&mut first).unwrap();
+    assert_eq!(&first[..6], b"x,y\n1,", "unexpected start of output");
+    drop(stdout);
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        out.stderr.is_empty(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
