@@ -11,7 +11,7 @@ use crate::model::{Mode, ParamKind};
 /// Fit, evaluate, sample and plot the third-degree Bezier-type spline of Stelia,
 /// Potapenko and Sirenko: a C1 cubic that touches every leg of the control polygon.
 #[derive(Debug, Parser)]
-#[command(name = "bzspline", version, about, long_about = None)]
+#[command(name = "bzspline", version)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]

@@ -84,12 +84,7 @@ fn fit(a: &FitArgs) -> Result<()> {
     let points = input::load(&a.input)?;
     let fitted = fit_points(&points, &shape)?;
     let text = match a.format {
-        FitFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&model::fit_json(&fitted))
-                .context("formatting JSON")?;
-            s.push('\n');
-            s
-        }
+        FitFormat::Json => json_lines(&model::fit_json(&fitted))?,
         FitFormat::Csv => {
             let segs = model::segments(&fitted);
             let dim = segs.first().and_then(|s| s.first()).map_or(2, Vec::len);
@@ -109,6 +104,23 @@ fn fit(a: &FitArgs) -> Result<()> {
         }
     };
     output::emit(a.output.output.as_deref(), text.as_bytes())
+}
+
+/// An object with one key per line and each value compact on its line, or any
+/// other value compact; ends with a newline.
+fn json_lines(v: &Value) -> Result<String> {
+    let Value::Object(map) = v else {
+        return Ok(serde_json::to_string(v).context("formatting JSON")? + "\n");
+    };
+    let mut s = String::from("{\n");
+    for (i, (k, val)) in map.iter().enumerate() {
+        let key = serde_json::to_string(k).context("formatting JSON")?;
+        let val = serde_json::to_string(val).context("formatting JSON")?;
+        let comma = if i + 1 < map.len() { "," } else { "" };
+        s.push_str(&format!("  {key}: {val}{comma}\n"));
+    }
+    s.push_str("}\n");
+    Ok(s)
 }
 
 fn deriv_name(k: u32) -> String {
@@ -142,10 +154,7 @@ fn table(columns: &[String], rows: &[Vec<f64>], format: TableFormat) -> Result<S
                 let col: Vec<f64> = rows.iter().map(|r| r[j]).collect();
                 obj.insert(c.clone(), json!(col));
             }
-            let mut s =
-                serde_json::to_string_pretty(&Value::Object(obj)).context("formatting JSON")?;
-            s.push('\n');
-            s
+            json_lines(&Value::Object(obj))?
         }
     })
 }

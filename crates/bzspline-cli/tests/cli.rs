@@ -493,3 +493,41 @@ fn a_closed_pipe_is_not_an_error() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// The README's "library in ten lines", kept compiling and true.
+#[test]
+fn readme_library_snippet_holds() -> Result<(), bzspline::Error> {
+    let tau: Vec<f64> = (1..=11).map(f64::from).collect();
+    let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+    let s = Spline::with_alpha(&tau, &f, 0.5)?;
+    assert_eq!(s.eval(2.5)?, 3.0);
+    assert!(s.deriv(2.5, 1)?.abs() < 1e-12);
+    assert_eq!(s.knot_values().len(), 11);
+    assert_eq!(s.segments().len(), 10);
+    Ok(())
+}
+
+/// The README's tour shows this output; keep it true.
+#[test]
+fn readme_tour_output_is_current() {
+    let dir = tempfile::tempdir().unwrap();
+    let pts = dir.path().join("pts.csv");
+    std::fs::write(&pts, "# x, y\n0, 0\n1, 2\n2, 1\n4, 3\n").unwrap();
+    let p = pts.to_str().unwrap();
+    assert_eq!(
+        ok(&["eval", p, "--at", "0.5,1,3", "--derivative", "1,2"]),
+        "x,y,dy,d2y\n0.5,1,2,-1.1081081081081083\n1,1.7229729729729728,0.6148648648648652,-6.270270270270272\n3,2,1,0.22972972972972971\n"
+    );
+    assert_eq!(
+        ok(&["sample", p, "--n", "5", "--format", "json"]),
+        "{\n  \"x\": [0.0,1.0,2.0,3.0,4.0],\n  \"y\": [0.0,1.7229729729729728,1.2297297297297298,2.0,3.0]\n}\n"
+    );
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+            .unwrap();
+    let fit = ok(&["fit", p]);
+    assert!(
+        readme.contains(&fit),
+        "README's fit output is stale:\n{fit}"
+    );
+}
