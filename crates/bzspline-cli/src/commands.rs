@@ -7,7 +7,8 @@ use bzspline::Spline;
 use serde_json::{json, Value};
 
 use crate::cli::{
-    Cli, Command, EvalArgs, FitArgs, FitFormat, SampleArgs, Shape, SmoothArgs, TableFormat,
+    Cli, Command, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, Shape, SmoothArgs,
+    TableFormat,
 };
 use crate::input::{self, Points};
 use crate::model::{self, FitSpec, Fitted, Mode};
@@ -50,15 +51,21 @@ pub fn fit_points(points: &Points, shape: &Shape) -> Result<Fitted> {
         alphas: shape.alphas.clone(),
     };
     let fitted = model::build(&spec).map_err(|e| input::explain(points, &e))?;
-    let finite = match &fitted {
-        Fitted::Function(s) => {
-            s.knot_values().iter().all(|v| v.is_finite())
-                && model::all_finite(&model::segments(&fitted).concat())
-                && s.tangent_points()
-                    .iter()
-                    .all(|(x, y)| x.is_finite() && y.is_finite())
-        }
-    };
+    let finite = model::all_finite(&model::segments(&fitted).concat())
+        && match &fitted {
+            Fitted::Function(s) => {
+                s.knot_values().iter().all(|v| v.is_finite())
+                    && s.tangent_points()
+                        .iter()
+                        .all(|(x, y)| x.is_finite() && y.is_finite())
+            }
+            Fitted::Curve(c) => {
+                model::all_finite(&c.knot_points())
+                    && c.tangent_points()
+                        .iter()
+                        .all(|(t, p)| t.is_finite() && p.iter().all(|v| v.is_finite()))
+            }
+        };
     if !finite {
         bail!(
             "{}: the spline's coefficients overflow a double (values too large)",
@@ -98,8 +105,7 @@ fn fit(a: &FitArgs) -> Result<()> {
             s
         }
         FitFormat::Svg => {
-            let path = model::svg_path(&model::segments(&fitted))
-                .ok_or_else(|| anyhow!("an SVG path needs 2D points"))?;
+            let path = model::svg(&fitted).ok_or_else(|| anyhow!("an SVG path needs 2D points"))?;
             path + "\n"
         }
     };
@@ -121,14 +127,6 @@ fn json_lines(v: &Value) -> Result<String> {
     }
     s.push_str("}\n");
     Ok(s)
-}
-
-fn deriv_name(k: u32) -> String {
-    if k == 1 {
-        "dy".to_owned()
-    } else {
-        format!("d{k}y")
-    }
 }
 
 /// Writes a table as CSV (header line, then rows) or as a JSON object with one
@@ -159,25 +157,64 @@ fn table(columns: &[String], rows: &[Vec<f64>], format: TableFormat) -> Result<S
     })
 }
 
-/// The spline of a function, or an error for modes `eval`/`sample` do not
-/// handle yet.
-fn function_of(f: Fitted) -> Spline {
+/// Column names: `x,y` and `dy`, `d2y`, ... for a function; `[t,]x,y[,z]` and
+/// `dx,dy`, `d2x,d2y`, ... for a curve.
+fn columns(f: &Fitted, with_param: bool, derivs: &[u32]) -> Vec<String> {
+    let order = |k: u32| if k == 1 { String::new() } else { k.to_string() };
     match f {
-        Fitted::Function(s) => s,
+        Fitted::Function(_) => {
+            let mut c = vec!["x".to_owned(), "y".to_owned()];
+            c.extend(derivs.iter().map(|&k| format!("d{}y", order(k))));
+            c
+        }
+        Fitted::Curve(curve) => {
+            let names = &["x", "y", "z", "w"][..curve.dim().min(4)];
+            let mut c: Vec<String> = if with_param {
+                vec!["t".to_owned()]
+            } else {
+                vec![]
+            };
+            c.extend(names.iter().map(|n| (*n).to_owned()));
+            for &k in derivs {
+                c.extend(names.iter().map(|n| format!("d{}{n}", order(k))));
+            }
+            c
+        }
     }
 }
 
-/// The value and the requested derivatives at `x`, as one row.
-fn row_at(s: &Spline, x: f64, derivs: &[u32]) -> std::result::Result<Vec<f64>, bzspline::Error> {
-    let mut row = vec![x, s.eval(x)?];
-    for &k in derivs {
-        row.push(s.deriv(x, k)?);
+/// The row at abscissa (or curve parameter) `p`: `x, y, derivatives` for a
+/// function, `[t,] coordinates, derivatives` for a curve.
+fn row_at(
+    f: &Fitted,
+    p: f64,
+    with_param: bool,
+    derivs: &[u32],
+) -> std::result::Result<Vec<f64>, bzspline::Error> {
+    match f {
+        Fitted::Function(s) => {
+            let mut row = vec![p, s.eval(p)?];
+            for &k in derivs {
+                row.push(s.deriv(p, k)?);
+            }
+            Ok(row)
+        }
+        Fitted::Curve(c) => {
+            let mut row = if with_param { vec![p] } else { vec![] };
+            row.extend(c.eval(p)?);
+            for &k in derivs {
+                row.extend(c.deriv(p, k)?);
+            }
+            Ok(row)
+        }
     }
-    Ok(row)
 }
 
 fn eval(a: &EvalArgs) -> Result<()> {
     let shape = a.shape.validate()?;
+    if shape.mode == Mode::Curve && a.extrapolate != ExtrapolateArg::Error {
+        bail!("--extrapolate applies to y(x) only (a closed curve is periodic)");
+    }
     let (queries, qpos): (Vec<f64>, Vec<String>) = match (&a.at, &a.at_file) {
         (Some(xs), _) => {
             for (i, x) in xs.iter().enumerate() {
@@ -198,67 +235,67 @@ fn eval(a: &EvalArgs) -> Result<()> {
         (None, None) => bail!("give --at X1,... or --at-file FILE"),
     };
     let points = input::load(&a.input)?;
-    let s = function_of(fit_points(&points, &shape)?).with_extrapolation(a.extrapolate.into());
+    let fitted = match fit_points(&points, &shape)? {
+        Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate.into())),
+        other => other,
+    };
     let mut rows = Vec::with_capacity(queries.len());
     for (x, pos) in queries.iter().zip(&qpos) {
-        let row = row_at(&s, *x, &a.derivative).map_err(|e| anyhow!("{pos}: {e}"))?;
+        let row = row_at(&fitted, *x, true, &a.derivative).map_err(|e| anyhow!("{pos}: {e}"))?;
         if !row.iter().all(|v| v.is_finite()) {
-            bail!("{pos}: the result at x = {x} overflows a double");
+            bail!("{pos}: the result at {x} overflows a double");
         }
         rows.push(row);
     }
-    let mut cols = vec!["x".to_owned(), "y".to_owned()];
-    cols.extend(a.derivative.iter().map(|&k| deriv_name(k)));
-    let text = table(&cols, &rows, a.format)?;
+    let text = table(&columns(&fitted, true, &a.derivative), &rows, a.format)?;
     output::emit(a.output.output.as_deref(), text.as_bytes())
 }
 
-/// Abscissas where the planar curve `(x, S(x))` is within `tol` of the polyline
-/// through them: each Bezier piece is split in half until its inner control
-/// points lie within `tol` of the chord. Knots are always included.
-fn flatten_function(s: &Spline, tol: f64) -> Vec<f64> {
-    fn dist_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+/// The most points `sample --step` produces.
+const MAX_SAMPLES: f64 = 1e7;
+
+/// Parameters at arc-length steps `step` from the start of `c`, and its end.
+fn params_by_step(
+    c: &bzspline::Curve,
+    step: f64,
+) -> std::result::Result<Vec<f64>, bzspline::Error> {
+    let accuracy = (step * 1e-6).max(f64::MIN_POSITIVE);
+    let total = c.arclen(accuracy)?;
+    let count = (total / step).floor();
+    if count > MAX_SAMPLES {
+        return Err(bzspline::Error::InvalidArgument {
+            what: "--step is too small for the curve's length: too many points; step",
+            value: step,
+        });
     }
-    fn split(
-        b: &bzspline::CubicBez<2>,
-        t0: f64,
-        t1: f64,
-        tol: f64,
-        depth: u32,
-        out: &mut Vec<f64>,
-    ) {
-        let [p0, p1, p2, p3] = b.p;
-        let flat = dist_to_segment(p1, p0, p3).max(dist_to_segment(p2, p0, p3)) <= tol;
-        if flat || depth >= 30 {
-            out.push(t1);
-            return;
+    let (_, end) = c.domain();
+    let mut ts = Vec::new();
+    let mut i = 0.0;
+    while i <= count {
+        let len = i * step;
+        if total - len > accuracy {
+            ts.push(c.param_at_length(len, accuracy)?);
         }
-        let (l, r) = b.subdivide(0.5);
-        let tm = 0.5 * (t0 + t1);
-        split(&l, t0, tm, tol, depth + 1, out);
-        split(&r, tm, t1, tol, depth + 1, out);
+        i += 1.0;
     }
-    let knots = s.knots();
-    let mut xs = vec![knots[0]];
-    for (k, seg) in s.segments().iter().enumerate() {
-        let mut ts = Vec::new();
-        split(seg, 0.0, 1.0, tol, 0, &mut ts);
-        let (a, b) = (knots[k], knots[k + 1]);
-        let last = ts.len().saturating_sub(1);
-        for (i, t) in ts.into_iter().enumerate() {
-            // The end of each piece is its knot exactly.
-            xs.push(if i == last { b } else { a + t * (b - a) });
-        }
-    }
-    xs
+    ts.push(end);
+    Ok(ts)
+}
+
+/// The graph `(x, S(x))` of a function as a curve with the knots as
+/// parameters: each coordinate is the paper's spline on the same grid, and the
+/// spline of the linear data `x` is `x` itself, so the curve is the graph.
+fn graph_curve(s: &Spline) -> std::result::Result<bzspline::Curve, bzspline::Error> {
+    let flat: Vec<f64> = s
+        .knots()
+        .iter()
+        .zip(s.values())
+        .flat_map(|(&x, &y)| [x, y])
+        .collect();
+    bzspline::CurveBuilder::new(&flat, 2)
+        .param(bzspline::Param::Given(s.knots().to_vec()))
+        .alphas(s.alphas())
+        .build()
 }
 
 fn sample(a: &SampleArgs) -> Result<()> {
@@ -268,20 +305,21 @@ fn sample(a: &SampleArgs) -> Result<()> {
             bail!("--n must be at least 2 (got {n})");
         }
     }
-    if let Some(t) = a.tolerance {
-        if !(t.is_finite() && t > 0.0) {
-            bail!("--tolerance must be a positive number (got {t})");
-        }
-    }
-    if let Some(st) = a.step {
-        if !(st.is_finite() && st > 0.0) {
-            bail!("--step must be a positive number (got {st})");
+    for (name, v) in [("--tolerance", a.tolerance), ("--step", a.step)] {
+        if let Some(v) = v {
+            if !(v.is_finite() && v > 0.0) {
+                bail!("{name} must be a positive number (got {v})");
+            }
         }
     }
     let points = input::load(&a.input)?;
-    let s = function_of(fit_points(&points, &shape)?);
-    let (lo, hi) = s.domain();
-    let xs: Vec<f64> = if let Some(n) = a.n {
+    let fitted = fit_points(&points, &shape)?;
+    let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
+    let (lo, hi) = match &fitted {
+        Fitted::Function(s) => s.domain(),
+        Fitted::Curve(c) => c.domain(),
+    };
+    let params: Vec<f64> = if let Some(n) = a.n {
         (0..n)
             .map(|i| {
                 if i + 1 == n {
@@ -292,27 +330,30 @@ fn sample(a: &SampleArgs) -> Result<()> {
             })
             .collect()
     } else if let Some(t) = a.tolerance {
-        flatten_function(&s, t)
-    } else if a.step.is_some() {
-        bail!(
-            "--step needs arc length, which the library does not offer yet; use --n or --tolerance"
-        );
+        let poly = match &fitted {
+            Fitted::Function(s) => s.flatten(t),
+            Fitted::Curve(c) => c.flatten(t),
+        };
+        poly.map_err(lib)?.params().to_vec()
+    } else if let Some(step) = a.step {
+        match &fitted {
+            Fitted::Function(s) => params_by_step(&graph_curve(s).map_err(lib)?, step),
+            Fitted::Curve(c) => params_by_step(c, step),
+        }
+        .map_err(lib)?
     } else {
         bail!("give one of --n K, --step S or --tolerance T");
     };
-    let mut rows = Vec::with_capacity(xs.len());
-    for x in xs {
-        rows.push(row_at(&s, x, &a.derivative).map_err(|e| anyhow!("{}: {e}", points.source))?);
+    let mut rows = Vec::with_capacity(params.len());
+    for p in params {
+        rows.push(row_at(&fitted, p, false, &a.derivative).map_err(lib)?);
     }
-    let mut cols = vec!["x".to_owned(), "y".to_owned()];
-    cols.extend(a.derivative.iter().map(|&k| deriv_name(k)));
-    let text = table(&cols, &rows, a.format)?;
+    let text = table(&columns(&fitted, false, &a.derivative), &rows, a.format)?;
     output::emit(a.output.output.as_deref(), text.as_bytes())
 }
 
 fn smooth(a: &SmoothArgs) -> Result<()> {
-    let _ = a;
-    bail!("smooth needs parametric curves, which the library does not offer yet")
+    crate::smooth::run(a)
 }
 
 #[cfg(test)]
@@ -326,30 +367,6 @@ mod tests {
         assert_eq!(num(1e-7), "1e-7");
         for v in [0.1, 1.0 / 3.0, 2.5e300, -7.25e-310, 0.458257569] {
             assert_eq!(num(v).parse::<f64>().unwrap(), v, "{v}");
-        }
-    }
-
-    #[test]
-    fn flattening_keeps_the_knots_and_meets_the_tolerance() {
-        let p = input::example(1);
-        let xs: Vec<f64> = p.rows.iter().map(|r| r[0]).collect();
-        let ys: Vec<f64> = p.rows.iter().map(|r| r[1]).collect();
-        let s = Spline::new(&xs, &ys).unwrap();
-        let tol = 1e-3;
-        let flat = flatten_function(&s, tol);
-        for k in &xs {
-            assert!(flat.contains(k), "knot {k} missing");
-        }
-        assert!(flat.windows(2).all(|w| w[0] < w[1]), "not increasing");
-        // Midpoints of the chords are within tol of the curve (vertically a
-        // bound on the distance, so compare with a margin for slope).
-        for w in flat.windows(2) {
-            let (y0, y1) = (s.eval(w[0]).unwrap(), s.eval(w[1]).unwrap());
-            let xm = 0.5 * (w[0] + w[1]);
-            let dy = (s.eval(xm).unwrap() - 0.5 * (y0 + y1)).abs();
-            let slope = (y1 - y0) / (w[1] - w[0]);
-            let dist = dy / slope.hypot(1.0);
-            assert!(dist <= tol * 1.0001, "distance {dist} at {xm}");
         }
     }
 }

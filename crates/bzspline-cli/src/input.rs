@@ -594,6 +594,11 @@ pub fn explain(points: &Points, e: &bzspline::Error) -> anyhow::Error {
             points.at(index),
             points.pos_words(index.saturating_sub(1))
         ),
+        E::RepeatedClosingPoint { last } => anyhow!(
+            "{}: repeats the first point ({}): a closed curve closes by itself, leave the repeat out",
+            points.at(last),
+            points.pos_words(0)
+        ),
         ref other => anyhow!("{}: {other}", points.source),
     }
 }

@@ -10,6 +10,7 @@ mod model;
 mod output;
 mod plot;
 mod serve;
+mod smooth;
 
 fn main() {
     let args = cli::Cli::parse();

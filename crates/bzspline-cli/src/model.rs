@@ -2,7 +2,7 @@
 //! ([`Fitted`]) and its JSON form. The `fit`, `plot` and `serve` commands all go
 //! through [`build`] and [`fit_json`].
 
-use bzspline::{Alphas, CubicBez, Spline};
+use bzspline::{Alphas, CubicBez, Curve, CurveBuilder, Param, Spline};
 use serde_json::{json, Value};
 
 /// What the rows of the input are.
@@ -38,7 +38,8 @@ pub struct FitSpec {
     pub param: ParamKind,
     /// One alpha for every interval (default 1/2).
     pub alpha: Option<f64>,
-    /// One alpha per interval; takes precedence over `alpha`.
+    /// One alpha per interval (per leg of a curve, the closing leg last);
+    /// takes precedence over `alpha`.
     pub alphas: Option<Vec<f64>>,
 }
 
@@ -47,6 +48,8 @@ pub struct FitSpec {
 pub enum Fitted {
     /// A function `y(x)`.
     Function(Spline),
+    /// A parametric curve in 2D or 3D, open or closed.
+    Curve(Curve),
 }
 
 /// Builds the spline described by `spec`.
@@ -84,10 +87,35 @@ pub fn build(spec: &FitSpec) -> Result<Fitted, bzspline::Error> {
             };
             Ok(Fitted::Function(Spline::build(&xs, &ys, alphas)?))
         }
-        Mode::Curve => Err(bzspline::Error::InvalidArgument {
-            what: "parametric curves (--curve) are not available in this build; dimension",
-            value: spec.points.first().map_or(0.0, |p| p.len() as f64),
-        }),
+        Mode::Curve => {
+            let Some(dim) = spec.points.first().map(Vec::len) else {
+                return Err(bzspline::Error::TooFewPoints {
+                    found: 0,
+                    min: if spec.closed { 3 } else { 2 },
+                });
+            };
+            if let Some(bad) = spec.points.iter().find(|p| p.len() != dim) {
+                return Err(bzspline::Error::LengthMismatch {
+                    field: bzspline::Field::Coordinate,
+                    expected: dim,
+                    found: bad.len(),
+                });
+            }
+            let flat = spec.points.concat();
+            let mut b = CurveBuilder::new(&flat, dim)
+                .closed(spec.closed)
+                .param(match spec.param {
+                    ParamKind::Uniform => Param::Uniform,
+                    ParamKind::Chordal => Param::Chordal,
+                    ParamKind::Centripetal => Param::Centripetal,
+                });
+            if let Some(a) = &spec.alphas {
+                b = b.alphas(a);
+            } else if let Some(a) = spec.alpha {
+                b = b.alpha(a);
+            }
+            Ok(Fitted::Curve(b.build()?))
+        }
     }
 }
 
@@ -96,6 +124,10 @@ pub fn build(spec: &FitSpec) -> Result<Fitted, bzspline::Error> {
 pub fn segments(f: &Fitted) -> Vec<Vec<Vec<f64>>> {
     match f {
         Fitted::Function(s) => s.segments().iter().map(bez_points).collect(),
+        Fitted::Curve(c) => (0..c.len())
+            .filter_map(|k| c.segment_points(k))
+            .map(|flat| flat.chunks(c.dim()).map(<[f64]>::to_vec).collect())
+            .collect(),
     }
 }
 
@@ -131,16 +163,30 @@ pub fn svg_path(segments: &[Vec<Vec<f64>>]) -> Option<String> {
     Some(out)
 }
 
-/// The `fit` JSON object: `knots`, `alphas`, `values` (the control values or
-/// points), `knot_values`, `tangent_points`, `segments`, `closed`, `dimension`
-/// (1 for a function, else the number of coordinates) and `svg_path` (null in
-/// 3D). Numbers are printed so that they parse back to the same double.
+/// The SVG path of a planar fit (a closed curve's ends with `Z`); `None` in 3D.
+#[must_use]
+pub fn svg(f: &Fitted) -> Option<String> {
+    match f {
+        Fitted::Function(_) => svg_path(&segments(f)),
+        Fitted::Curve(c) if c.dim() == 2 => c.to_svg_path().ok(),
+        Fitted::Curve(_) => None,
+    }
+}
+
+/// The `fit` JSON object: `mode` (`function` or `curve`), `closed`,
+/// `dimension` (1 for a function, else the number of coordinates), `knots`,
+/// `alphas`, `values` (the control values or points), `knot_values`,
+/// `tangent_points` (`[x, f]` for a function, points for a curve; a curve also
+/// has `tangent_params`), `segments` (four control points each) and `svg_path`
+/// (null in 3D). A closed curve has N + 1 knots and N + 1 knot values, the last
+/// equal to the first. Numbers are printed so that they parse back to the same
+/// double.
 #[must_use]
 pub fn fit_json(f: &Fitted) -> Value {
     let segs = segments(f);
-    let svg = svg_path(&segs);
     match f {
         Fitted::Function(s) => {
+            let svg = svg_path(&segs);
             let tangent: Vec<[f64; 2]> = s.tangent_points().iter().map(|&(x, y)| [x, y]).collect();
             json!({
                 "mode": "function",
@@ -151,6 +197,33 @@ pub fn fit_json(f: &Fitted) -> Value {
                 "values": s.values(),
                 "knot_values": s.knot_values(),
                 "tangent_points": tangent,
+                "segments": segs,
+                "svg_path": svg,
+            })
+        }
+        Fitted::Curve(c) => {
+            let dim = c.dim();
+            let values: Vec<&[f64]> = c.points().chunks(dim).collect();
+            let mut knot_values = c.knot_points();
+            if c.is_closed() {
+                if let Some(first) = knot_values.first().cloned() {
+                    knot_values.push(first);
+                }
+            }
+            let tangents = c.tangent_points();
+            let params: Vec<f64> = tangents.iter().map(|(t, _)| *t).collect();
+            let points: Vec<&Vec<f64>> = tangents.iter().map(|(_, p)| p).collect();
+            let svg = svg(f);
+            json!({
+                "mode": "curve",
+                "closed": c.is_closed(),
+                "dimension": dim,
+                "knots": c.knots(),
+                "alphas": c.alphas(),
+                "values": values,
+                "knot_values": knot_values,
+                "tangent_params": params,
+                "tangent_points": points,
                 "segments": segs,
                 "svg_path": svg,
             })

@@ -531,3 +531,188 @@ fn readme_tour_output_is_current() {
         "README's fit output is stale:\n{fit}"
     );
 }
+
+fn square() -> bzspline::Curve {
+    bzspline::Curve::closed(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]).unwrap()
+}
+
+fn helix(param: bzspline::Param) -> bzspline::Curve {
+    let pts = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [1.0, 1.0, 2.0],
+        [0.0, 1.0, 3.0],
+        [0.0, 0.0, 4.0],
+    ];
+    bzspline::Curve::builder_from(&pts)
+        .param(param)
+        .build()
+        .unwrap()
+}
+
+fn points(v: &Value) -> Vec<Vec<f64>> {
+    v.as_array()
+        .expect("an array")
+        .iter()
+        .map(numbers)
+        .collect()
+}
+
+#[test]
+fn fit_closed_curve_pulls_the_square_inside() {
+    let text = ok(&["fit", "square.csv", "--closed"]);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    let c = square();
+    assert_eq!(v["closed"], Value::Bool(true));
+    assert_eq!(v["dimension"], 2);
+    assert_eq!(numbers(&v["knots"]), c.knots());
+    assert_eq!(numbers(&v["knots"]).len(), 5, "N + 1 knots");
+    let kv = points(&v["knot_values"]);
+    assert_eq!(kv.len(), 5, "N + 1 knot values");
+    assert_eq!(kv[0], kv[4], "last knot value = first");
+    for (got, want) in kv
+        .iter()
+        .zip([[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]])
+    {
+        for (g, w) in got.iter().zip(want) {
+            assert!((g - w).abs() < 1e-15, "knot value {got:?}, want {want:?}");
+        }
+    }
+    assert_eq!(kv[..4], c.knot_points()[..]);
+    let segs = v["segments"].as_array().unwrap();
+    assert_eq!(segs.len(), 4);
+    for (k, seg) in segs.iter().enumerate() {
+        let flat: Vec<f64> = points(seg).concat();
+        assert_eq!(flat, c.segment_points(k).unwrap());
+    }
+    let path = v["svg_path"].as_str().unwrap();
+    assert!(path.ends_with('Z'), "{path}");
+    assert_eq!(
+        ok(&["fit", "square.csv", "--closed", "--format", "svg"]),
+        format!("{path}\n")
+    );
+}
+
+#[test]
+fn fit_3d_curve_lists_control_points_per_row() {
+    let c = helix(bzspline::Param::Chordal);
+    let text = ok(&[
+        "fit",
+        "helix.csv",
+        "--curve",
+        "--param",
+        "chordal",
+        "--format",
+        "csv",
+    ]);
+    let (header, rows) = csv_rows(&text);
+    assert_eq!(header, ["x", "y", "z"]);
+    assert_eq!(rows.len(), 4 * c.len());
+    let want: Vec<f64> = (0..c.len())
+        .flat_map(|k| c.segment_points(k).unwrap())
+        .collect();
+    assert_eq!(rows.concat(), want);
+    let v: Value = serde_json::from_str(&ok(&["fit", "helix.csv", "--curve"])).unwrap();
+    assert_eq!(v["dimension"], 3);
+    assert_eq!(v["svg_path"], Value::Null);
+    assert_eq!(
+        points(&v["knot_values"]),
+        helix(bzspline::Param::Uniform).knot_points()
+    );
+}
+
+#[test]
+fn eval_and_sample_curves_match_the_library() {
+    let c = helix(bzspline::Param::Centripetal);
+    let text = ok(&[
+        "eval",
+        "helix.csv",
+        "--curve",
+        "--param",
+        "centripetal",
+        "--at",
+        "0,0.7,2.1",
+        "--derivative",
+        "1",
+    ]);
+    let (header, rows) = csv_rows(&text);
+    assert_eq!(header, ["t", "x", "y", "z", "dx", "dy", "dz"]);
+    for r in &rows {
+        assert_eq!(r[1..4], c.eval(r[0]).unwrap()[..]);
+        assert_eq!(r[4..7], c.deriv(r[0], 1).unwrap()[..]);
+    }
+    let c = square();
+    let (header, rows) = csv_rows(&ok(&["sample", "square.csv", "--closed", "--n", "9"]));
+    assert_eq!(header, ["x", "y"]);
+    assert_eq!(rows.len(), 9);
+    assert_eq!(
+        rows[0], rows[8],
+        "a closed curve's samples end where they start"
+    );
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r[..], c.eval(i as f64 * 0.5).unwrap()[..]);
+    }
+}
+
+#[test]
+fn sample_step_walks_equal_arc_lengths() {
+    let c = square();
+    let total = c.arclen(1e-12).unwrap();
+    let (_, rows) = csv_rows(&ok(&["sample", "square.csv", "--closed", "--step", "0.25"]));
+    assert_eq!(rows.len(), (total / 0.25).floor() as usize + 2);
+    assert_eq!(rows[0], rows[rows.len() - 1]);
+    // Chords are a little shorter than the arcs between consecutive points.
+    for w in rows[..rows.len() - 1].windows(2) {
+        let chord = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+        assert!(chord <= 0.25 + 1e-9 && chord > 0.2, "chord {chord}");
+    }
+    // For y(x) the step is taken along the graph (x, S(x)).
+    let (_, rows) = csv_rows(&ok(&["sample", "--example", "1", "--step", "0.5"]));
+    let s = example1();
+    assert_eq!(rows[0], [1.0, 1.0]);
+    assert_eq!(rows[rows.len() - 1], [11.0, 1.5]);
+    for r in &rows {
+        assert!((r[1] - s.eval(r[0]).unwrap()).abs() < 1e-12);
+    }
+    // The graph as a curve with the knots as parameters: its parameter is x.
+    let flat: Vec<f64> = s
+        .knots()
+        .iter()
+        .zip(s.values())
+        .flat_map(|(&x, &y)| [x, y])
+        .collect();
+    let graph = bzspline::CurveBuilder::new(&flat, 2)
+        .param(bzspline::Param::Given(s.knots().to_vec()))
+        .build()
+        .unwrap();
+    for w in rows[..rows.len() - 1].windows(2) {
+        let arc = graph.arclen_range(w[0][0], w[1][0], 1e-12).unwrap();
+        assert!((arc - 0.5).abs() < 1e-6, "arc {arc} from x = {}", w[0][0]);
+    }
+    let last = &rows[rows.len() - 2..];
+    assert!(graph.arclen_range(last[0][0], last[1][0], 1e-12).unwrap() <= 0.5 + 1e-6);
+}
+
+#[test]
+fn bad_curves_name_the_lines() {
+    assert_data_error(
+        &["fit", "bad_closed_repeat.csv", "--closed"],
+        None,
+        &["bad_closed_repeat.csv:5:", "first point (line 2)"],
+    );
+    assert_data_error(
+        &["fit", "bad_repeat.csv", "--curve", "--param", "chordal"],
+        None,
+        &["bad_repeat.csv:4:", "line 3"],
+    );
+    assert_data_error(
+        &["fit", "square.csv", "--closed", "--alphas", "0.5,0.5,0.5"],
+        None,
+        &["--alphas has 3 values", "need 4"],
+    );
+    assert_data_error(
+        &["fit", "helix.csv"],
+        None,
+        &["helix.csv:2:", "3 columns, expected 2"],
+    );
+}
