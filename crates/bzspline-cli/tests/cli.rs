@@ -716,3 +716,104 @@ fn bad_curves_name_the_lines() {
         &["helix.csv:2:", "3 columns, expected 2"],
     );
 }
+
+#[test]
+fn smooth_keeps_properties_closes_rings_and_carries_z() {
+    let text = ok(&["smooth", "shapes.geojson", "--tolerance", "0.01"]);
+    assert_eq!(text.lines().count(), 1);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["name"], "shapes", "foreign member of the collection");
+    let f = v["features"].as_array().unwrap();
+    assert_eq!(f.len(), 6);
+
+    // The road: the library's centripetal curve, flattened, ends exact.
+    assert_eq!(f[0]["id"], 7);
+    assert_eq!(f[0]["properties"]["lanes"], 2);
+    let road = points(&f[0]["geometry"]["coordinates"]);
+    let c = bzspline::Curve::builder_from(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])
+        .param(bzspline::Param::Centripetal)
+        .build()
+        .unwrap();
+    let want = c.flatten(0.01).unwrap();
+    assert_eq!(road.concat(), want.coords());
+    assert_eq!(road[0], [0.0, 0.0]);
+    assert_eq!(road[road.len() - 1], [4.0, 0.0]);
+
+    // The lake: both rings closed, first = last, inside the outer square.
+    assert_eq!(f[1]["source"], "survey", "foreign member of a feature");
+    let rings = f[1]["geometry"]["coordinates"].as_array().unwrap();
+    assert_eq!(rings.len(), 2);
+    for r in rings {
+        let r = points(r);
+        assert!(r.len() > 5);
+        assert_eq!(r[0], r[r.len() - 1], "ring not closed");
+        assert!(r.iter().flatten().all(|&v| (0.0..=10.0).contains(&v)));
+    }
+
+    // The trail: z is carried along and stays within the vertices' range.
+    let lines = f[2]["geometry"]["coordinates"].as_array().unwrap();
+    let first = points(&lines[0]);
+    assert!(first.iter().all(|p| p.len() == 3));
+    assert_eq!(first[0], [0.0, 0.0, 100.0]);
+    assert_eq!(first[first.len() - 1], [2.0, 0.0, 120.0]);
+    assert!(first.iter().all(|p| (100.0..=120.0).contains(&p[2])));
+
+    assert_eq!(f[3]["geometry"]["type"], "MultiPolygon");
+    assert_eq!(
+        f[4]["geometry"]["coordinates"],
+        serde_json::json!([3.0, 3.0])
+    );
+    assert_eq!(f[5]["geometry"], Value::Null);
+}
+
+#[test]
+fn smooth_streams_newline_delimited_geojson() {
+    let text = ok(&["smooth", "lines.geojsonl", "--tolerance", "0.01"]);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 2, "one output line per input feature");
+    let a: Value = serde_json::from_str(lines[0]).unwrap();
+    assert_eq!(a["properties"]["n"], 1);
+    let b: Value = serde_json::from_str(lines[1]).unwrap();
+    assert_eq!(b["type"], "LineString");
+    let bytes = std::fs::read(fixture("lines.geojsonl")).unwrap();
+    let o = run(
+        &[
+            "smooth",
+            "--input-format",
+            "geojsonseq",
+            "--tolerance",
+            "0.01",
+        ],
+        Some(&bytes),
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert_eq!(o.stdout, text);
+    assert!(
+        o.stderr.is_empty(),
+        "no progress bar when stderr is not a terminal"
+    );
+}
+
+#[test]
+fn smooth_errors_name_the_feature_or_line() {
+    assert_data_error(
+        &["smooth", "bad_lines.geojsonl", "--tolerance", "0.1"],
+        None,
+        &["bad_lines.geojsonl:2:", "coordinate 1 has 3"],
+    );
+    assert_data_error(
+        &["smooth", "bad_dims.geojson", "--tolerance", "0.1"],
+        None,
+        &["bad_dims.geojson: feature 1:", "coordinate 1 has 5"],
+    );
+    assert_data_error(
+        &["smooth", "bad_number.geojson", "--tolerance", "0.1"],
+        None,
+        &["bad_number.geojson:2:", "invalid GeoJSON"],
+    );
+    assert_data_error(
+        &["smooth", "shapes.geojson", "--tolerance", "0"],
+        None,
+        &["--tolerance must be a positive number"],
+    );
+}
