@@ -399,23 +399,28 @@ pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
             } else if let (Some(Value::Array(k)), Some(Value::Array(vals))) =
                 (o.get("knots"), o.get("values"))
             {
-                if k.len() != vals.len() {
-                    return Err(anyhow!(
-                        "{name}: {} knots but {} values",
-                        k.len(),
-                        vals.len()
-                    ));
-                }
-                let knots = json_rows(name, k, "knots")?;
                 let values = json_rows(name, vals, "values")?;
-                knots
-                    .into_iter()
-                    .zip(values)
-                    .map(|(mut k, v)| {
-                        k.extend(v);
-                        k
-                    })
-                    .collect()
+                if vals.first().is_some_and(Value::is_array) {
+                    // A curve's control points: its knots are parameters.
+                    values
+                } else {
+                    if k.len() != vals.len() {
+                        return Err(anyhow!(
+                            "{name}: {} knots but {} values",
+                            k.len(),
+                            vals.len()
+                        ));
+                    }
+                    let knots = json_rows(name, k, "knots")?;
+                    knots
+                        .into_iter()
+                        .zip(values)
+                        .map(|(mut k, v)| {
+                            k.extend(v);
+                            k
+                        })
+                        .collect()
+                }
             } else {
                 return Err(anyhow!(
                     "{name}: expected an array of points, or an object with \"points\" or with \"knots\" and \"values\""
@@ -667,6 +672,12 @@ mod tests {
         assert_eq!(p.rows, vec![vec![0.0, 1.0], vec![1.0, 2.5]]);
         let p = parse_json("a.json", br#"{"knots": [0, 1], "values": [3, 4]}"#).unwrap();
         assert_eq!(p.rows, vec![vec![0.0, 3.0], vec![1.0, 4.0]]);
+        let p = parse_json(
+            "a.json",
+            br#"{"knots": [0, 1], "values": [[3, 4], [5, 6]]}"#,
+        )
+        .unwrap();
+        assert_eq!(p.rows, vec![vec![3.0, 4.0], vec![5.0, 6.0]]);
         let e = parse_json("a.json", b"[[0, 1],\n [1, \"x\"]]").unwrap_err();
         assert!(e.to_string().contains("points[1][1]"), "{e}");
     }

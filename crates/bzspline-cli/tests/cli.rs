@@ -530,6 +530,36 @@ fn readme_tour_output_is_current() {
         readme.contains(&fit),
         "README's fit output is stale:\n{fit}"
     );
+    for args in [
+        &["fit", "square.csv", "--closed", "--format", "svg"][..],
+        &[
+            "eval",
+            "square.csv",
+            "--closed",
+            "--at",
+            "0.5,1",
+            "--derivative",
+            "1",
+        ][..],
+        &["sample", "square.csv", "--closed", "--step", "0.5"][..],
+    ] {
+        let out = ok(args);
+        assert!(
+            readme.contains(&out),
+            "README's output of {args:?} is stale:\n{out}"
+        );
+    }
+    let road = dir.path().join("road.geojson");
+    std::fs::write(
+        &road,
+        r#"{"type":"Feature","properties":{"name":"road"},"geometry":{"type":"LineString","coordinates":[[0,0],[1,2],[3,2],[4,0]]}}"#,
+    )
+    .unwrap();
+    let out = ok(&["smooth", road.to_str().unwrap(), "--tolerance", "0.1"]);
+    assert!(
+        readme.contains(&out),
+        "README's smooth output is stale:\n{out}"
+    );
 }
 
 fn square() -> bzspline::Curve {
@@ -816,4 +846,15 @@ fn smooth_errors_name_the_feature_or_line() {
         None,
         &["--tolerance must be a positive number"],
     );
+}
+
+#[test]
+fn curve_fit_json_reads_back_as_input() {
+    let first = ok(&["fit", "square.csv", "--closed"]);
+    let o = run(
+        &["fit", "--closed", "--input-format", "json"],
+        Some(first.as_bytes()),
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert_eq!(o.stdout, first);
 }
