@@ -179,7 +179,21 @@ pub fn load(args: &InputArgs) -> Result<Points> {
         InputFormat::Csv => parse_table(&name, &bytes, None),
         InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t')),
         InputFormat::Json => parse_json(&name, &bytes),
-        InputFormat::Geojson | InputFormat::Geojsonseq => parse_geojson_points(&name, &bytes),
+        InputFormat::Geojson => parse_geojson_points(&name, &bytes),
+        InputFormat::Geojsonseq => {
+            // The first feature of the stream.
+            let text = utf8(&name, &bytes)?;
+            let (i, line) = text
+                .lines()
+                .enumerate()
+                .find(|(_, l)| {
+                    !l.trim_matches(|c: char| c.is_whitespace() || c == '\u{1e}')
+                        .is_empty()
+                })
+                .unwrap_or((0, ""));
+            let line = line.trim_matches(|c: char| c.is_whitespace() || c == '\u{1e}');
+            parse_geojson_points(&format!("{name}:{}", i + 1), line.as_bytes())
+        }
     }
 }
 

@@ -858,3 +858,19 @@ fn curve_fit_json_reads_back_as_input() {
     assert_eq!(o.code, 0, "{}", o.stderr);
     assert_eq!(o.stdout, first);
 }
+
+#[test]
+fn fit_reads_the_first_line_of_geojson() {
+    let c = bzspline::Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
+    let want = format!("{}\n", c.to_svg_path().unwrap());
+    assert_eq!(
+        ok(&["fit", "shapes.geojson", "--curve", "--format", "svg"]),
+        want
+    );
+    let c = bzspline::Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]).unwrap();
+    let want = format!("{}\n", c.to_svg_path().unwrap());
+    assert_eq!(
+        ok(&["fit", "lines.geojsonl", "--curve", "--format", "svg"]),
+        want
+    );
+}
