@@ -197,6 +197,7 @@ pub struct EvalArgs {
 
 /// Arguments of `sample`.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("spacing").required(true)))]
 pub struct SampleArgs {
     #[command(flatten)]
     pub input: InputArgs,

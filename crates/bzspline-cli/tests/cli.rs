@@ -326,6 +326,8 @@ fn usage_errors_exit_2() {
         &["fit", "--alpha", "0.5", "--alphas", "0.5"][..],
         &["fit", "--example", "3"][..],
         &["eval", "--example", "1"][..],
+        &["sample", "--example", "1"][..],
+        &["sample", "--example", "1", "--n", "3", "--step", "1"][..],
         &["fit", "--format", "xml"][..],
         &["nonsense"][..],
     ] {
