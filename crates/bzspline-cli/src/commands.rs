@@ -2,6 +2,8 @@
 //! reads the points, builds the spline, checks the results for finiteness and
 //! only then writes.
 
+use std::io::Write as _;
+
 use anyhow::{anyhow, bail, Context, Result};
 use bzspline::Spline;
 use serde_json::{json, Value};
@@ -37,35 +39,42 @@ pub fn run(cli: Cli) -> Result<()> {
 ///
 /// Rows of the wrong width, the library's refusals mapped to lines, and results
 /// that overflow a double.
-pub fn fit_points(points: &Points, shape: &Shape) -> Result<Fitted> {
+pub fn fit_points(points: &mut Points, shape: &Shape) -> Result<Fitted> {
     match shape.mode {
         Mode::Function => input::check_columns(points, &[2], "2 (x, y)")?,
         Mode::Curve => input::check_columns(points, &[2, 3], "2 or 3 coordinates")?,
     }
     let spec = FitSpec {
-        points: points.rows.clone(),
+        points: std::mem::take(&mut points.rows),
         mode: shape.mode,
         closed: shape.closed,
         param: shape.param,
         alpha: shape.alpha,
         alphas: shape.alphas.clone(),
     };
-    let fitted = model::build(&spec).map_err(|e| input::explain(points, &e))?;
-    let finite = model::all_finite(&model::segments(&fitted).concat())
-        && match &fitted {
-            Fitted::Function(s) => {
-                s.knot_values().iter().all(|v| v.is_finite())
-                    && s.tangent_points()
-                        .iter()
-                        .all(|(x, y)| x.is_finite() && y.is_finite())
-            }
-            Fitted::Curve(c) => {
-                model::all_finite(&c.knot_points())
-                    && c.tangent_points()
-                        .iter()
-                        .all(|(t, p)| t.is_finite() && p.iter().all(|v| v.is_finite()))
-            }
-        };
+    let built = model::build(&spec);
+    points.rows = spec.points;
+    let fitted = built.map_err(|e| input::explain(points, &e))?;
+    let finite = match &fitted {
+        Fitted::Function(s) => {
+            s.segments()
+                .iter()
+                .all(|b| b.p.iter().flatten().all(|v| v.is_finite()))
+                && s.knot_values().iter().all(|v| v.is_finite())
+                && s.tangent_points()
+                    .iter()
+                    .all(|(x, y)| x.is_finite() && y.is_finite())
+        }
+        Fitted::Curve(c) => {
+            (0..c.len()).all(|k| {
+                c.segment_points(k)
+                    .is_some_and(|p| p.iter().all(|v| v.is_finite()))
+            }) && model::all_finite(&c.knot_points())
+                && c.tangent_points()
+                    .iter()
+                    .all(|(t, p)| t.is_finite() && p.iter().all(|v| v.is_finite()))
+        }
+    };
     if !finite {
         bail!(
             "{}: the spline's coefficients overflow a double (values too large)",
@@ -88,45 +97,31 @@ pub fn num(v: f64) -> String {
 
 fn fit(a: &FitArgs) -> Result<()> {
     let shape = a.shape.validate()?;
-    let points = input::load(&a.input)?;
-    let fitted = fit_points(&points, &shape)?;
-    let text = match a.format {
-        FitFormat::Json => json_lines(&model::fit_json(&fitted))?,
+    let mut points = input::load(&a.input)?;
+    let fitted = fit_points(&mut points, &shape)?;
+    let mut sink = output::Sink::create(a.output.output.as_deref())?;
+    match a.format {
+        FitFormat::Json => model::write_fit_json(&fitted, &mut sink).context("writing output")?,
         FitFormat::Csv => {
-            let segs = model::segments(&fitted);
-            let dim = segs.first().and_then(|s| s.first()).map_or(2, Vec::len);
-            let mut s = ["x", "y", "z"][..dim.min(3)].join(",");
-            s.push('\n');
-            for p in segs.iter().flatten() {
-                let row: Vec<String> = p.iter().map(|&v| num(v)).collect();
-                s.push_str(&row.join(","));
-                s.push('\n');
+            let dim = match &fitted {
+                Fitted::Function(_) => 2,
+                Fitted::Curve(c) => c.dim(),
+            };
+            writeln!(sink, "{}", ["x", "y", "z", "w"][..dim.min(4)].join(","))
+                .context("writing output")?;
+            for seg in model::segments(&fitted) {
+                for p in seg {
+                    let row: Vec<String> = p.iter().map(|&v| num(v)).collect();
+                    writeln!(sink, "{}", row.join(",")).context("writing output")?;
+                }
             }
-            s
         }
         FitFormat::Svg => {
             let path = model::svg(&fitted).ok_or_else(|| anyhow!("an SVG path needs 2D points"))?;
-            path + "\n"
+            writeln!(sink, "{path}").context("writing output")?;
         }
-    };
-    output::emit(a.output.output.as_deref(), text.as_bytes())
-}
-
-/// An object with one key per line and each value compact on its line, or any
-/// other value compact; ends with a newline.
-fn json_lines(v: &Value) -> Result<String> {
-    let Value::Object(map) = v else {
-        return Ok(serde_json::to_string(v).context("formatting JSON")? + "\n");
-    };
-    let mut s = String::from("{\n");
-    for (i, (k, val)) in map.iter().enumerate() {
-        let key = serde_json::to_string(k).context("formatting JSON")?;
-        let val = serde_json::to_string(val).context("formatting JSON")?;
-        let comma = if i + 1 < map.len() { "," } else { "" };
-        s.push_str(&format!("  {key}: {val}{comma}\n"));
     }
-    s.push_str("}\n");
-    Ok(s)
+    sink.finish()
 }
 
 /// Writes a table as CSV (header line, then rows) or as a JSON object with one
@@ -152,7 +147,9 @@ fn table(columns: &[String], rows: &[Vec<f64>], format: TableFormat) -> Result<S
                 let col: Vec<f64> = rows.iter().map(|r| r[j]).collect();
                 obj.insert(c.clone(), json!(col));
             }
-            json_lines(&Value::Object(obj))?
+            let mut out = Vec::new();
+            model::write_json_lines(&Value::Object(obj), &mut out).context("formatting JSON")?;
+            String::from_utf8(out).context("formatting JSON")?
         }
     })
 }
@@ -234,8 +231,8 @@ fn eval(a: &EvalArgs) -> Result<()> {
         }
         (None, None) => bail!("give --at X1,... or --at-file FILE"),
     };
-    let points = input::load(&a.input)?;
-    let fitted = match fit_points(&points, &shape)? {
+    let mut points = input::load(&a.input)?;
+    let fitted = match fit_points(&mut points, &shape)? {
         Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate.into())),
         other => other,
     };
@@ -312,8 +309,8 @@ fn sample(a: &SampleArgs) -> Result<()> {
             }
         }
     }
-    let points = input::load(&a.input)?;
-    let fitted = fit_points(&points, &shape)?;
+    let mut points = input::load(&a.input)?;
+    let fitted = fit_points(&mut points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
     let (lo, hi) = match &fitted {
         Fitted::Function(s) => s.domain(),

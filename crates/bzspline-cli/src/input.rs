@@ -285,6 +285,7 @@ pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Po
     let mut header_line: Option<usize> = None;
     let mut first_width: Option<(usize, usize)> = None;
     let mut record = csv::StringRecord::new();
+    let mut line = 0usize;
     let line_starts: Vec<usize> = std::iter::once(0)
         .chain(text.match_indices('\n').map(|(i, _)| i + 1))
         .collect();
@@ -299,30 +300,37 @@ pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Po
         let byte = record
             .position()
             .map_or(0, |p| usize::try_from(p.byte()).unwrap_or(usize::MAX));
-        let line = line_starts.partition_point(|&start| start <= skip_blank(text, byte));
+        // Records come in order: move the line cursor forward.
+        let start = skip_blank(text, byte);
+        while line < line_starts.len() && line_starts[line] <= start {
+            line += 1;
+        }
         if record.iter().all(str::is_empty) || record.get(0).is_some_and(|f| f.starts_with('#')) {
             continue; // a line of spaces, or an indented comment
         }
-        let parsed: Vec<std::result::Result<f64, String>> =
-            record.iter().map(parse_number).collect();
-        let numeric = parsed.iter().filter(|r| r.is_ok()).count();
-        if rows.is_empty() && header_line.is_none() && numeric == 0 {
-            header_line = Some(line);
-            continue;
-        }
-        let mut row = Vec::with_capacity(parsed.len());
-        for (i, r) in parsed.into_iter().enumerate() {
-            match r {
+        let mut row = Vec::with_capacity(first_width.map_or(2, |(w, _)| w));
+        let mut bad = None;
+        for (i, field) in record.iter().enumerate() {
+            match parse_number(field) {
                 Ok(v) => row.push(v),
                 Err(msg) => {
-                    let hint = if numeric == 0 {
-                        " (a header line in the middle of the data?)"
-                    } else {
-                        ""
-                    };
-                    return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", i + 1));
+                    bad = Some((i, msg));
+                    break;
                 }
             }
+        }
+        if let Some((i, msg)) = bad {
+            let numeric = record.iter().filter(|f| parse_number(f).is_ok()).count();
+            if rows.is_empty() && header_line.is_none() && numeric == 0 {
+                header_line = Some(line);
+                continue;
+            }
+            let hint = if numeric == 0 {
+                " (a header line in the middle of the data?)"
+            } else {
+                ""
+            };
+            return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", i + 1));
         }
         match first_width {
             None => first_width = Some((row.len(), line)),

@@ -3,7 +3,8 @@
 //! through [`build`] and [`fit_json`].
 
 use bzspline::{Alphas, CubicBez, Curve, CurveBuilder, Param, Spline};
-use serde_json::{json, Value};
+use serde::Serialize;
+use serde_json::Value;
 
 /// What the rows of the input are.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -135,41 +136,139 @@ fn bez_points<const D: usize>(b: &CubicBez<D>) -> Vec<Vec<f64>> {
     b.p.iter().map(|p| p.to_vec()).collect()
 }
 
-/// The SVG path (`M x y C ...`) of planar segments; `None` for 3D ones.
+/// The SVG path (`M x y C ...`) of planar Bezier segments.
 #[must_use]
-pub fn svg_path(segments: &[Vec<Vec<f64>>]) -> Option<String> {
+pub fn svg_path(segments: &[CubicBez<2>]) -> String {
     use std::fmt::Write;
     let mut out = String::new();
-    for (k, seg) in segments.iter().enumerate() {
-        let pts: Vec<(f64, f64)> = seg
-            .iter()
-            .map(|p| match p.as_slice() {
-                [x, y] => Some((*x, *y)),
-                _ => None,
-            })
-            .collect::<Option<_>>()?;
-        if pts.len() != 4 {
-            return None;
-        }
+    for (k, b) in segments.iter().enumerate() {
+        let [p0, p1, p2, p3] = b.p;
         if k == 0 {
-            let _ = write!(out, "M {} {}", pts[0].0, pts[0].1);
+            let _ = write!(out, "M {} {}", p0[0], p0[1]);
         }
         let _ = write!(
             out,
             " C {} {} {} {} {} {}",
-            pts[1].0, pts[1].1, pts[2].0, pts[2].1, pts[3].0, pts[3].1
+            p1[0], p1[1], p2[0], p2[1], p3[0], p3[1]
         );
     }
-    Some(out)
+    out
 }
 
 /// The SVG path of a planar fit (a closed curve's ends with `Z`); `None` in 3D.
 #[must_use]
 pub fn svg(f: &Fitted) -> Option<String> {
     match f {
-        Fitted::Function(_) => svg_path(&segments(f)),
+        Fitted::Function(s) => Some(svg_path(&s.segments())),
         Fitted::Curve(c) if c.dim() == 2 => c.to_svg_path().ok(),
         Fitted::Curve(_) => None,
+    }
+}
+
+/// Flat numbers serialized as points of `dim` coordinates.
+struct Points<'a>(&'a [f64], usize);
+
+impl Serialize for Points<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.chunks(self.1.max(1)))
+    }
+}
+
+/// Like [`Points`], owning the numbers.
+struct OwnedPoints(Vec<f64>, usize);
+
+impl Serialize for OwnedPoints {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        Points(&self.0, self.1).serialize(s)
+    }
+}
+
+/// The segments of a curve, each as four points, computed while serializing.
+struct CurveSegments<'a>(&'a Curve);
+
+impl Serialize for CurveSegments<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let c = self.0;
+        let dim = c.dim();
+        s.collect_seq(
+            (0..c.len()).map(|k| OwnedPoints(c.segment_points(k).unwrap_or_default(), dim)),
+        )
+    }
+}
+
+/// The `fit` object of a function, in key order.
+#[derive(Serialize)]
+struct FunctionFit<'a> {
+    mode: &'static str,
+    closed: bool,
+    dimension: usize,
+    knots: &'a [f64],
+    alphas: &'a [f64],
+    values: &'a [f64],
+    knot_values: Vec<f64>,
+    tangent_points: Vec<[f64; 2]>,
+    segments: Vec<[[f64; 2]; 4]>,
+    svg_path: String,
+}
+
+/// The `fit` object of a curve, in key order.
+#[derive(Serialize)]
+struct CurveFit<'a> {
+    mode: &'static str,
+    closed: bool,
+    dimension: usize,
+    knots: &'a [f64],
+    alphas: &'a [f64],
+    values: Points<'a>,
+    knot_values: Vec<Vec<f64>>,
+    tangent_params: Vec<f64>,
+    tangent_points: Vec<Vec<f64>>,
+    segments: CurveSegments<'a>,
+    svg_path: Option<String>,
+}
+
+/// Serializes the `fit` object of `f` with `ser`.
+fn serialize_fit<S: serde::Serializer>(f: &Fitted, ser: S) -> Result<S::Ok, S::Error> {
+    match f {
+        Fitted::Function(s) => {
+            let segments: Vec<[[f64; 2]; 4]> = s.segments().iter().map(|b| b.p).collect();
+            FunctionFit {
+                mode: "function",
+                closed: false,
+                dimension: 1,
+                knots: s.knots(),
+                alphas: s.alphas(),
+                values: s.values(),
+                knot_values: s.knot_values(),
+                tangent_points: s.tangent_points().iter().map(|&(x, y)| [x, y]).collect(),
+                svg_path: svg_path(&s.segments()),
+                segments,
+            }
+            .serialize(ser)
+        }
+        Fitted::Curve(c) => {
+            let mut knot_values = c.knot_points();
+            if c.is_closed() {
+                if let Some(first) = knot_values.first().cloned() {
+                    knot_values.push(first);
+                }
+            }
+            let (tangent_params, tangent_points) = c.tangent_points().into_iter().unzip();
+            CurveFit {
+                mode: "curve",
+                closed: c.is_closed(),
+                dimension: c.dim(),
+                knots: c.knots(),
+                alphas: c.alphas(),
+                values: Points(c.points(), c.dim()),
+                knot_values,
+                tangent_params,
+                tangent_points,
+                segments: CurveSegments(c),
+                svg_path: svg(f),
+            }
+            .serialize(ser)
+        }
     }
 }
 
@@ -182,52 +281,78 @@ pub fn svg(f: &Fitted) -> Option<String> {
 /// equal to the first. Numbers are printed so that they parse back to the same
 /// double.
 #[must_use]
+#[allow(dead_code)] // the entry point of `serve` and `plot`; `fit` streams with write_fit_json
 pub fn fit_json(f: &Fitted) -> Value {
-    let segs = segments(f);
-    match f {
-        Fitted::Function(s) => {
-            let svg = svg_path(&segs);
-            let tangent: Vec<[f64; 2]> = s.tangent_points().iter().map(|&(x, y)| [x, y]).collect();
-            json!({
-                "mode": "function",
-                "closed": false,
-                "dimension": 1,
-                "knots": s.knots(),
-                "alphas": s.alphas(),
-                "values": s.values(),
-                "knot_values": s.knot_values(),
-                "tangent_points": tangent,
-                "segments": segs,
-                "svg_path": svg,
-            })
+    serialize_fit(f, serde_json::value::Serializer).unwrap_or(Value::Null)
+}
+
+/// Writes the `fit` object of `f` as [`write_json_lines`] lays it out, without
+/// building it in memory first.
+///
+/// # Errors
+///
+/// Write errors of `w`.
+pub fn write_fit_json<W: std::io::Write>(f: &Fitted, w: W) -> std::io::Result<()> {
+    let mut ser = serde_json::Serializer::with_formatter(w, LinesFormatter::default());
+    serialize_fit(f, &mut ser).map_err(std::io::Error::from)?;
+    ser.into_inner().write_all(b"\n")
+}
+
+/// Writes `v` as JSON: an object with one key per line and each value compact
+/// on its line, anything else compact; then a newline.
+///
+/// # Errors
+///
+/// Write errors of `w`.
+pub fn write_json_lines<W: std::io::Write>(v: &impl Serialize, w: W) -> std::io::Result<()> {
+    let mut ser = serde_json::Serializer::with_formatter(w, LinesFormatter::default());
+    v.serialize(&mut ser).map_err(std::io::Error::from)?;
+    ser.into_inner().write_all(b"\n")
+}
+
+/// A JSON layout: the keys of the outermost object on lines of their own,
+/// everything else compact.
+#[derive(Default)]
+struct LinesFormatter {
+    depth: usize,
+}
+
+impl serde_json::ser::Formatter for LinesFormatter {
+    fn begin_array<W: ?Sized + std::io::Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.depth += 1;
+        w.write_all(b"[")
+    }
+
+    fn end_array<W: ?Sized + std::io::Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.depth = self.depth.saturating_sub(1);
+        w.write_all(b"]")
+    }
+
+    fn begin_object<W: ?Sized + std::io::Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.depth += 1;
+        w.write_all(b"{")
+    }
+
+    fn end_object<W: ?Sized + std::io::Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.depth = self.depth.saturating_sub(1);
+        w.write_all(if self.depth == 0 { b"\n}" } else { b"}" })
+    }
+
+    fn begin_object_key<W: ?Sized + std::io::Write>(
+        &mut self,
+        w: &mut W,
+        first: bool,
+    ) -> std::io::Result<()> {
+        match (self.depth, first) {
+            (1, true) => w.write_all(b"\n  "),
+            (1, false) => w.write_all(b",\n  "),
+            (_, true) => Ok(()),
+            (_, false) => w.write_all(b","),
         }
-        Fitted::Curve(c) => {
-            let dim = c.dim();
-            let values: Vec<&[f64]> = c.points().chunks(dim).collect();
-            let mut knot_values = c.knot_points();
-            if c.is_closed() {
-                if let Some(first) = knot_values.first().cloned() {
-                    knot_values.push(first);
-                }
-            }
-            let tangents = c.tangent_points();
-            let params: Vec<f64> = tangents.iter().map(|(t, _)| *t).collect();
-            let points: Vec<&Vec<f64>> = tangents.iter().map(|(_, p)| p).collect();
-            let svg = svg(f);
-            json!({
-                "mode": "curve",
-                "closed": c.is_closed(),
-                "dimension": dim,
-                "knots": c.knots(),
-                "alphas": c.alphas(),
-                "values": values,
-                "knot_values": knot_values,
-                "tangent_params": params,
-                "tangent_points": points,
-                "segments": segs,
-                "svg_path": svg,
-            })
-        }
+    }
+
+    fn begin_object_value<W: ?Sized + std::io::Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        w.write_all(if self.depth == 1 { b": " } else { b":" })
     }
 }
 
@@ -279,6 +404,24 @@ mod tests {
         let path = v["svg_path"].as_str().unwrap();
         assert!(path.starts_with("M 1 1 C "), "{path}");
         assert_eq!(path.matches(" C ").count(), 10);
+    }
+
+    #[test]
+    fn the_streamed_object_is_the_value_laid_out() {
+        let mut closed = example1();
+        closed.points = vec![vec![0.0, 0.0], vec![1.0, 0.0], vec![1.0, 1.0], vec![0.0, 1.0]];
+        closed.mode = Mode::Curve;
+        closed.closed = true;
+        for spec in [example1(), closed] {
+            let f = build(&spec).unwrap();
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            write_fit_json(&f, &mut a).unwrap();
+            write_json_lines(&fit_json(&f), &mut b).unwrap();
+            assert_eq!(String::from_utf8(a).unwrap(), String::from_utf8(b).unwrap());
+        }
+        let mut out = Vec::new();
+        write_json_lines(&serde_json::json!({"a": [1, {"b": 2}], "c": "d"}), &mut out).unwrap();
+        assert_eq!(out, b"{\n  \"a\": [1,{\"b\":2}],\n  \"c\": \"d\"\n}\n");
     }
 
     #[test]
