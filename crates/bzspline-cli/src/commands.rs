@@ -256,7 +256,31 @@ fn params_by_step(
     c: &bzspline::Curve,
     step: f64,
 ) -> std::result::Result<Vec<f64>, bzspline::Error> {
-    let accuracy = (step * 1e-6).max(f64::MIN_POSITIVE);
+    // The length of a Bezier segment is at most that of its control polygon:
+    // bound the work (and keep the quadrature's speeds finite) before measuring.
+    let mut bound = 0.0f64;
+    for k in 0..c.len() {
+        let p = c.segment_points(k).unwrap_or_default();
+        let dim = c.dim().max(1);
+        for j in 0..3 {
+            let leg = (0..dim)
+                .map(|i| p[(j + 1) * dim + i] - p[j * dim + i])
+                .fold(0.0f64, f64::hypot);
+            bound += leg;
+        }
+    }
+    if !(3.0 * bound).is_finite() {
+        return Err(bzspline::Error::Overflow {
+            what: "the length of the curve",
+        });
+    }
+    if bound / step > MAX_SAMPLES {
+        return Err(bzspline::Error::InvalidArgument {
+            what: "--step is too small for the curve's length: too many points; step",
+            value: step,
+        });
+    }
+    let accuracy = (step * 1e-6).max(bound * 1e-12).max(f64::MIN_POSITIVE);
     let total = c.arclen(accuracy)?;
     let count = (total / step).floor();
     if count > MAX_SAMPLES {

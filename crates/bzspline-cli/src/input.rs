@@ -258,9 +258,23 @@ fn parse_number(field: &str) -> std::result::Result<f64, String> {
     }
     match field.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(format!("'{field}' is not a finite number")),
-        Err(_) => Err(format!("'{field}' is not a number")),
+        Ok(_) => Err(format!("'{}' is not a finite number", show(field))),
+        Err(_) => Err(format!("'{}' is not a number", show(field))),
     }
+}
+
+/// A field for a one-line message: control characters escaped, at most 40
+/// characters.
+fn show(field: &str) -> String {
+    let mut s: String = field
+        .chars()
+        .take(40)
+        .flat_map(char::escape_debug)
+        .collect();
+    if field.chars().count() > 40 {
+        s.push_str("...");
+    }
+    s
 }
 
 /// Parses a table of numbers: an optional header line, `#` comments, blank lines,

@@ -19,7 +19,8 @@ fn main() {
             std::process::exit(0);
         }
         let chain: Vec<String> = e.chain().map(ToString::to_string).collect();
-        eprintln!("error: {}", chain.join(": "));
+        // One line, whatever the messages contain.
+        eprintln!("error: {}", chain.join(": ").replace(['\n', '\r'], " "));
         std::process::exit(1);
     }
 }

@@ -409,7 +409,12 @@ mod tests {
     #[test]
     fn the_streamed_object_is_the_value_laid_out() {
         let mut closed = example1();
-        closed.points = vec![vec![0.0, 0.0], vec![1.0, 0.0], vec![1.0, 1.0], vec![0.0, 1.0]];
+        closed.points = vec![
+            vec![0.0, 0.0],
+            vec![1.0, 0.0],
+            vec![1.0, 1.0],
+            vec![0.0, 1.0],
+        ];
         closed.mode = Mode::Curve;
         closed.closed = true;
         for spec in [example1(), closed] {

@@ -270,6 +270,10 @@ fn bad_tables_name_the_file_and_line() {
         ("empty.csv", &["empty.csv:1:", "no data"]),
         ("only_comments.csv", &["only_comments.csv:3:", "no data"]),
         ("bad_utf8.csv", &["bad_utf8.csv:3:", "UTF-8"]),
+        (
+            "bad_quoted_newline.csv",
+            &["bad_quoted_newline.csv:3:", "'a\\nb' is not a number"],
+        ),
         ("bad_syntax.json", &["bad_syntax.json:4:", "invalid JSON"]),
         (
             "bad_not_increasing.json",
@@ -874,5 +878,18 @@ fn fit_reads_the_first_line_of_geojson() {
     assert_eq!(
         ok(&["fit", "lines.geojsonl", "--curve", "--format", "svg"]),
         want
+    );
+}
+
+#[test]
+fn huge_values_are_refused_or_finite_never_hang() {
+    // Fitting 1e308 values works (the library scales them) ...
+    let v: Value = serde_json::from_str(&ok(&["fit", "huge.csv"])).unwrap();
+    assert!(numbers(&v["knot_values"]).iter().all(|x| x.is_finite()));
+    // ... but the length of the graph overflows: refused before measuring.
+    assert_data_error(
+        &["sample", "huge.csv", "--step", "0.5"],
+        None,
+        &["huge.csv:", "overflows"],
     );
 }
