@@ -7,6 +7,7 @@
 //! curve. Lines keep their end points exactly; rings come out closed (first
 //! vertex = last). Lines or rings with too few distinct vertices for a curve
 //! pass through unchanged. Newline-delimited GeoJSON is streamed line by line.
+//! A table of points (or `--example`) is read as one LineString.
 
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
 use std::path::Path;
@@ -52,36 +53,58 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         },
         tolerance: a.tolerance,
     };
-    if a.input.example.is_some() {
-        bail!("smooth reads GeoJSON; --example gives y(x) data, use fit or sample");
-    }
     let file = a.input.file.as_deref();
-    let format = match a.input.input_format {
-        Some(f) => f,
-        None => match input::format_of(file, None) {
+    let format = match (a.input.example, a.input.input_format) {
+        (Some(_), _) => InputFormat::Csv,
+        (None, Some(f)) => f,
+        (None, None) => match input::format_of(file, None) {
             InputFormat::Geojsonseq => InputFormat::Geojsonseq,
+            InputFormat::Csv
+                if file.is_some_and(|f| f != Path::new("-") && has_table_extension(f)) =>
+            {
+                InputFormat::Csv
+            }
+            InputFormat::Tsv => InputFormat::Tsv,
             _ => InputFormat::Geojson,
         },
     };
     let mut sink = Sink::create(a.output.output.as_deref())?;
-    match format {
+    let doc = match format {
         InputFormat::Geojson | InputFormat::Json => {
             let (name, bytes) = input::read_source(file)?;
             let text = input::utf8(&name, &bytes)?;
             let doc: GeoJson = serde_json::from_str(text)
                 .map_err(|e| anyhow!("{name}:{}: invalid GeoJSON: {e}", e.line()))?;
-            let out = smooth_document(doc, &opts, &name, true)?;
-            let s = serde_json::to_string(&out).context("formatting GeoJSON")?;
-            sink.write_all(s.as_bytes())
-                .and_then(|()| sink.write_all(b"\n"))
-                .context("writing output")?;
+            smooth_document(doc, &opts, &name, true)?
         }
-        InputFormat::Geojsonseq => stream(file, &opts, &mut sink)?,
+        InputFormat::Geojsonseq => {
+            stream(file, &opts, &mut sink)?;
+            return sink.finish();
+        }
         InputFormat::Csv | InputFormat::Tsv => {
-            bail!("smooth reads GeoJSON (--input-format geojson or geojsonseq)")
+            // A table (or an example) is one line: its rows are the vertices.
+            let points = input::load(&a.input)?;
+            input::check_columns(&points, &[2, 3], "2 or 3 coordinates")?;
+            let line: Vec<Position> = points.rows.iter().cloned().map(Position::from).collect();
+            let mut feature = Feature::from(Geometry::new(GeometryValue::LineString {
+                coordinates: line,
+            }));
+            feature.set_property("source", points.source.clone());
+            smooth_document(GeoJson::Feature(feature), &opts, &points.source, false)?
         }
-    }
+    };
+    let s = serde_json::to_string(&doc).context("formatting GeoJSON")?;
+    sink.write_all(s.as_bytes())
+        .and_then(|()| sink.write_all(b"\n"))
+        .context("writing output")?;
     sink.finish()
+}
+
+/// True for `.csv`, `.tsv`, `.tab` and `.txt` files.
+fn has_table_extension(f: &Path) -> bool {
+    f.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["csv", "tsv", "tab", "txt"].contains(&e.to_ascii_lowercase().as_str()))
 }
 
 /// Smooths newline-delimited GeoJSON one line at a time (RFC 8142 record

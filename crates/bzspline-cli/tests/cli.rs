@@ -893,3 +893,32 @@ fn huge_values_are_refused_or_finite_never_hang() {
         &["huge.csv:", "overflows"],
     );
 }
+
+#[test]
+fn smooth_reads_a_table_or_an_example_as_one_line() {
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", "--example", "1", "--tolerance", "0.05"])).unwrap();
+    assert_eq!(v["geometry"]["type"], "LineString");
+    let got = points(&v["geometry"]["coordinates"]);
+    let pts: Vec<[f64; 2]> = (1..=11)
+        .zip([1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5])
+        .map(|(x, y)| [f64::from(x), y])
+        .collect();
+    let c = bzspline::Curve::builder_from(&pts)
+        .param(bzspline::Param::Centripetal)
+        .build()
+        .unwrap();
+    assert_eq!(got.concat(), c.flatten(0.05).unwrap().coords());
+    assert_eq!(got[0], [1.0, 1.0]);
+    assert_eq!(got[got.len() - 1], [11.0, 1.5]);
+    let v: Value =
+        serde_json::from_str(&ok(&["smooth", "helix.csv", "--tolerance", "0.1"])).unwrap();
+    assert!(points(&v["geometry"]["coordinates"])
+        .iter()
+        .all(|p| p.len() == 3));
+    assert_data_error(
+        &["smooth", "bad_nan.csv", "--tolerance", "0.1"],
+        None,
+        &["bad_nan.csv:3:", "not a finite number"],
+    );
+}
