@@ -39,21 +39,32 @@ pub fn run(cli: Cli) -> Result<()> {
 ///
 /// Rows of the wrong width, the library's refusals mapped to lines, and results
 /// that overflow a double.
-pub fn fit_points(points: &mut Points, shape: &Shape) -> Result<Fitted> {
+pub fn fit_points(points: &Points, shape: &Shape) -> Result<Fitted> {
+    check_columns(points, shape)?;
+    let built = model::build(&spec_of(points.rows.clone(), shape));
+    checked(points, built)
+}
+
+fn check_columns(points: &Points, shape: &Shape) -> Result<()> {
     match shape.mode {
-        Mode::Function => input::check_columns(points, &[2], "2 (x, y)")?,
-        Mode::Curve => input::check_columns(points, &[2, 3], "2 or 3 coordinates")?,
+        Mode::Function => input::check_columns(points, &[2], "2 (x, y)"),
+        Mode::Curve => input::check_columns(points, &[2, 3], "2 or 3 coordinates"),
     }
-    let spec = FitSpec {
-        points: std::mem::take(&mut points.rows),
+}
+
+fn spec_of(points: Vec<Vec<f64>>, shape: &Shape) -> FitSpec {
+    FitSpec {
+        points,
         mode: shape.mode,
         closed: shape.closed,
         param: shape.param,
         alpha: shape.alpha,
         alphas: shape.alphas.clone(),
-    };
-    let built = model::build(&spec);
-    points.rows = spec.points;
+    }
+}
+
+/// Maps a library error to the input's lines and refuses non-finite results.
+fn checked(points: &Points, built: Result<Fitted, bzspline::Error>) -> Result<Fitted> {
     let fitted = built.map_err(|e| input::explain(points, &e))?;
     let finite = match &fitted {
         Fitted::Function(s) => {
@@ -97,8 +108,8 @@ pub fn num(v: f64) -> String {
 
 fn fit(a: &FitArgs) -> Result<()> {
     let shape = a.shape.validate()?;
-    let mut points = input::load(&a.input)?;
-    let fitted = fit_points(&mut points, &shape)?;
+    let points = input::load(&a.input)?;
+    let fitted = fit_points(&points, &shape)?;
     let mut sink = output::Sink::create(a.output.output.as_deref())?;
     match a.format {
         FitFormat::Json => model::write_fit_json(&fitted, &mut sink).context("writing output")?,
@@ -231,8 +242,8 @@ fn eval(a: &EvalArgs) -> Result<()> {
         }
         (None, None) => bail!("give --at X1,... or --at-file FILE"),
     };
-    let mut points = input::load(&a.input)?;
-    let fitted = match fit_points(&mut points, &shape)? {
+    let points = input::load(&a.input)?;
+    let fitted = match fit_points(&points, &shape)? {
         Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate.into())),
         other => other,
     };
@@ -333,8 +344,8 @@ fn sample(a: &SampleArgs) -> Result<()> {
             }
         }
     }
-    let mut points = input::load(&a.input)?;
-    let fitted = fit_points(&mut points, &shape)?;
+    let points = input::load(&a.input)?;
+    let fitted = fit_points(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
     let (lo, hi) = match &fitted {
         Fitted::Function(s) => s.domain(),
