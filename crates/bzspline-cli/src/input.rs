@@ -4,7 +4,7 @@
 
 use std::fmt;
 use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{anyhow, Context, Result};
 use serde_json::Value;
@@ -173,9 +173,9 @@ pub fn load(args: &InputArgs) -> Result<Points> {
     if let Some(n) = args.example {
         return Ok(example(n));
     }
-    let file: Option<PathBuf> = args.file.clone();
-    let (name, bytes) = read_source(file.as_deref())?;
-    match format_of(file.as_deref(), args.input_format) {
+    let file = args.file.as_deref();
+    let (name, bytes) = read_source(file)?;
+    match format_of(file, args.input_format) {
         InputFormat::Csv => parse_table(&name, &bytes, None),
         InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t')),
         InputFormat::Json => parse_json(&name, &bytes),
