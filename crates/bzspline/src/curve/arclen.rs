@@ -87,7 +87,14 @@ impl Curve {
         let r = self.gl(k, m, b, buf);
         let both = l + r;
         let floor = 8.0 * f64::EPSILON * both.abs();
-        if (both - whole).abs() <= tol.max(floor) || depth >= MAX_DEPTH || m <= a || m >= b {
+        // A non-finite estimate cannot improve by subdividing: stop and let the
+        // caller report the overflow.
+        if !both.is_finite()
+            || (both - whole).abs() <= tol.max(floor)
+            || depth >= MAX_DEPTH
+            || m <= a
+            || m >= b
+        {
             return both;
         }
         self.adapt(k, a, m, l, tol * 0.5, depth + 1, buf)
@@ -381,5 +388,22 @@ mod tests {
         let back = c.arclen_range(1.5, 0.5, 1e-12).unwrap();
         assert!(back < 0.0 && (back + c.arclen_range(0.5, 1.5, 1e-12).unwrap()).abs() < 1e-15);
         assert!(c.resample(1, 1e-9).is_err());
+    }
+}
+
+#[cfg(test)]
+mod overflow_tests {
+    use crate::{Curve, Error, DEFAULT_ACCURACY};
+
+    #[test]
+    fn a_length_beyond_f64_max_is_an_error_not_a_hang() {
+        let c = Curve::open(&[[-1.7e308, 0.0], [1.7e308, 1e308], [-1.7e308, -1.7e308]]).unwrap();
+        let d = Curve::open(&[[0.0, 0.0], [1e300, 1e300], [2e300, 0.0], [2e300, 3e300]]).unwrap();
+        assert!(d.arclen(DEFAULT_ACCURACY).unwrap().is_finite());
+        assert!(
+            matches!(c.arclen(DEFAULT_ACCURACY), Err(Error::Overflow { .. })),
+            "want Overflow, got {:?}",
+            c.arclen(DEFAULT_ACCURACY)
+        );
     }
 }
