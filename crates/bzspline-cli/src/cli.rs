@@ -28,7 +28,7 @@ pub enum Command {
     Eval(EvalArgs),
     /// Sample points along the spline.
     Sample(SampleArgs),
-    /// Draw the control points, the control polygon and the spline as SVG.
+    /// Draw the control points, the control polygon and the spline as SVG or PNG.
     Plot(crate::plot::PlotArgs),
     /// Smooth the lines and rings of a GeoJSON document.
     Smooth(SmoothArgs),

@@ -1,0 +1,202 @@
+//! Command-line options of `bzspline plot` and the files they name.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, bail, Context as _};
+use serde::Deserialize;
+
+use super::{PlotData, PlotOptions};
+
+/// Options of the figure (the `plot` subcommand).
+#[derive(clap::Args, Clone, Debug, PartialEq)]
+pub struct FigureArgs {
+    /// Width of the figure in pixels.
+    #[arg(long, default_value_t = 800, value_parser = clap::value_parser!(u32).range(100..=20_000))]
+    pub width: u32,
+    /// Height of the figure in pixels.
+    #[arg(long, default_value_t = 500, value_parser = clap::value_parser!(u32).range(100..=20_000))]
+    pub height: u32,
+    /// Title above the plot.
+    #[arg(long)]
+    pub title: Option<String>,
+    /// Label of the horizontal axis.
+    #[arg(long, default_value = "x")]
+    pub xlabel: String,
+    /// Label of the vertical axis.
+    #[arg(long, default_value = "y")]
+    pub ylabel: String,
+    /// Do not mark the points where the curve touches the control polygon.
+    #[arg(long)]
+    pub no_tangents: bool,
+    /// Shade the convex hull of the control points.
+    #[arg(long)]
+    pub hull: bool,
+    /// Mark the curve's points at the knots.
+    #[arg(long)]
+    pub knots: bool,
+    /// Dotted lines at the smallest and largest control value.
+    #[arg(long)]
+    pub data_range: bool,
+    /// Same scale on both axes (for planar curves).
+    #[arg(long)]
+    pub equal_aspect: bool,
+    /// Draw one spline per shape parameter in the list, e.g. `1/3,1/2,2/3`.
+    #[arg(long, value_name = "A,...", value_delimiter = ',', value_parser = parse_fraction)]
+    pub alpha_sweep: Vec<f64>,
+    /// Add the curves of a JSON file to the figure (repeatable):
+    /// `[{"label": "...", "points": [[x, y], ...]}, ...]`.
+    #[arg(long, value_name = "FILE")]
+    pub overlay: Vec<PathBuf>,
+    /// Pixels of the PNG per SVG pixel.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_scale)]
+    pub scale: f32,
+}
+
+impl FigureArgs {
+    /// The drawing options these arguments ask for.
+    #[must_use]
+    pub fn options(&self) -> PlotOptions {
+        PlotOptions {
+            width: self.width,
+            height: self.height,
+            title: self.title.clone(),
+            x_label: self.xlabel.clone(),
+            y_label: self.ylabel.clone(),
+            show_tangents: !self.no_tangents,
+            show_hull: self.hull,
+            show_knots: self.knots,
+            show_control: true,
+            show_range: self.data_range,
+            equal_aspect: self.equal_aspect,
+            png_scale: self.scale,
+        }
+    }
+}
+
+fn parse_scale(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v <= 16.0 => Ok(v),
+        _ => Err(format!("{s:?} is not a number in (0, 16]")),
+    }
+}
+
+/// A shape parameter written as a decimal or a fraction `p/q` (`1/3`, `0.5`).
+///
+/// # Errors
+///
+/// The text is neither a finite number nor a fraction with a non-zero denominator.
+pub fn parse_fraction(s: &str) -> Result<f64, String> {
+    let item = s.trim();
+    let v = match item.split_once('/') {
+        Some((p, q)) => match (p.trim().parse::<f64>(), q.trim().parse::<f64>()) {
+            (Ok(p), Ok(q)) if q != 0.0 => p / q,
+            _ => f64::NAN,
+        },
+        None => item.parse::<f64>().unwrap_or(f64::NAN),
+    };
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("{item:?} is not a number or a fraction p/q"))
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Overlay {
+    label: String,
+    points: Vec<[f64; 2]>,
+    #[serde(default)]
+    segments: Vec<[[f64; 2]; 4]>,
+}
+
+/// The curves of an overlay file: a JSON array of
+/// `{"label": NAME, "points": [[x, y], ...]}` (optionally also `"segments"`, cubic
+/// Bezier pieces `[[x0, y0], [x1, y1], [x2, y2], [x3, y3]]` drawn instead of the
+/// points).
+///
+/// # Errors
+///
+/// Names the file, and the line and column of a JSON error.
+pub fn read_overlay(path: &Path) -> anyhow::Result<Vec<PlotData>> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("reading overlay {}", path.display()))?;
+    let list: Vec<Overlay> = serde_json::from_str(&text)
+        .with_context(|| format!("parsing overlay {}", path.display()))?;
+    if list.is_empty() {
+        bail!("overlay {} holds no curve", path.display());
+    }
+    list.into_iter()
+        .enumerate()
+        .map(|(i, o)| {
+            if o.points.len() < 2 && o.segments.is_empty() {
+                return Err(anyhow!(
+                    "overlay {}: curve {} ({:?}) has fewer than 2 points",
+                    path.display(),
+                    i + 1,
+                    o.label
+                ));
+            }
+            let mut d = PlotData::polyline(o.label, o.points);
+            d.segments = o.segments;
+            Ok(d)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        plot: FigureArgs,
+    }
+
+    #[test]
+    fn arguments_become_options() {
+        let cli = Cli::try_parse_from([
+            "t",
+            "--width",
+            "640",
+            "--title",
+            "T",
+            "--no-tangents",
+            "--hull",
+            "--alpha-sweep",
+            "1/3, 0.5,2/3",
+        ])
+        .unwrap();
+        let o = cli.plot.options();
+        assert_eq!((o.width, o.height), (640, 500));
+        assert_eq!(o.title.as_deref(), Some("T"));
+        assert!(!o.show_tangents && o.show_hull && !o.show_knots);
+        assert_eq!(cli.plot.alpha_sweep, vec![1.0 / 3.0, 0.5, 2.0 / 3.0]);
+        assert!(Cli::try_parse_from(["t", "--width", "0"]).is_err());
+        assert!(Cli::try_parse_from(["t", "--scale", "nan"]).is_err());
+        assert!(parse_fraction("1/0").is_err() && parse_fraction("x").is_err());
+        let e = Cli::try_parse_from(["t", "--alpha-sweep", "0.5,x"])
+            .err()
+            .unwrap();
+        assert!(e.to_string().contains("\"x\""), "{e}");
+    }
+
+    #[test]
+    fn overlay_files_are_read_and_checked() {
+        let dir = tempfile::tempdir().unwrap();
+        let good = dir.path().join("good.json");
+        std::fs::write(&good, r#"[{"label": "a", "points": [[0, 1], [1, 2]]}]"#).unwrap();
+        let d = read_overlay(&good).unwrap();
+        assert_eq!(d[0].curve, vec![[0.0, 1.0], [1.0, 2.0]]);
+        assert_eq!(d[0].label.as_deref(), Some("a"));
+        let bad = dir.path().join("bad.json");
+        std::fs::write(&bad, "[{\"label\": \"a\",\n \"points\": [[0, 1e999]]}]").unwrap();
+        let e = format!("{:#}", read_overlay(&bad).unwrap_err());
+        assert!(e.contains("bad.json") && e.contains("line 2"), "{e}");
+        std::fs::write(&bad, r#"[{"label": "a", "points": [[0, 1]]}]"#).unwrap();
+        let e = format!("{:#}", read_overlay(&bad).unwrap_err());
+        assert!(e.contains("curve 1"), "{e}");
+    }
+}

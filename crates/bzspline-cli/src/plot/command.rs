@@ -1,0 +1,85 @@
+//! The `plot` subcommand: reads and fits the points like the other commands, then
+//! draws the figure as SVG or PNG.
+
+use anyhow::{anyhow, bail, Result};
+use clap::Args;
+
+use super::{read_overlay, render_png, render_svg, FigureArgs, PlotData};
+use crate::cli::{check_alpha, InputArgs, OutputArgs, ShapeArgs};
+use crate::commands::fit_points;
+use crate::model::{Fitted, Mode};
+use crate::{input, output};
+
+/// Arguments of `plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+    #[command(flatten)]
+    pub shape: ShapeArgs,
+    /// Output file: PNG if its name ends in `.png`, else SVG; without it, SVG on
+    /// standard output.
+    #[command(flatten)]
+    pub output: OutputArgs,
+    #[command(flatten)]
+    pub figure: FigureArgs,
+}
+
+/// Runs `plot`: without a file or `--example`, draws the paper's Example 1.
+///
+/// # Errors
+///
+/// Bad options, the input's faults (with file and line), a spline that cannot
+/// be built, an unreadable overlay, a PNG without fonts, or a failed write.
+pub fn run(a: &PlotArgs) -> Result<()> {
+    let shape = a.shape.validate()?;
+    let mut source = a.input.clone();
+    if source.file.is_none() && source.example.is_none() {
+        source.example = Some(1);
+    }
+    let points = input::load(&source)?;
+    let sweep = &a.figure.alpha_sweep;
+    let mut data = Vec::new();
+    if sweep.is_empty() {
+        let label = (!a.figure.overlay.is_empty()).then(|| "bzspline".to_owned());
+        data.push(plot_data(&fit_points(&points, &shape)?, label)?);
+    } else {
+        if shape.alpha.is_some() || shape.alphas.is_some() {
+            bail!("--alpha-sweep draws one curve per alpha: leave out --alpha and --alphas");
+        }
+        for (i, &alpha) in sweep.iter().enumerate() {
+            check_alpha(&format!("--alpha-sweep value {}", i + 1), alpha)?;
+            let mut one = shape.clone();
+            one.alpha = Some(alpha);
+            data.push(plot_data(
+                &fit_points(&points, &one)?,
+                Some(super::alpha_label(alpha)),
+            )?);
+        }
+    }
+    for path in &a.figure.overlay {
+        data.extend(read_overlay(path)?);
+    }
+    let mut opts = a.figure.options();
+    // A curve's shape is only right with one unit as long on both axes.
+    opts.equal_aspect |= shape.mode == Mode::Curve;
+    let out = a.output.output.as_deref();
+    let is_png = out
+        .and_then(|p| p.extension())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let bytes = if is_png {
+        render_png(&data, &opts)?
+    } else {
+        render_svg(&data, &opts).into_bytes()
+    };
+    output::emit(out, &bytes)
+}
+
+/// The figure data of a fitted spline or curve.
+fn plot_data(f: &Fitted, label: Option<String>) -> Result<PlotData> {
+    match f {
+        Fitted::Function(s) => Ok(PlotData::from_spline(s, label)),
+        Fitted::Curve(c) => PlotData::from_curve(c, label)
+            .ok_or_else(|| anyhow!("a curve of dimension {} cannot be drawn", c.dim())),
+    }
+}
