@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Redraws every figure in docs/ with the bzspline command (run from anywhere in a
+# clone). PNG text needs a system font: on Debian/Ubuntu, apt-get install fonts-dejavu-core.
+# compare.* also needs Python 3 (make_compare.py makes docs/.venv with numpy and scipy).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --quiet -p bzspline-cli
+bz=target/debug/bzspline
+for ext in svg png; do
+    "$bz" plot --example 1 --title "Example 1 of the paper (α = 1/2)" -o "docs/fig1.$ext"
+    "$bz" plot --example 2 --knots --equal-aspect \
+        --title "Example 2 of the paper: points of y = √(x − x²) (α = 1/2)" -o "docs/fig2.$ext"
+    "$bz" plot --example 1 --alpha-sweep 1/3,1/2,2/3 \
+        --title "Example 1 with α = 1/3, 1/2 and 2/3" -o "docs/alpha.$ext"
+done
+python3 docs/make_compare.py
