@@ -29,6 +29,10 @@ pub enum Command {
     /// Sample points along the spline.
     Sample(SampleArgs),
     /// Draw the control points, the control polygon and the spline as SVG or PNG.
+    ///
+    /// Without FILE or --example it draws the paper's Example 1 (`-` reads
+    /// standard input). The output is PNG when its name ends in `.png`, else SVG;
+    /// without -o, SVG goes to standard output.
     Plot(crate::plot::PlotArgs),
     /// Smooth the lines and rings of a GeoJSON document.
     Smooth(SmoothArgs),

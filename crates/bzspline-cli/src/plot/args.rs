@@ -37,7 +37,7 @@ pub struct FigureArgs {
     /// Dotted lines at the smallest and largest control value.
     #[arg(long)]
     pub data_range: bool,
-    /// Same scale on both axes (for planar curves).
+    /// Same scale on both axes (always on for curves).
     #[arg(long)]
     pub equal_aspect: bool,
     /// Draw one spline per shape parameter in the list, e.g. `1/3,1/2,2/3`.
