@@ -58,7 +58,7 @@
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
-use crate::kernels::{self, AlphaSource, Batch, Piece};
+use crate::kernels::{self, Batch, Piece};
 use crate::tridiag::Thomas;
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
@@ -133,7 +133,8 @@ pub struct Extremum {
 /// A spline of `N` knots holds four vectors: the knots, the control values and
 /// the alphas (8 bytes a point each, for [`Spline::knots`], [`Spline::values`]
 /// and [`Spline::alphas`]) and the four coefficients of each piece (32 bytes a
-/// piece, aligned to 32 bytes): 56 bytes a point, see [`Spline::heap_bytes`].
+/// piece, aligned to 32 bytes), plus every 16th knot for the batch search:
+/// 56.5 bytes a point, see [`Spline::heap_bytes`].
 ///
 /// # Examples
 ///
@@ -156,6 +157,8 @@ pub struct Spline {
     /// Power-basis coefficients of piece `k` in `t = (x - tau_k) / h_k`, divided
     /// by `scale`. `coefs[k][0]` is the knot value `phi_k / scale`.
     coefs: Vec<Piece>,
+    /// Every 16th knot, for the random-order batch search.
+    summary: Vec<f64>,
     scale: f64,
     /// A power of two that keeps `1 / (h pre)` finite: 1 unless the whole span
     /// is below [`TINY_SPAN`], where `1 / h` could overflow.
@@ -483,6 +486,7 @@ impl Spline {
             values: Vec::new(),
             alphas: Vec::new(),
             coefs: Vec::new(),
+            summary: Vec::new(),
             scale: 1.0,
             pre: 1.0,
             extrapolate: Extrapolate::default(),
@@ -533,24 +537,26 @@ impl Spline {
         self.values.clear();
         self.values.extend_from_slice(values);
         self.alphas.clear();
-        let source = match alphas {
+        let uniform = match alphas {
             Alphas::Uniform(a) => {
                 self.alphas.resize(n - 1, a);
-                AlphaSource::Uniform(a)
+                Some(a)
             }
             Alphas::PerInterval(a) => {
                 self.alphas.extend_from_slice(a);
-                AlphaSource::PerInterval(a)
+                None
             }
         };
         kernels::build(
             knots,
             values,
-            source,
+            &self.alphas,
+            uniform,
             1.0 / scale,
             kernels::inverse_power_of_two(span),
             &mut self.coefs,
         );
+        kernels::summarise(knots, &mut self.summary);
         self.scale = scale;
         self.pre = if span < TINY_SPAN {
             kernels::inverse_power_of_two(span)
@@ -588,11 +594,14 @@ impl Spline {
             .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
             .collect();
         let span = knots[knots.len() - 1] - knots[0];
+        let mut summary = Vec::new();
+        kernels::summarise(knots, &mut summary);
         Ok(Spline {
             knots: knots.to_vec(),
             values: values.to_vec(),
             alphas,
             coefs,
+            summary,
             scale,
             pre: if span < TINY_SPAN {
                 kernels::inverse_power_of_two(span)
@@ -604,11 +613,15 @@ impl Spline {
     }
 
     /// Bytes of heap memory the spline holds (the capacities of its vectors):
-    /// 56 bytes a point when built by [`Spline::build`].
+    /// 56.5 bytes a point when built by [`Spline::build`].
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
         let f = core::mem::size_of::<f64>();
-        (self.knots.capacity() + self.values.capacity() + self.alphas.capacity()) * f
+        (self.knots.capacity()
+            + self.values.capacity()
+            + self.alphas.capacity()
+            + self.summary.capacity())
+            * f
             + self.coefs.capacity() * core::mem::size_of::<Piece>()
     }
 
@@ -909,6 +922,7 @@ impl Spline {
         }
         let batch = Batch {
             knots: &self.knots,
+            summary: &self.summary,
             coefs: &self.coefs,
             scale: self.scale,
         };
@@ -918,6 +932,47 @@ impl Spline {
             2 => batch.run::<2, _>(xs, out, slow),
             _ => batch.run::<3, _>(xs, out, slow),
         }
+    }
+
+    /// [`Spline::deriv_many`] split over rayon's thread pool: the same results,
+    /// each worker walking its own contiguous share of the queries.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::deriv_many`] (the first failing query by index).
+    #[cfg(feature = "rayon")]
+    pub fn par_deriv_many(&self, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
+        use rayon::prelude::*;
+        if out.len() != xs.len() {
+            return Err(Error::LengthMismatch {
+                field: Field::Query,
+                expected: xs.len(),
+                found: out.len(),
+            });
+        }
+        // A few chunks per thread for balance, none so small that the start-up
+        // search dominates.
+        let chunk = (xs.len() / (4 * rayon::current_num_threads()).max(1)).max(1 << 14);
+        let failed = xs
+            .par_chunks(chunk)
+            .zip(out.par_chunks_mut(chunk))
+            .map(|(x, o)| self.deriv_many(x, order, o).is_err())
+            .reduce(|| false, |a, b| a | b);
+        if failed {
+            // Rerun in order, so that the error is the one with the lowest index.
+            return self.deriv_many(xs, order, out);
+        }
+        Ok(())
+    }
+
+    /// `S(xs[i])` into `out[i]` in parallel; see [`Spline::par_deriv_many`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::deriv_many`].
+    #[cfg(feature = "rayon")]
+    pub fn par_eval_many(&self, xs: &[f64], out: &mut [f64]) -> Result<(), Error> {
+        self.par_deriv_many(xs, 0, out)
     }
 
     /// `S(xs[i])` into `out[i]`; see [`Spline::deriv_many`].
@@ -1470,7 +1525,7 @@ mod tests {
             .unwrap()
             .with_extrapolation(Extrapolate::Clamp);
         let bytes = s.heap_bytes();
-        assert_eq!(bytes, 500 * 8 * 3 - 8 + 499 * 32, "heap bytes");
+        assert_eq!(bytes, 500 * 8 * 3 - 8 + 499 * 32 + 32 * 8, "heap bytes");
         let (x2, f2, _) = random_data(&mut rng, 400, 2.0);
         s.rebuild(&x2, &f2, Alphas::Uniform(0.4)).unwrap();
         assert_eq!(
