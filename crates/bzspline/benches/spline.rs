@@ -56,7 +56,9 @@ fn construction(c: &mut Criterion) {
     let mut g = c.benchmark_group("construct");
     for n in [1_000usize, 10_000, 100_000, 1_000_000, 10_000_000] {
         let (x, f) = data(n, 1);
-        let alphas: Vec<f64> = (0..n - 1).map(|k| 0.4 + 0.2 * ((k % 7) as f64 / 7.0)).collect();
+        let alphas: Vec<f64> = (0..n - 1)
+            .map(|k| 0.4 + 0.2 * ((k % 7) as f64 / 7.0))
+            .collect();
         g.throughput(Throughput::Elements(n as u64));
         g.sample_size(samples(n));
         g.measurement_time(Duration::from_secs(if n >= 1_000_000 { 8 } else { 3 }));
@@ -64,9 +66,13 @@ fn construction(c: &mut Criterion) {
         g.bench_with_input(BenchmarkId::new("rebuild", n), &n, |b, _| {
             b.iter(|| s.rebuild(black_box(&x), black_box(&f), Alphas::default()));
         });
-        g.bench_with_input(BenchmarkId::new("rebuild_per_interval_alphas", n), &n, |b, _| {
-            b.iter(|| s.rebuild(black_box(&x), black_box(&f), Alphas::PerInterval(&alphas)));
-        });
+        g.bench_with_input(
+            BenchmarkId::new("rebuild_per_interval_alphas", n),
+            &n,
+            |b, _| {
+                b.iter(|| s.rebuild(black_box(&x), black_box(&f), Alphas::PerInterval(&alphas)));
+            },
+        );
         if n <= 1_000_000 {
             g.bench_with_input(BenchmarkId::new("fresh", n), &n, |b, _| {
                 b.iter(|| Spline::new(black_box(&x), black_box(&f)));

@@ -148,7 +148,6 @@ fn inverses(a: f64) -> (f64, f64) {
 /// The sweeps of [`build`]; `PER` says whether the alphas differ (their terms
 /// are then formed per interval, else `uniform` serves every interval).
 /// Lengths: `values` as `knots` (`n >= 2`), `alphas` and `coefs` `n - 1`.
-#[allow(clippy::too_many_lines)] // Two sweeps, each unrolled by two rows, read best in one place.
 fn sweep<const PER: bool>(
     knots: &[f64],
     values: &[f64],

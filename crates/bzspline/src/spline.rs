@@ -289,8 +289,7 @@ fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64>
         let d = w[1] - w[0];
         ok & (d >= thr) & (d > 0.0)
     });
-    // Four running maxima so that the loop vectorises; `v - v` is 0 exactly
-    // for finite v and NaN otherwise.
+    // Four running maxima and finiteness flags, so that the loop vectorises.
     let mut mx = [0.0f64; 4];
     let mut fin = [true; 4];
     let chunks = values.chunks_exact(4);
@@ -299,13 +298,13 @@ fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64>
         for j in 0..4 {
             let a = c[j].abs();
             mx[j] = if a > mx[j] { a } else { mx[j] };
-            fin[j] &= c[j] - c[j] == 0.0;
+            fin[j] &= c[j].is_finite();
         }
     }
     for &v in rest {
         let a = v.abs();
         mx[0] = if a > mx[0] { a } else { mx[0] };
-        fin[0] &= v - v == 0.0;
+        fin[0] &= v.is_finite();
     }
     ok &= fin.iter().all(|&f| f);
     match alphas {
@@ -314,7 +313,7 @@ fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64>
             ok &= a.len() == n - 1;
             ok &= a
                 .iter()
-                .fold(true, |ok, &a| ok & (a >= ALPHA_MIN) & (a <= ALPHA_MAX));
+                .fold(true, |ok, a| ok & (ALPHA_MIN..=ALPHA_MAX).contains(a));
         }
     }
     let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
