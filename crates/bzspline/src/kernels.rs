@@ -100,8 +100,8 @@ fn piece(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> Piece {
     ])
 }
 
-/// Builds the pieces of a validated spline into `coefs` (cleared first; its
-/// allocation is reused).
+/// Builds the pieces of a validated spline into `coefs` (resized to one piece
+/// per interval; its allocation is reused).
 ///
 /// `knots` are strictly increasing with a finite span, `values` finite and of
 /// the same length (at least 2), `alphas` one per interval and in range;
@@ -118,10 +118,13 @@ pub(crate) fn build(
     coefs: &mut Vec<Piece>,
 ) {
     let n = knots.len();
-    coefs.clear();
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        coefs.clear();
         return;
     }
+    // Every piece is overwritten below: keep the old contents rather than
+    // clearing them first (no pass over the memory when the size is unchanged).
+    coefs.truncate(n - 1);
     coefs.resize(n - 1, Piece::default());
     match uniform {
         Some(a) => sweep::<false>(
