@@ -187,8 +187,8 @@ fn sweep<const PER: bool>(
     let mut u_prev = 0.0;
     let mut kc = k1; // knots[k]
     let mut hl = (k1 - k0) * ws;
-    let mut fl = v0 * inv_scale;
     let mut fc = v1 * inv_scale;
+    let mut df_l = fc - v0 * inv_scale; // F_k - F_{k-1}, scaled
     let mut terms_l = terms(a0, inv_of(a0));
     let mut since = 0;
     let rows = coefs.get_mut(1..).unwrap_or_default();
@@ -207,11 +207,12 @@ fn sweep<const PER: bool>(
         let l1 = -h1 * terms_l[0];
         let d1 = h1 * terms_l[1] + hl * t1[2];
         let u1 = -hl * t1[3];
-        let r1 = hl * (f1 - fc) - h1 * (fc - fl);
+        let (df1, df2) = (f1 - fc, f2 - f1);
+        let r1 = hl * df1 - h1 * df_l;
         let l2 = -h2 * t1[0];
         let d2 = h2 * t1[1] + h1 * t2[2];
         let u2 = -h1 * t2[3];
-        let r2 = h1 * (f2 - f1) - h2 * (f1 - fc);
+        let r2 = h1 * df2 - h2 * df1;
         let e1 = l1 * u_prev;
         let e2 = l2 * u1;
         // P_k and P_{k+1} both from P_{k-1}, P_{k-2}: one multiply-subtract on
@@ -238,7 +239,7 @@ fn sweep<const PER: bool>(
         y_prev = y2;
         u_prev = u2;
         hl = h2;
-        fl = f1;
+        df_l = df2;
         fc = f2;
         terms_l = t2;
     }
@@ -257,7 +258,7 @@ fn sweep<const PER: bool>(
         let l = -hr * terms_l[0];
         let d = hr * terms_l[1] + hl * terms_r[2];
         let u = -hl * terms_r[3];
-        let r = hl * (fr - fc) - hr * (fc - fl);
+        let r = hl * (fr - fc) - hr * df_l;
         let p = d * p_prev - (l * u_prev) * p_prev2;
         let inv = p_prev / p;
         let y = r * inv - (l * inv) * y_prev;
