@@ -10,7 +10,7 @@ widths in [0.5, 1.5), values a sine plus noise, M sorted queries evenly spaced
 over the domain and MR uniformly random ones. Prints a table of nanoseconds per
 point (construction) or per query (evaluation) and the ratio scipy / bzspline
 (above 1: bzspline is faster). Each figure is the median of --repeats timed
-runs after one warm-up.
+runs after one warm-up (a single timed run when the warm-up took over 2 s).
 
 On first use it creates the virtual environment bench/.venv and installs numpy
 and scipy into it with pip, then re-runs itself there.
@@ -47,7 +47,11 @@ def ensure_venv():
 
 
 def median_ns(fn, repeats):
+    t0 = time.perf_counter_ns()
     fn()  # warm-up
+    if time.perf_counter_ns() - t0 > 2e9:
+        # Very slow calls (make_interp_spline on random queries): one timed run.
+        repeats = 1
     times = []
     for _ in range(repeats):
         t0 = time.perf_counter_ns()
