@@ -1,7 +1,8 @@
 //! Construction and batch evaluation of the spline `y(x)`.
 //!
 //! `cargo bench -p bzspline --bench spline` (add `--features rayon` for the
-//! parallel evaluators). Throughput is reported per point (construction) or per
+//! parallel evaluators). Planar curves: construction, flattening and the local
+//! re-solve after moving one point. Throughput is reported per point (construction) or per
 //! query (evaluation). Large sizes take fewer samples so that the whole suite
 //! runs in a few minutes.
 
@@ -11,7 +12,7 @@
 use std::hint::black_box;
 use std::time::Duration;
 
-use bzspline::{Alphas, Spline};
+use bzspline::{Alphas, Curve, Spline};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 /// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
@@ -125,5 +126,35 @@ fn evaluation(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, construction, evaluation);
+fn curves(c: &mut Criterion) {
+    let mut g = c.benchmark_group("curve2d");
+    for n in [1_000usize, 10_000, 100_000] {
+        let (x, f) = data(n, 4);
+        let pts: Vec<[f64; 2]> = x.iter().zip(&f).map(|(x, y)| [*x, *y]).collect();
+        g.throughput(Throughput::Elements(n as u64));
+        g.sample_size(samples(n * 10));
+        g.bench_with_input(BenchmarkId::new("construct", n), &n, |b, _| {
+            b.iter(|| Curve::open(black_box(&pts)));
+        });
+        let Ok(mut curve) = Curve::open(&pts) else {
+            continue;
+        };
+        g.bench_with_input(BenchmarkId::new("flatten_1e-3", n), &n, |b, _| {
+            b.iter(|| curve.flatten(black_box(1e-3)));
+        });
+        let mid = n / 2;
+        let mut up = false;
+        g.throughput(Throughput::Elements(1));
+        g.bench_with_input(BenchmarkId::new("move_point", n), &n, |b, _| {
+            b.iter(|| {
+                up = !up;
+                let y = f[mid] + if up { 1.0 } else { 0.0 };
+                curve.move_point(mid, black_box(&[x[mid], y]), 1e-12)
+            });
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, construction, evaluation, curves);
 criterion_main!(benches);

@@ -15,7 +15,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use bzspline::{Alphas, Spline};
+use bzspline::{Alphas, Curve, Spline};
 
 /// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
 struct Rng(u64);
@@ -147,6 +147,34 @@ fn main() {
     assert!(res.is_ok());
     let bytes = s.heap_bytes();
 
+    // A planar curve through the same points (default parameters), its
+    // flattening to 1e-3 and the local re-solve after moving one point.
+    let pts: Vec<[f64; 2]> = knots.iter().zip(&values).map(|(x, y)| [*x, *y]).collect();
+    let curve_build = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || Curve::open(&pts))
+    };
+    let (curve_flatten, curve_move) = match Curve::open(&pts) {
+        Ok(mut c) => {
+            let flat = median_ns(r, || {
+                black_box(c.flatten(1e-3).map(|p| p.len()).unwrap_or(0));
+            });
+            let mid = n / 2;
+            let mut up = false;
+            let mv = median_ns(r, || {
+                up = !up;
+                let y = values[mid] + if up { 1.0 } else { 0.0 };
+                black_box(
+                    c.move_point(mid, &[knots[mid], y], 1e-12)
+                        .map(|v| v.len())
+                        .unwrap_or(0),
+                );
+            });
+            (flat, mv)
+        }
+        Err(_) => (f64::NAN, f64::NAN),
+    };
+
     let mut out = vec![0.0; m.max(mr)];
     let mut time_eval = |qs: &[f64], order: u32, par: bool| -> f64 {
         let o = &mut out[..qs.len()];
@@ -187,7 +215,9 @@ fn main() {
          \"deriv1_sorted_ns_per_point\": {}, \"deriv2_sorted_ns_per_point\": {}, \
          \"deriv1_random_ns_per_point\": {}, \
          \"par_threads\": {}, \"par_eval_sorted_ns_per_point\": {}, \
-         \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}}}",
+         \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}, \
+         \"curve2d_construct_ns_per_point\": {}, \"curve2d_flatten_1e-3_ns_per_point\": {}, \
+         \"curve2d_move_point_ns\": {}}}",
         num(reuse / n as f64),
         num(fresh_only / n as f64),
         num(per_interval / n as f64),
@@ -200,6 +230,9 @@ fn main() {
         num(psorted),
         num(prandom),
         num(bytes as f64 / n as f64),
+        num(curve_build / n as f64),
+        num(curve_flatten / n as f64),
+        num(curve_move),
     );
 }
 
