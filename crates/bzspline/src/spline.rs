@@ -285,10 +285,22 @@ fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64>
         return None;
     }
     let thr = span * MIN_RELATIVE_INTERVAL;
-    let mut ok = knots.windows(2).fold(true, |ok, w| {
-        let d = w[1] - w[0];
-        ok & (d >= thr) & (d > 0.0)
-    });
+    // Widths in four lanes, so that the loop vectorises.
+    let mut lanes = [true; 4];
+    let (left, right) = (&knots[..n - 1], &knots[1..]);
+    let (lc, rc) = (left.chunks_exact(4), right.chunks_exact(4));
+    let (lr, rr) = (lc.remainder(), rc.remainder());
+    for (l, r) in lc.zip(rc) {
+        for j in 0..4 {
+            let d = r[j] - l[j];
+            lanes[j] &= (d >= thr) & (d > 0.0);
+        }
+    }
+    for (l, r) in lr.iter().zip(rr) {
+        let d = r - l;
+        lanes[0] &= (d >= thr) & (d > 0.0);
+    }
+    let mut ok = lanes.iter().all(|&b| b);
     // Four running maxima and finiteness flags, so that the loop vectorises.
     let mut mx = [0.0f64; 4];
     let mut fin = [true; 4];
