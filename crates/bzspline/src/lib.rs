@@ -79,6 +79,7 @@ mod bezier;
 pub mod curve;
 mod error;
 pub mod flatten;
+mod kernels;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
 pub mod spline;

@@ -58,6 +58,7 @@
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
+use crate::kernels::{self, Batch, Piece};
 use crate::tridiag::Thomas;
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
@@ -124,7 +125,16 @@ pub struct Extremum {
     pub kind: ExtremumKind,
 }
 
-/// The paper's spline of a function `y(x)`: immutable once built.
+/// The paper's spline of a function `y(x)`: immutable once built (or rebuilt in
+/// place by [`Spline::rebuild`], which reuses its allocations).
+///
+/// # Memory
+///
+/// A spline of `N` knots holds four vectors: the knots, the control values and
+/// the alphas (8 bytes a point each, for [`Spline::knots`], [`Spline::values`]
+/// and [`Spline::alphas`]) and the four coefficients of each piece (32 bytes a
+/// piece, aligned to 32 bytes), plus every 16th knot for the batch search:
+/// 56.5 bytes a point, see [`Spline::heap_bytes`].
 ///
 /// # Examples
 ///
@@ -145,13 +155,20 @@ pub struct Spline {
     values: Vec<f64>,
     alphas: Vec<f64>,
     /// Power-basis coefficients of piece `k` in `t = (x - tau_k) / h_k`, divided
-    /// by `scale`.
-    coefs: Vec<[f64; 4]>,
-    /// Knot values `phi_k`, divided by `scale`.
-    phi: Vec<f64>,
+    /// by `scale`. `coefs[k][0]` is the knot value `phi_k / scale`.
+    coefs: Vec<Piece>,
+    /// Every 16th knot, for the random-order batch search.
+    summary: Vec<f64>,
     scale: f64,
+    /// A power of two that keeps `1 / (h pre)` finite: 1 unless the whole span
+    /// is below [`TINY_SPAN`], where `1 / h` could overflow.
+    pre: f64,
     extrapolate: Extrapolate,
 }
+
+/// Spans below this get a `pre` factor other than 1: every width is then at
+/// least `1e-270 * f64::EPSILON`, whose reciprocal is finite.
+const TINY_SPAN: f64 = 1e-270;
 
 /// Checks knots: at least two, finite, strictly increasing, a finite span and no
 /// interval narrower than [`MIN_RELATIVE_INTERVAL`] of it. Returns the widths.
@@ -239,6 +256,11 @@ pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec
 /// divided by it lie in `[-2, 2]` and the division is exact.
 pub(crate) fn power_of_two_scale<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {
     let m = values.into_iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    scale_for_max(m)
+}
+
+/// [`power_of_two_scale`] of values whose largest magnitude is `m`.
+fn scale_for_max(m: f64) -> f64 {
     if m == 0.0 || !m.is_finite() {
         return 1.0;
     }
@@ -246,6 +268,68 @@ pub(crate) fn power_of_two_scale<'a>(values: impl IntoIterator<Item = &'a f64>) 
     // powi cannot reach 2^-1022 through 2.0f64.powi on all platforms exactly, so
     // build the double from its exponent bits.
     f64::from_bits(((e as i64 + 1023) as u64) << 52)
+}
+
+/// Every check of [`Spline::build`] in one branch-free pass: `Some(max |F|)`
+/// when the input is valid, `None` when something is wrong (the step-by-step
+/// validation then finds what). A finite positive span and widths that are
+/// positive and at least `span * MIN_RELATIVE_INTERVAL` imply finite,
+/// strictly increasing knots.
+fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64> {
+    let n = knots.len();
+    if n < 2 || values.len() != n {
+        return None;
+    }
+    let span = knots[n - 1] - knots[0];
+    if !(span.is_finite() && span > 0.0) {
+        return None;
+    }
+    let thr = span * MIN_RELATIVE_INTERVAL;
+    // Widths in four lanes, so that the loop vectorises.
+    let mut lanes = [true; 4];
+    let (left, right) = (&knots[..n - 1], &knots[1..]);
+    let (lc, rc) = (left.chunks_exact(4), right.chunks_exact(4));
+    let (lr, rr) = (lc.remainder(), rc.remainder());
+    for (l, r) in lc.zip(rc) {
+        for j in 0..4 {
+            let d = r[j] - l[j];
+            lanes[j] &= (d >= thr) & (d > 0.0);
+        }
+    }
+    for (l, r) in lr.iter().zip(rr) {
+        let d = r - l;
+        lanes[0] &= (d >= thr) & (d > 0.0);
+    }
+    let mut ok = lanes.iter().all(|&b| b);
+    // Four running maxima and finiteness flags, so that the loop vectorises.
+    let mut mx = [0.0f64; 4];
+    let mut fin = [true; 4];
+    let chunks = values.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for j in 0..4 {
+            let a = c[j].abs();
+            mx[j] = if a > mx[j] { a } else { mx[j] };
+            fin[j] &= c[j].is_finite();
+        }
+    }
+    for &v in rest {
+        let a = v.abs();
+        mx[0] = if a > mx[0] { a } else { mx[0] };
+        fin[0] &= v.is_finite();
+    }
+    ok &= fin.iter().all(|&f| f);
+    match alphas {
+        Alphas::Uniform(a) => ok &= (ALPHA_MIN..=ALPHA_MAX).contains(&a),
+        Alphas::PerInterval(a) => {
+            ok &= a.len() == n - 1;
+            ok &= a
+                .iter()
+                .fold(true, |ok, a| ok & (ALPHA_MIN..=ALPHA_MAX).contains(a));
+        }
+    }
+    let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
+    ok.then_some(m)
 }
 
 /// The factored continuity system of an open spline: depends on the widths and
@@ -358,8 +442,10 @@ fn poly_deriv(c: &[f64; 4], t: f64, order: u32) -> f64 {
 
 /// Where a query falls.
 enum Locus {
-    /// Piece `k` at local parameter `t`.
-    Piece(usize, f64),
+    /// Piece `k` at local parameter `t`, with `1 / (h_k pre)`.
+    Piece(usize, f64, f64),
+    /// The last knot, where the value is the last control value exactly.
+    End,
     /// Clamped to the end value of knot `k`.
     Held(usize),
 }
@@ -406,6 +492,99 @@ impl Spline {
     ///
     /// See [`Spline::with_alphas`].
     pub fn build(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
+        let mut s = Spline {
+            knots: Vec::new(),
+            values: Vec::new(),
+            alphas: Vec::new(),
+            coefs: Vec::new(),
+            summary: Vec::new(),
+            scale: 1.0,
+            pre: 1.0,
+            extrapolate: Extrapolate::default(),
+        };
+        s.rebuild(knots, values, alphas)?;
+        Ok(s)
+    }
+
+    /// Rebuilds this spline in place from new data, reusing its allocations
+    /// (no allocation at all when the new data is not longer than the old). The
+    /// extrapolation policy is kept. The result is the spline that
+    /// [`Spline::build`] returns for the same arguments.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::with_alphas`]; on error the spline is left unchanged.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Alphas, Spline};
+    /// let mut s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+    /// s.rebuild(&[0.0, 1.0, 2.0], &[0.0, 2.0, 0.0], Alphas::Uniform(0.5))?;
+    /// assert!((s.eval(0.5)? - 1.0).abs() < 1e-15);
+    /// assert!(s.rebuild(&[0.0, 0.0], &[1.0, 2.0], Alphas::default()).is_err());
+    /// assert!((s.eval(0.5)? - 1.0).abs() < 1e-15);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn rebuild(
+        &mut self,
+        knots: &[f64],
+        values: &[f64],
+        alphas: Alphas<'_>,
+    ) -> Result<(), Error> {
+        let Some(max_abs) = quick_check(knots, values, alphas) else {
+            // Something is wrong (or on an edge the quick check does not
+            // decide): the step-by-step validation names it.
+            let reference = Self::build_reference(knots, values, alphas)?;
+            let policy = self.extrapolate;
+            *self = reference.with_extrapolation(policy);
+            return Ok(());
+        };
+        let n = knots.len();
+        let scale = scale_for_max(max_abs);
+        let span = knots[n - 1] - knots[0];
+        self.knots.clear();
+        self.knots.extend_from_slice(knots);
+        self.values.clear();
+        self.values.extend_from_slice(values);
+        self.alphas.clear();
+        let uniform = match alphas {
+            Alphas::Uniform(a) => {
+                self.alphas.resize(n - 1, a);
+                Some(a)
+            }
+            Alphas::PerInterval(a) => {
+                self.alphas.extend_from_slice(a);
+                None
+            }
+        };
+        kernels::build(
+            knots,
+            values,
+            &self.alphas,
+            uniform,
+            1.0 / scale,
+            kernels::inverse_power_of_two(span),
+            &mut self.coefs,
+        );
+        kernels::summarise(knots, &mut self.summary);
+        self.scale = scale;
+        self.pre = if span < TINY_SPAN {
+            kernels::inverse_power_of_two(span)
+        } else {
+            1.0
+        };
+        Ok(())
+    }
+
+    /// The straightforward construction: validate step by step, assemble and
+    /// factor the system with [`OpenSystem`], solve, and form each piece with
+    /// [`piece_coefs`]. The reference that the fused sweep is tested against.
+    pub(crate) fn build_reference(
+        knots: &[f64],
+        values: &[f64],
+        alphas: Alphas<'_>,
+    ) -> Result<Self, Error> {
         let widths = validate_knots(knots)?;
         if values.len() != knots.len() {
             return Err(Error::LengthMismatch {
@@ -422,19 +601,39 @@ impl Spline {
         let system = OpenSystem::new(&widths, &alphas);
         let mut d = Vec::new();
         system.solve(&f, &mut d);
-        let phi: Vec<f64> = f.iter().zip(&d).map(|(f, d)| f + d).collect();
         let coefs = (0..widths.len())
-            .map(|k| piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k]))
+            .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
             .collect();
+        let span = knots[knots.len() - 1] - knots[0];
+        let mut summary = Vec::new();
+        kernels::summarise(knots, &mut summary);
         Ok(Spline {
             knots: knots.to_vec(),
             values: values.to_vec(),
             alphas,
             coefs,
-            phi,
+            summary,
             scale,
+            pre: if span < TINY_SPAN {
+                kernels::inverse_power_of_two(span)
+            } else {
+                1.0
+            },
             extrapolate: Extrapolate::default(),
         })
+    }
+
+    /// Bytes of heap memory the spline holds (the capacities of its vectors):
+    /// 56.5 bytes a point when built by [`Spline::build`].
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        let f = core::mem::size_of::<f64>();
+        (self.knots.capacity()
+            + self.values.capacity()
+            + self.alphas.capacity()
+            + self.summary.capacity())
+            * f
+            + self.coefs.capacity() * core::mem::size_of::<Piece>()
     }
 
     /// Returns the spline with another extrapolation policy.
@@ -489,11 +688,11 @@ impl Spline {
     /// The knot values `phi_k = S(tau_k)`; `phi_0 = F_0` and `phi_{N-1} = F_{N-1}`.
     #[must_use]
     pub fn knot_values(&self) -> Vec<f64> {
-        let mut v: Vec<f64> = self.phi.iter().map(|p| p * self.scale).collect();
         // The end values are the end control values by construction (d = 0).
-        v[0] = self.values[0];
-        let n = v.len();
-        v[n - 1] = self.values[n - 1];
+        let mut v = Vec::with_capacity(self.knots.len());
+        v.push(self.values[0]);
+        v.extend(self.coefs.iter().skip(1).map(|c| c.0[0] * self.scale));
+        v.push(self.values[self.len()]);
         v
     }
 
@@ -527,12 +726,12 @@ impl Spline {
     /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md.
     #[must_use]
     pub fn segment(&self, k: usize) -> Option<CubicBez<2>> {
-        let c = self.coefs.get(k)?;
+        let c = &self.coefs.get(k)?.0;
         let (x0, x1) = (self.knots[k], self.knots[k + 1]);
         let h = x1 - x0;
         let s = self.scale;
-        let b0 = self.phi[k];
-        let b3 = self.phi[k + 1];
+        let b0 = c[0];
+        let b3 = self.phi(k + 1);
         let s0 = c[1];
         let s1 = c[1] + 2.0 * c[2] + 3.0 * c[3];
         let y0 = if k == 0 { self.values[0] } else { b0 * s };
@@ -563,7 +762,7 @@ impl Spline {
     /// itself does not use this form.
     #[must_use]
     pub fn power_coefficients(&self, k: usize) -> Option<[f64; 4]> {
-        let c = self.coefs.get(k)?;
+        let c = &self.coefs.get(k)?.0;
         let h = self.knots[k + 1] - self.knots[k];
         let s = self.scale;
         Some([
@@ -577,7 +776,7 @@ impl Spline {
     /// Coefficients of piece `k` in `t = (x - tau_k) / h_k`, `t` in `[0, 1]`.
     #[must_use]
     pub fn unit_coefficients(&self, k: usize) -> Option<[f64; 4]> {
-        let c = self.coefs.get(k)?;
+        let c = &self.coefs.get(k)?.0;
         Some(c.map(|v| v * self.scale))
     }
 
@@ -587,6 +786,14 @@ impl Spline {
     pub fn piece_index(&self, x: f64) -> usize {
         let i = self.knots.partition_point(|&k| k <= x);
         i.saturating_sub(1).min(self.len() - 1)
+    }
+
+    /// The scaled knot value `phi_k / scale`.
+    fn phi(&self, k: usize) -> f64 {
+        match self.coefs.get(k) {
+            Some(c) => c.0[0],
+            None => self.values[self.len()] / self.scale,
+        }
     }
 
     fn locate_in(&self, x: f64, k: usize) -> Result<Locus, Error> {
@@ -607,32 +814,34 @@ impl Spline {
                 Extrapolate::Extend => {}
             }
         }
-        let t = (x - self.knots[k]) / (self.knots[k + 1] - self.knots[k]);
-        Ok(Locus::Piece(k, t))
+        if x == b {
+            return Ok(Locus::End);
+        }
+        // The batch evaluators compute t and 1/h the same way (pre = 1 there).
+        let inv = 1.0 / ((self.knots[k + 1] - self.knots[k]) * self.pre);
+        let t = ((x - self.knots[k]) * self.pre) * inv;
+        Ok(Locus::Piece(k, t, inv))
     }
 
     fn eval_locus(&self, locus: Locus, order: u32) -> Result<f64, Error> {
         match locus {
             Locus::Held(k) => Ok(if order == 0 { self.values[k] } else { 0.0 }),
-            Locus::Piece(k, t) => {
-                if order == 0 && t == 1.0 {
-                    // The knot value itself, not the sum of the coefficients.
-                    return Ok(if k + 1 == self.len() {
-                        self.values[k + 1]
-                    } else {
-                        self.phi[k + 1] * self.scale
-                    });
-                }
-                let c = &self.coefs[k];
+            Locus::End if order == 0 => Ok(self.values[self.len()]),
+            Locus::End => {
+                let k = self.len() - 1;
+                let inv = 1.0 / ((self.knots[k + 1] - self.knots[k]) * self.pre);
+                self.eval_locus(Locus::Piece(k, 1.0, inv), order)
+            }
+            Locus::Piece(k, t, inv) => {
+                let c = &self.coefs[k].0;
                 let mut v = poly_deriv(c, t, order) * self.scale;
                 if order == 0 && v.is_infinite() && (0.0..=1.0).contains(&t) {
                     // Rounding above f64::MAX inside the hull: the true value is
                     // within the control values, which are finite.
                     v = f64::MAX.copysign(v);
                 }
-                let h = self.knots[k + 1] - self.knots[k];
                 for _ in 0..order.min(4) {
-                    v /= h;
+                    v = v * inv * self.pre;
                 }
                 if !v.is_finite() {
                     return Err(Error::Overflow {
@@ -687,8 +896,10 @@ impl Spline {
     }
 
     /// Evaluates the derivative of order `order` (0 for values) at every `xs[i]`
-    /// into `out[i]`. Sorted queries are answered in one pass (each search starts
-    /// at the previous piece); unsorted ones fall back to binary search.
+    /// into `out[i]`, with the same result as [`Spline::deriv`] at each point.
+    /// The queries are taken in blocks of 16: a sorted block walks from the
+    /// previous piece (one pass over sorted queries), an unsorted one is located
+    /// by a branchless binary search over the knots.
     ///
     /// # Errors
     ///
@@ -703,18 +914,8 @@ impl Spline {
                 found: out.len(),
             });
         }
-        let last = self.len() - 1;
-        let mut k = 0;
-        for (i, (&x, o)) in xs.iter().zip(out.iter_mut()).enumerate() {
-            // Walk from the previous piece: one or two steps for sorted input.
-            if x >= self.knots[k] && (k == last || x < self.knots[k + 1]) {
-            } else if k < last && x >= self.knots[k + 1] && (k + 1 == last || x < self.knots[k + 2])
-            {
-                k += 1;
-            } else {
-                k = self.piece_index(x);
-            }
-            let locus = self.locate_in(x, k).map_err(|e| match e {
+        let slow = |i: usize, x: f64, o: &mut f64| -> Result<(), Error> {
+            *o = self.deriv(x, order).map_err(|e| match e {
                 Error::NonFinite { field, value, .. } => Error::NonFinite {
                     field,
                     index: i,
@@ -722,9 +923,67 @@ impl Spline {
                 },
                 e => e,
             })?;
-            *o = self.eval_locus(locus, order)?;
+            Ok(())
+        };
+        if self.pre != 1.0 || order > 3 {
+            for (i, (&x, o)) in xs.iter().zip(out.iter_mut()).enumerate() {
+                slow(i, x, o)?;
+            }
+            return Ok(());
+        }
+        let batch = Batch {
+            knots: &self.knots,
+            summary: &self.summary,
+            coefs: &self.coefs,
+            scale: self.scale,
+        };
+        match order {
+            0 => batch.run::<0, _>(xs, out, slow),
+            1 => batch.run::<1, _>(xs, out, slow),
+            2 => batch.run::<2, _>(xs, out, slow),
+            _ => batch.run::<3, _>(xs, out, slow),
+        }
+    }
+
+    /// [`Spline::deriv_many`] split over rayon's thread pool: the same results,
+    /// each worker walking its own contiguous share of the queries.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::deriv_many`] (the first failing query by index).
+    #[cfg(feature = "rayon")]
+    pub fn par_deriv_many(&self, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
+        use rayon::prelude::*;
+        if out.len() != xs.len() {
+            return Err(Error::LengthMismatch {
+                field: Field::Query,
+                expected: xs.len(),
+                found: out.len(),
+            });
+        }
+        // A few chunks per thread for balance, none so small that the start-up
+        // search dominates.
+        let chunk = (xs.len() / (4 * rayon::current_num_threads()).max(1)).max(1 << 14);
+        let failed = xs
+            .par_chunks(chunk)
+            .zip(out.par_chunks_mut(chunk))
+            .map(|(x, o)| self.deriv_many(x, order, o).is_err())
+            .reduce(|| false, |a, b| a | b);
+        if failed {
+            // Rerun in order, so that the error is the one with the lowest index.
+            return self.deriv_many(xs, order, out);
         }
         Ok(())
+    }
+
+    /// `S(xs[i])` into `out[i]` in parallel; see [`Spline::par_deriv_many`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::deriv_many`].
+    #[cfg(feature = "rayon")]
+    pub fn par_eval_many(&self, xs: &[f64], out: &mut [f64]) -> Result<(), Error> {
+        self.par_deriv_many(xs, 0, out)
     }
 
     /// `S(xs[i])` into `out[i]`; see [`Spline::deriv_many`].
@@ -805,7 +1064,7 @@ impl Spline {
 
     /// Integral of piece `k`'s cubic (scaled) from `x0` to `x1`.
     fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
-        let c = &self.coefs[k];
+        let c = &self.coefs[k].0;
         let h = self.knots[k + 1] - self.knots[k];
         let prim = |t: f64| t * (c[0] + t * (c[1] / 2.0 + t * (c[2] / 3.0 + t * c[3] / 4.0)));
         let t0 = (x0 - self.knots[k]) / h;
@@ -818,7 +1077,7 @@ impl Spline {
     #[must_use]
     pub fn extrema(&self) -> Vec<Extremum> {
         let mut out = Vec::new();
-        for (k, c) in self.coefs.iter().enumerate() {
+        for (k, Piece(c)) in self.coefs.iter().enumerate() {
             let h = self.knots[k + 1] - self.knots[k];
             let mut roots = quadratic_roots(3.0 * c[3], 2.0 * c[2], c[1]);
             roots.sort_by(f64::total_cmp);
@@ -965,7 +1224,7 @@ mod tests {
         for alpha in [ALPHA_MIN, 0.4, 0.5, 0.6, ALPHA_MAX] {
             let s = Spline::with_alpha(&EX1_X, &EX1_F, alpha).unwrap();
             for (k, (x, f)) in s.tangent_points().into_iter().enumerate() {
-                let c = &s.coefs[k];
+                let c = &s.coefs[k].0;
                 let t = (x - EX1_X[k]) / (EX1_X[k + 1] - EX1_X[k]);
                 let y = horner(c, t) * s.scale;
                 let dy = poly_deriv(c, t, 1) * s.scale;
@@ -974,8 +1233,8 @@ mod tests {
                 assert!(close(dy, slope, 1e-13), "S'(x_{k}): want {slope}, got {dy}");
             }
             for k in 1..s.len() {
-                let l = &s.coefs[k - 1];
-                let r = &s.coefs[k];
+                let l = &s.coefs[k - 1].0;
+                let r = &s.coefs[k].0;
                 assert!(close(horner(l, 1.0), horner(r, 0.0), 1e-13));
                 assert!(close(poly_deriv(l, 1.0, 1), poly_deriv(r, 0.0, 1), 1e-13));
             }
@@ -1144,6 +1403,185 @@ mod tests {
             Spline::new(&[-1e308, 1e308], &[0.0, 1.0]),
             Err(Error::SpanOverflow { .. })
         ));
+    }
+
+    /// A small deterministic generator (xorshift64*), uniform in `[0, 1)`.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Random data: widths over three decades, values over several, at a
+    /// magnitude `mag`.
+    fn random_data(rng: &mut Rng, n: usize, mag: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let mut x = Vec::with_capacity(n);
+        let mut t = -3.0 + 6.0 * rng.next();
+        for _ in 0..n {
+            x.push(t);
+            t += 10f64.powf(-1.5 + 3.0 * rng.next());
+        }
+        let f = (0..n)
+            .map(|_| mag * (2.0 * rng.next() - 1.0) * 10f64.powf(2.0 * rng.next()))
+            .collect();
+        let a = (0..n.saturating_sub(1))
+            .map(|_| ALPHA_MIN + (ALPHA_MAX - ALPHA_MIN) * rng.next())
+            .collect();
+        (x, f, a)
+    }
+
+    /// The straightforward evaluator: binary search, `t = (x - tau_k) / h_k`,
+    /// Horner, division by `h` per order.
+    fn reference_deriv(s: &Spline, x: f64, order: u32) -> f64 {
+        let k = s.piece_index(x);
+        let h = s.knots[k + 1] - s.knots[k];
+        let t = (x - s.knots[k]) / h;
+        let mut v = poly_deriv(&s.coefs[k].0, t, order) * s.scale;
+        for _ in 0..order {
+            v /= h;
+        }
+        v
+    }
+
+    #[test]
+    fn fused_build_and_batches_match_the_reference() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for (case, &n) in [2usize, 3, 4, 5, 17, 18, 33, 100, 1000, 4097]
+            .iter()
+            .enumerate()
+        {
+            for mag in [1.0, 1e-300, 1e300, 3e-7] {
+                let (x, f, a) = random_data(&mut rng, n, mag);
+                let fmax = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let uniform = ALPHA_MIN + (ALPHA_MAX - ALPHA_MIN) * rng.next();
+                for alphas in [Alphas::PerInterval(&a), Alphas::Uniform(uniform)] {
+                    let fast = Spline::build(&x, &f, alphas).unwrap();
+                    let slow = Spline::build_reference(&x, &f, alphas).unwrap();
+                    assert_eq!(fast.alphas(), slow.alphas());
+                    assert_eq!(fast.scale, slow.scale);
+                    let tol = 1e-13 * fmax;
+                    for (k, (p, q)) in fast
+                        .knot_values()
+                        .iter()
+                        .zip(slow.knot_values())
+                        .enumerate()
+                    {
+                        assert!(
+                            (p - q).abs() <= tol,
+                            "case {case} n {n} mag {mag}: knot value {k}: want {q}, got {p}"
+                        );
+                    }
+                    for k in 0..fast.len() {
+                        let (p, q) = (
+                            fast.unit_coefficients(k).unwrap(),
+                            slow.unit_coefficients(k).unwrap(),
+                        );
+                        for j in 0..4 {
+                            assert!(
+                                (p[j] - q[j]).abs() <= tol,
+                                "case {case} n {n}: piece {k} coef {j}: want {}, got {}",
+                                q[j],
+                                p[j]
+                            );
+                        }
+                    }
+                    // Batches: sorted (several queries per piece) and random,
+                    // against pointwise deriv exactly and the straightforward
+                    // evaluator to rounding.
+                    let (lo, hi) = fast.domain();
+                    let m = 3 * n + 7;
+                    let mut random: Vec<f64> =
+                        (0..m).map(|_| lo + (hi - lo) * rng.next()).collect();
+                    random.push(hi);
+                    random.push(lo);
+                    random.extend_from_slice(&x);
+                    let mut sorted = random.clone();
+                    sorted.sort_by(f64::total_cmp);
+                    let mut out = vec![0.0; random.len()];
+                    for q in [&sorted, &random] {
+                        for order in 0..4 {
+                            fast.deriv_many(q, order, &mut out).unwrap();
+                            for (&xq, &y) in q.iter().zip(&out) {
+                                assert_eq!(
+                                    y,
+                                    fast.deriv(xq, order).unwrap(),
+                                    "order {order} at {xq}"
+                                );
+                                let want = reference_deriv(&slow, xq, order);
+                                let k = fast.piece_index(xq);
+                                let h = x[k + 1] - x[k];
+                                let tol = 1e-13 * fmax / h.powi(order as i32);
+                                assert!(
+                                    (y - want).abs() <= tol,
+                                    "case {case} n {n} order {order} at {xq}: want {want}, got {y}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rebuild_reuses_and_keeps_the_spline_on_error() {
+        let mut rng = Rng(7);
+        let (x, f, a) = random_data(&mut rng, 500, 1.0);
+        let mut s = Spline::with_alphas(&x, &f, &a)
+            .unwrap()
+            .with_extrapolation(Extrapolate::Clamp);
+        let bytes = s.heap_bytes();
+        assert_eq!(bytes, 500 * 8 * 3 - 8 + 499 * 32 + 32 * 8, "heap bytes");
+        let (x2, f2, _) = random_data(&mut rng, 400, 2.0);
+        s.rebuild(&x2, &f2, Alphas::Uniform(0.4)).unwrap();
+        assert_eq!(
+            s,
+            Spline::with_alpha(&x2, &f2, 0.4)
+                .unwrap()
+                .with_extrapolation(Extrapolate::Clamp)
+        );
+        assert_eq!(s.heap_bytes(), bytes, "no reallocation");
+        let before = s.clone();
+        let mut bad = x2.clone();
+        bad[200] = f64::NAN;
+        assert!(matches!(
+            s.rebuild(&bad, &f2, Alphas::default()),
+            Err(Error::NonFinite {
+                field: Field::Knot,
+                index: 200,
+                ..
+            })
+        ));
+        assert_eq!(s, before);
+    }
+
+    #[test]
+    fn errors_are_those_of_the_step_by_step_validation() {
+        let x = [0.0, 1.0, 2.0, 3.0];
+        let f = [0.0, 1.0, 0.0, 1.0];
+        let cases: [(&[f64], &[f64], Alphas<'_>); 9] = [
+            (&[0.0], &[0.0], Alphas::default()),
+            (&x, &f[..3], Alphas::default()),
+            (&[0.0, 1.0, 1.0, 3.0], &f, Alphas::default()),
+            (&[0.0, f64::INFINITY, 2.0, 3.0], &f, Alphas::default()),
+            (&[0.0, 1e-17, 2.0, 3.0], &f, Alphas::default()),
+            (&x, &[0.0, f64::NAN, 0.0, 1.0], Alphas::default()),
+            (&x, &f, Alphas::Uniform(0.7)),
+            (&x, &f, Alphas::PerInterval(&[0.5, 0.5])),
+            (&x, &f, Alphas::PerInterval(&[0.5, f64::NAN, 0.2])),
+        ];
+        for (k, v, a) in cases {
+            let got = Spline::build(k, v, a);
+            let want = Spline::build_reference(k, v, a);
+            assert!(got.is_err(), "{k:?} {v:?} {a:?} should fail");
+            // Debug text, because a NaN in the error is not equal to itself.
+            assert_eq!(format!("{got:?}"), format!("{want:?}"));
+        }
     }
 
     #[test]

@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""Time bzspline against scipy on the same sizes, in one run.
+
+    python3 bench/compare.py --n 1000000 --m 10000000 [--mr 1000000] [--repeats 5]
+
+Builds and runs the `throughput` example of the bzspline crate (release, with
+the `rayon` feature) and times scipy's CubicSpline, PchipInterpolator and
+make_interp_spline(k=3) on data of the same kind and size: knots with random
+widths in [0.5, 1.5), values a sine plus noise, M sorted queries evenly spaced
+over the domain and MR uniformly random ones. Prints a table of nanoseconds per
+point (construction) or per query (evaluation) and the ratio scipy / bzspline
+(above 1: bzspline is faster). Each figure is the median of --repeats timed
+runs after one warm-up (a single timed run when the warm-up took over 2 s).
+
+On first use it creates the virtual environment bench/.venv and installs numpy
+and scipy into it with pip, then re-runs itself there.
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+VENV = os.path.join(HERE, ".venv")
+VPY = os.path.join(VENV, "bin", "python")
+
+
+def ensure_venv():
+    """Re-exec inside bench/.venv with numpy and scipy installed."""
+    if os.path.abspath(sys.prefix) == os.path.abspath(VENV):
+        try:
+            import numpy  # noqa: F401
+            import scipy  # noqa: F401
+            return
+        except ImportError:
+            pass
+    if not os.path.exists(VPY):
+        subprocess.run([sys.executable, "-m", "venv", VENV], check=True)
+    probe = subprocess.run([VPY, "-c", "import numpy, scipy"], capture_output=True)
+    if probe.returncode != 0:
+        subprocess.run([VPY, "-m", "pip", "install", "--quiet", "numpy", "scipy"], check=True)
+    os.execv(VPY, [VPY, os.path.abspath(__file__)] + sys.argv[1:])
+
+
+def median_ns(fn, repeats):
+    t0 = time.perf_counter_ns()
+    fn()  # warm-up
+    if time.perf_counter_ns() - t0 > 2e9:
+        # Very slow calls (make_interp_spline on random queries): one timed run.
+        repeats = 1
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter_ns()
+        fn()
+        times.append(time.perf_counter_ns() - t0)
+    times.sort()
+    return times[len(times) // 2]
+
+
+def run_bzspline(n, m, mr, repeats):
+    cmd = ["cargo", "build", "--release", "--quiet", "-p", "bzspline",
+           "--features", "rayon", "--example", "throughput"]
+    subprocess.run(cmd, cwd=ROOT, check=True)
+    exe = os.path.join(ROOT, "target", "release", "examples", "throughput")
+    out = subprocess.run([exe, "--n", str(n), "--m", str(m), "--mr", str(mr),
+                          "--repeats", str(repeats)],
+                         cwd=ROOT, check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def run_scipy(n, m, mr, repeats):
+    import numpy as np
+    import scipy
+    from scipy.interpolate import CubicSpline, PchipInterpolator, make_interp_spline
+
+    rng = np.random.default_rng(1)
+    x = np.concatenate(([0.0], np.cumsum(0.5 + rng.random(n - 1))))
+    y = 100.0 * np.sin(0.01 * x) + rng.random(n) - 0.5
+    lo, hi = x[0], x[-1]
+    sorted_q = lo + (hi - lo) * (np.arange(m) + 0.5) / m
+    random_q = lo + (hi - lo) * rng.random(mr)
+    res = {"scipy_version": scipy.__version__, "numpy_version": np.__version__}
+    makers = {
+        "CubicSpline": lambda: CubicSpline(x, y),
+        "PchipInterpolator": lambda: PchipInterpolator(x, y),
+        "make_interp_spline": lambda: make_interp_spline(x, y, k=3),
+    }
+    for name, make in makers.items():
+        r = {"construct": median_ns(make, repeats) / n}
+        s = make()
+        d1 = s.derivative(1)
+        r["eval_sorted"] = median_ns(lambda: s(sorted_q), repeats) / m
+        r["eval_random"] = median_ns(lambda: s(random_q), repeats) / mr
+        r["deriv1_sorted"] = median_ns(lambda: d1(sorted_q), repeats) / m
+        r["deriv1_random"] = median_ns(lambda: d1(random_q), repeats) / mr
+        res[name] = r
+        del s, d1
+    return res
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=float, default=1e6)
+    ap.add_argument("--m", type=float, default=1e7)
+    ap.add_argument("--mr", type=float, default=None)
+    ap.add_argument("--repeats", type=int, default=5)
+    a = ap.parse_args()
+    n, m = int(a.n), int(a.m)
+    mr = int(a.mr) if a.mr is not None else min(m, 1_000_000)
+    ensure_venv()
+    bz = run_bzspline(n, m, mr, a.repeats)
+    sp = run_scipy(n, m, mr, a.repeats)
+    rows = [
+        ("construct (ns/point)", "construct_ns_per_point", "construct"),
+        ("construct, fresh allocation", "construct_fresh_ns_per_point", "construct"),
+        ("eval sorted (ns/query)", "eval_sorted_ns_per_point", "eval_sorted"),
+        ("eval random (ns/query)", "eval_random_ns_per_point", "eval_random"),
+        ("deriv1 sorted (ns/query)", "deriv1_sorted_ns_per_point", "deriv1_sorted"),
+        ("deriv1 random (ns/query)", "deriv1_random_ns_per_point", "deriv1_random"),
+        ("eval sorted, 2 threads", "par_eval_sorted_ns_per_point", "eval_sorted"),
+        ("eval random, 2 threads", "par_eval_random_ns_per_point", "eval_random"),
+    ]
+    names = ["CubicSpline", "PchipInterpolator", "make_interp_spline"]
+    print(f"N = {n}, M = {m} sorted, {mr} random; median of {a.repeats}; "
+          f"scipy {sp['scipy_version']}, numpy {sp['numpy_version']}; "
+          f"bzspline holds {bz['bytes_per_point']} bytes/point")
+    head = f"| {'':30} | {'bzspline':>9} | " + " | ".join(f"{k:>18}" for k in names) + " |"
+    print(head)
+    print("|" + "-" * 32 + "|" + "-" * 11 + "|" + "|".join("-" * 20 for _ in names) + "|")
+    for label, bkey, skey in rows:
+        b = bz.get(bkey)
+        cells = []
+        for k in names:
+            v = sp[k][skey]
+            ratio = f"{v / b:5.1f}x" if b else "   -  "
+            cells.append(f"{v:9.2f} {ratio:>8}")
+        bs = f"{b:9.2f}" if b is not None else f"{'-':>9}"
+        print(f"| {label:30} | {bs} | " + " | ".join(f"{c:>18}" for c in cells) + " |")
+    print()
+    print("bzspline:", json.dumps(bz))
+
+
+if __name__ == "__main__":
+    main()

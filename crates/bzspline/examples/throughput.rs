@@ -1,0 +1,275 @@
+//! Throughput of construction and batch evaluation, printed as one JSON object.
+//!
+//! ```text
+//! cargo run --release -p bzspline --example throughput -- --n 1000000 --m 10000000
+//! cargo run --release -p bzspline --features rayon --example throughput -- --n 1000000 --m 10000000
+//! ```
+//!
+//! Options: `--n` control points (default 1e6), `--m` sorted queries (default
+//! 1e7), `--mr` random queries (default `min(m, 1e6)`), `--repeats` timed runs
+//! per figure (default 7; the median is printed, after one warm-up run),
+//! `--seed` for the data (default 1). Knots have random widths in `[0.5, 1.5)`,
+//! values are a sine plus noise; sorted queries are evenly spaced over the
+//! domain, random ones uniform.
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use bzspline::{Alphas, Curve, Spline};
+
+/// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+struct Args {
+    n: usize,
+    m: usize,
+    mr: usize,
+    repeats: usize,
+    seed: u64,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut a = Args {
+        n: 1_000_000,
+        m: 10_000_000,
+        mr: 0,
+        repeats: 7,
+        seed: 1,
+    };
+    let mut mr = None;
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let value = it.next().ok_or_else(|| format!("{flag} needs a value"))?;
+        // Accept 1e6 as well as 1000000.
+        let num = value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v >= 0.0 && v.fract() == 0.0)
+            .ok_or_else(|| format!("{flag}: not a count: {value}"))? as u64;
+        match flag.as_str() {
+            "--n" => a.n = num as usize,
+            "--m" => a.m = num as usize,
+            "--mr" => mr = Some(num as usize),
+            "--repeats" => a.repeats = (num as usize).max(1),
+            "--seed" => a.seed = num.max(1),
+            _ => return Err(format!("unknown option {flag}")),
+        }
+    }
+    if a.n < 2 {
+        return Err("--n must be at least 2".into());
+    }
+    a.mr = mr.unwrap_or(a.m.min(1_000_000));
+    Ok(a)
+}
+
+/// Median wall time in nanoseconds of `repeats` runs of `f`, after one warm-up.
+fn median_ns(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    let mut t: Vec<f64> = (0..repeats)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_nanos() as f64
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    pick(&t)
+}
+
+/// The median, or the minimum when `BZ_MIN=1` is set (steadier on a busy
+/// machine).
+fn pick(sorted: &[f64]) -> f64 {
+    if std::env::var_os("BZ_MIN").is_some_and(|v| v == "1") {
+        sorted[0]
+    } else {
+        sorted[sorted.len() / 2]
+    }
+}
+
+fn main() {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("throughput: {e}");
+            std::process::exit(2);
+        }
+    };
+    let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
+    let mut rng = Rng(args.seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut knots = Vec::with_capacity(n);
+    let mut t = 0.0;
+    for _ in 0..n {
+        knots.push(t);
+        t += 0.5 + rng.next();
+    }
+    let values: Vec<f64> = knots
+        .iter()
+        .map(|x| 100.0 * (0.01 * x).sin() + rng.next() - 0.5)
+        .collect();
+    let alphas: Vec<f64> = (0..n - 1).map(|_| 0.35 + 0.3 * rng.next()).collect();
+    let (lo, hi) = (knots[0], knots[n - 1]);
+    let sorted: Vec<f64> = (0..m)
+        .map(|i| lo + (hi - lo) * (i as f64 + 0.5) / m as f64)
+        .collect();
+    let random: Vec<f64> = (0..mr).map(|_| lo + (hi - lo) * rng.next()).collect();
+
+    // A fresh build, page faults of its new allocations included; the release
+    // of the previous spline's memory is not timed.
+    let fresh_only = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || Spline::new(&knots, &values))
+    };
+    let mut s = match Spline::new(&knots, &values) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("throughput: {e}");
+            std::process::exit(1);
+        }
+    };
+    let reuse = median_ns(r, || {
+        let res = s.rebuild(black_box(&knots), black_box(&values), Alphas::default());
+        black_box(res.is_ok());
+    });
+    let per_interval = median_ns(r, || {
+        let res = s.rebuild(&knots, &values, Alphas::PerInterval(&alphas));
+        black_box(res.is_ok());
+    });
+    let res = s.rebuild(&knots, &values, Alphas::default());
+    assert!(res.is_ok());
+    let bytes = s.heap_bytes();
+
+    // A planar curve through the same points (default parameters), its
+    // flattening to 1e-3 and the local re-solve after moving one point.
+    let pts: Vec<[f64; 2]> = knots.iter().zip(&values).map(|(x, y)| [*x, *y]).collect();
+    let curve_build = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || Curve::open(&pts))
+    };
+    let (curve_flatten, curve_move) = match Curve::open(&pts) {
+        Ok(mut c) => {
+            let flat = median_ns(r, || {
+                black_box(c.flatten(1e-3).map(|p| p.len()).unwrap_or(0));
+            });
+            let mid = n / 2;
+            let mut up = false;
+            let mv = median_ns(r, || {
+                up = !up;
+                let y = values[mid] + if up { 1.0 } else { 0.0 };
+                black_box(
+                    c.move_point(mid, &[knots[mid], y], 1e-12)
+                        .map(|v| v.len())
+                        .unwrap_or(0),
+                );
+            });
+            (flat, mv)
+        }
+        Err(_) => (f64::NAN, f64::NAN),
+    };
+
+    let mut out = vec![0.0; m.max(mr)];
+    let mut time_eval = |qs: &[f64], order: u32, par: bool| -> f64 {
+        let o = &mut out[..qs.len()];
+        let ns = median_ns(r, || {
+            let res = if par {
+                par_deriv(&s, qs, order, o)
+            } else {
+                s.deriv_many(qs, order, o)
+            };
+            assert!(res.is_ok());
+            black_box(&o);
+        });
+        ns / qs.len().max(1) as f64
+    };
+    let sorted0 = time_eval(&sorted, 0, false);
+    let sorted1 = time_eval(&sorted, 1, false);
+    let sorted2 = time_eval(&sorted, 2, false);
+    let random0 = time_eval(&random, 0, false);
+    let random1 = time_eval(&random, 1, false);
+    let par = cfg!(feature = "rayon");
+    let (psorted, prandom) = if par {
+        (time_eval(&sorted, 0, true), time_eval(&random, 0, true))
+    } else {
+        (f64::NAN, f64::NAN)
+    };
+    let num = |v: f64| {
+        if v.is_finite() {
+            format!("{v:.3}")
+        } else {
+            "null".to_string()
+        }
+    };
+    println!(
+        "{{\"n\": {n}, \"m\": {m}, \"m_random\": {mr}, \"repeats\": {r}, \
+         \"construct_ns_per_point\": {}, \"construct_fresh_ns_per_point\": {}, \
+         \"construct_per_interval_alphas_ns_per_point\": {}, \
+         \"eval_sorted_ns_per_point\": {}, \"eval_random_ns_per_point\": {}, \
+         \"deriv1_sorted_ns_per_point\": {}, \"deriv2_sorted_ns_per_point\": {}, \
+         \"deriv1_random_ns_per_point\": {}, \
+         \"par_threads\": {}, \"par_eval_sorted_ns_per_point\": {}, \
+         \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}, \
+         \"curve2d_construct_ns_per_point\": {}, \"curve2d_flatten_1e-3_ns_per_point\": {}, \
+         \"curve2d_move_point_ns\": {}}}",
+        num(reuse / n as f64),
+        num(fresh_only / n as f64),
+        num(per_interval / n as f64),
+        num(sorted0),
+        num(random0),
+        num(sorted1),
+        num(sorted2),
+        num(random1),
+        threads(),
+        num(psorted),
+        num(prandom),
+        num(bytes as f64 / n as f64),
+        num(curve_build / n as f64),
+        num(curve_flatten / n as f64),
+        num(curve_move),
+    );
+}
+
+/// Median time of `build`, keeping each result alive until after its timing so
+/// that the release of the memory is not counted.
+fn f_median<T>(repeats: usize, keep: &mut Vec<T>, mut build: impl FnMut() -> T) -> f64 {
+    drop(build());
+    let mut t: Vec<f64> = (0..repeats)
+        .map(|_| {
+            keep.clear();
+            let start = Instant::now();
+            let v = build();
+            let e = start.elapsed().as_nanos() as f64;
+            keep.push(v);
+            e
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    pick(&t)
+}
+
+#[cfg(feature = "rayon")]
+fn par_deriv(s: &Spline, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), bzspline::Error> {
+    s.par_deriv_many(xs, order, out)
+}
+
+#[cfg(not(feature = "rayon"))]
+fn par_deriv(s: &Spline, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), bzspline::Error> {
+    s.deriv_many(xs, order, out)
+}
+
+#[cfg(feature = "rayon")]
+fn threads() -> usize {
+    rayon::current_num_threads()
+}
+
+#[cfg(not(feature = "rayon"))]
+fn threads() -> usize {
+    1
+}

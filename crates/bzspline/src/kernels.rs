@@ -1,0 +1,584 @@
+//! The fast paths of [`Spline`](crate::Spline): one fused sweep that validates
+//! nothing and allocates nothing (the caller has validated the input and owns
+//! every buffer), and the batch evaluators.
+//!
+//! Everything here computes the same quantities as the straightforward path of
+//! `spline.rs` (`OpenSystem`, `piece_coefs`) in another order of operations, so
+//! results agree to rounding (a few units in the last place), not bit for bit.
+//!
+//! # Construction
+//!
+//! Row `k` of the system (16), multiplied by `h_{k-1} + h_k` instead of the
+//! `h_{k-1} h_k / (h_{k-1} + h_k)` of `spline.rs`, reads (widths `h` already
+//! multiplied by a power of two that brings the span near 1, values scaled):
+//!
+//! ```text
+//! l_k = -h_k A'    D_k = h_k B1' + h_{k-1} B2'    u_k = -h_{k-1} C'
+//! r_k = h_{k-1} dF_k - h_k dF_{k-1}
+//! ```
+//!
+//! so assembling a row needs no division. The Thomas pivots
+//! `piv_k = D_k - l_k u_{k-1} / piv_{k-1}` are ratios `P_k / P_{k-1}` of the
+//! continuants `P_k = D_k P_{k-1} - l_k u_{k-1} P_{k-2}`, a recurrence of
+//! multiplications and subtractions only: the one division per row,
+//! `1 / piv_k = P_{k-1} / P_k`, is off the chain of dependent operations. The
+//! continuants are renormalised by an exact power of two every
+//! [`RENORM`] rows. Diagonal dominance bounds every pivot ratio (for alphas in
+//! `[1/3, 2/3]`, `piv_k >= 3 min(h_{k-1} + h_k)` and `<= 8 max(...)`), so the
+//! continuants stay far from overflow and underflow between renormalisations.
+//!
+//! The forward sweep keeps its two numbers per row (`u_k / piv_k` and the swept
+//! right-hand side) in the storage of piece `k`, which the backward sweep then
+//! overwrites with the piece's coefficients: no scratch vector.
+
+use crate::spline::alpha_terms;
+
+/// Rows between two renormalisations of the continuants: each row multiplies
+/// them by a pivot between `3 * 2^-52` and `32` (widths relative to a span
+/// near 1), so in 8 rows they stay within `2^-400 .. 2^40` of `[1, 2)`, and a
+/// product of two of them far inside a double.
+const RENORM: usize = 8;
+
+/// The four power-basis coefficients of one piece in `t = (x - tau_k) / h_k`,
+/// aligned so that one piece never straddles two cache lines.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(align(32))]
+pub(crate) struct Piece(pub(crate) [f64; 4]);
+
+/// A power of two `2^-e` with `x 2^-e` in `[1, 2)` for a positive normal `x`
+/// (for a subnormal `x`, `2^1023`, which brings it above `2^-52`); 1 for
+/// anything else.
+#[must_use]
+pub(crate) fn inverse_power_of_two(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return 1.0;
+    }
+    let e = (-x.log2().floor()).clamp(-1023.0, 1023.0);
+    if e >= -1022.0 {
+        f64::from_bits(((e as i64 + 1023) as u64) << 52)
+    } else {
+        // 2^-1023, a subnormal power of two.
+        f64::from_bits(1u64 << 51)
+    }
+}
+
+/// Multiplies `p` and `q` by the power of two that brings `p` into `[1, 2)`.
+/// `p` is positive and normal.
+#[inline]
+fn renormalise(p: &mut f64, q: &mut f64) {
+    let e = (p.to_bits() >> 52) & 0x7ff;
+    // 2^(1023 - e): the exponent field 2046 - e lies in [1, 2045] for normal p.
+    let m = f64::from_bits((2046u64.saturating_sub(e)).max(1) << 52);
+    *p *= m;
+    *q *= m;
+}
+
+/// `A', B1', B2', C'` of one alpha with one division: `1/a = (1-a) / (a (1-a))`,
+/// `1/(1-a) = a / (a (1-a))`. Agrees with [`alpha_terms`] to a few units in the
+/// last place.
+#[cfg(test)]
+fn alpha_terms_one_division(a: f64) -> [f64; 4] {
+    let u = 1.0 - a;
+    let iau = 1.0 / (a * u);
+    terms_from_inverses(a, u * iau, a * iau)
+}
+
+/// Coefficients of a piece from its scaled values, deviations and alpha terms
+/// (the arithmetic of `spline::piece_coefs`).
+#[inline(always)]
+fn piece(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> Piece {
+    let [al, b1, b2, cr] = terms;
+    let df = f1 - f0;
+    let s0 = df - d0 * b2 + d1 * cr;
+    let s1 = df + d1 * b1 - d0 * al;
+    let rise = df + (d1 - d0);
+    Piece([
+        f0 + d0,
+        s0,
+        3.0 * rise - 2.0 * s0 - s1,
+        s0 + s1 - 2.0 * rise,
+    ])
+}
+
+/// Builds the pieces of a validated spline into `coefs` (resized to one piece
+/// per interval; its allocation is reused).
+///
+/// `knots` are strictly increasing with a finite span, `values` finite and of
+/// the same length (at least 2), `alphas` one per interval and in range;
+/// `uniform` is `Some(a)` when every alpha is `a` (the exact [`alpha_terms`] are
+/// then used throughout). `inv_scale` is the exact power of two that scales the
+/// values, `wscale` the power of two that brings the span near 1.
+pub(crate) fn build(
+    knots: &[f64],
+    values: &[f64],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    inv_scale: f64,
+    wscale: f64,
+    coefs: &mut Vec<Piece>,
+) {
+    let n = knots.len();
+    if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        coefs.clear();
+        return;
+    }
+    // Every piece is overwritten below: keep the old contents rather than
+    // clearing them first (no pass over the memory when the size is unchanged).
+    coefs.truncate(n - 1);
+    coefs.resize(n - 1, Piece::default());
+    match uniform {
+        Some(a) => sweep::<false>(
+            knots,
+            values,
+            alphas,
+            alpha_terms(a),
+            inv_scale,
+            wscale,
+            coefs,
+        ),
+        None => sweep::<true>(knots, values, alphas, [0.0; 4], inv_scale, wscale, coefs),
+    }
+}
+
+/// `(1/a, 1/(1-a))` with one division.
+#[inline(always)]
+fn inverses(a: f64) -> (f64, f64) {
+    let u = 1.0 - a;
+    let iau = 1.0 / (a * u);
+    (u * iau, a * iau)
+}
+
+/// The sweeps of [`build`]; `PER` says whether the alphas differ (their terms
+/// are then formed per interval, else `uniform` serves every interval).
+/// Lengths: `values` as `knots` (`n >= 2`), `alphas` and `coefs` `n - 1`.
+fn sweep<const PER: bool>(
+    knots: &[f64],
+    values: &[f64],
+    alphas: &[f64],
+    uniform: [f64; 4],
+    inv_scale: f64,
+    ws: f64,
+    coefs: &mut [Piece],
+) {
+    let m = coefs.len();
+    let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
+    let terms = |a: f64, (ia, iu): (f64, f64)| {
+        if PER {
+            terms_from_inverses(a, ia, iu)
+        } else {
+            uniform
+        }
+    };
+    let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
+        knots.first(),
+        knots.get(1),
+        values.first(),
+        values.get(1),
+        alphas.first(),
+    ) else {
+        return;
+    };
+
+    // Forward sweep over rows k = 1 .. n-2 (two at a time), stored in coefs[k]
+    // as [u_k / piv_k, y_k, 1/alpha_k, 1/(1 - alpha_k)].
+    let mut p_prev2 = 1.0; // P_{k-2}
+    let mut p_prev = 1.0; // P_{k-1}
+    let mut y_prev = 0.0;
+    let mut u_prev = 0.0;
+    let mut kc = k1; // knots[k]
+    let mut hl = (k1 - k0) * ws;
+    let mut fc = v1 * inv_scale;
+    let mut df_l = fc - v0 * inv_scale; // F_k - F_{k-1}, scaled
+    let mut terms_l = terms(a0, inv_of(a0));
+    let mut since = 0;
+    let rows = coefs.get_mut(1..).unwrap_or_default();
+    let mut rows_it = rows.chunks_exact_mut(2);
+    let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
+    let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
+    let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
+    for (((slots, kn), vs), al) in rows_it.by_ref().zip(kn).zip(vs).zip(al) {
+        // Rows k and k + 1.
+        let h1 = (kn[0] - kc) * ws;
+        let h2 = (kn[1] - kn[0]) * ws;
+        kc = kn[1];
+        let (f1, f2) = (vs[0] * inv_scale, vs[1] * inv_scale);
+        let (i1, i2) = (inv_of(al[0]), inv_of(al[1]));
+        let (t1, t2) = (terms(al[0], i1), terms(al[1], i2));
+        let l1 = -h1 * terms_l[0];
+        let d1 = h1 * terms_l[1] + hl * t1[2];
+        let u1 = -hl * t1[3];
+        let (df1, df2) = (f1 - fc, f2 - f1);
+        let r1 = hl * df1 - h1 * df_l;
+        let l2 = -h2 * t1[0];
+        let d2 = h2 * t1[1] + h1 * t2[2];
+        let u2 = -h1 * t2[3];
+        let r2 = h1 * df2 - h2 * df1;
+        let e1 = l1 * u_prev;
+        let e2 = l2 * u1;
+        // P_k and P_{k+1} both from P_{k-1}, P_{k-2}: one multiply-subtract on
+        // the chain for two rows.
+        let p1 = d1 * p_prev - e1 * p_prev2;
+        let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
+        // One division for both pivots' reciprocals.
+        let rr = 1.0 / (p1 * p2);
+        let inv1 = p_prev * p2 * rr;
+        let inv2 = p1 * p1 * rr;
+        let (g1, m1) = (r1 * inv1, l1 * inv1);
+        let (g2, m2) = (r2 * inv2, l2 * inv2);
+        let y1 = g1 - m1 * y_prev;
+        let y2 = (g2 - m2 * g1) + (m2 * m1) * y_prev;
+        slots[0] = Piece([u1 * inv1, y1, i1.0, i1.1]);
+        slots[1] = Piece([u2 * inv2, y2, i2.0, i2.1]);
+        p_prev2 = p1;
+        p_prev = p2;
+        since += 2;
+        if since >= RENORM {
+            renormalise(&mut p_prev, &mut p_prev2);
+            since = 0;
+        }
+        y_prev = y2;
+        u_prev = u2;
+        hl = h2;
+        df_l = df2;
+        fc = f2;
+        terms_l = t2;
+    }
+    let done = 1 + 2 * ((m - 1) / 2);
+    if let (Some(slot), Some(&kr), Some(&vr), Some(&ar)) = (
+        rows_it.into_remainder().first_mut(),
+        knots.get(done + 1),
+        values.get(done + 1),
+        alphas.get(done),
+    ) {
+        // The last row when their number is odd.
+        let hr = (kr - kc) * ws;
+        let fr = vr * inv_scale;
+        let ir = inv_of(ar);
+        let terms_r = terms(ar, ir);
+        let l = -hr * terms_l[0];
+        let d = hr * terms_l[1] + hl * terms_r[2];
+        let u = -hl * terms_r[3];
+        let r = hl * (fr - fc) - hr * df_l;
+        let p = d * p_prev - (l * u_prev) * p_prev2;
+        let inv = p_prev / p;
+        let y = r * inv - (l * inv) * y_prev;
+        *slot = Piece([u * inv, y, ir.0, ir.1]);
+    }
+
+    // Backward sweep: d_k from d_{k+1} (two at a time), then the pieces.
+    let stored = |c: &Piece, a: f64| terms(a, (c.0[2], c.0[3]));
+    let mut d_next = 0.0;
+    let mut f_next = values.get(m).copied().unwrap_or_default() * inv_scale;
+    let (head, rows) = coefs.split_at_mut(1.min(m));
+    let mut back = rows.rchunks_exact_mut(2);
+    let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
+    let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
+    for ((pair, vs), al) in back.by_ref().zip(vs).zip(al) {
+        // pair = [coefs[k-1], coefs[k]].
+        let (a, b) = (pair[0], pair[1]);
+        let d_k = b.0[1] - b.0[0] * d_next;
+        // d_{k-1} from d_{k+1}: one multiply-add on the chain for two rows.
+        let d_km1 = (a.0[1] - a.0[0] * b.0[1]) + (a.0[0] * b.0[0]) * d_next;
+        let (fkm1, fk) = (vs[0] * inv_scale, vs[1] * inv_scale);
+        pair[1] = piece(fk, f_next, d_k, d_next, stored(&b, al[1]));
+        pair[0] = piece(fkm1, fk, d_km1, d_k, stored(&a, al[0]));
+        d_next = d_km1;
+        f_next = fkm1;
+    }
+    if let (Some(slot), Some(&v), Some(&a)) = (
+        back.into_remainder().first_mut(),
+        values.get(1),
+        alphas.get(1),
+    ) {
+        // coefs[1] when the number of rows is odd.
+        let b = *slot;
+        let d = b.0[1] - b.0[0] * d_next;
+        let f1 = v * inv_scale;
+        *slot = piece(f1, f_next, d, d_next, stored(&b, a));
+        d_next = d;
+        f_next = f1;
+    }
+    if let Some(slot) = head.first_mut() {
+        *slot = piece(v0 * inv_scale, f_next, 0.0, d_next, terms(a0, inv_of(a0)));
+    }
+}
+
+/// `A', B1', B2', C'` from `a`, `1/a` and `1/(1-a)`.
+#[inline(always)]
+fn terms_from_inverses(a: f64, ia: f64, iu: f64) -> [f64; 4] {
+    let r = a * iu;
+    let ir = (1.0 - a) * ia;
+    [r * r, 2.0 * ia + 1.0, 2.0 * iu + 1.0, ir * ir]
+}
+
+/// Derivative of order `O` (0..=3) in `t` of the cubic `c`, not divided by
+/// `h^O`: the arithmetic of `spline::poly_deriv`.
+#[inline(always)]
+pub(crate) fn poly<const O: u32>(c: &[f64; 4], t: f64) -> f64 {
+    match O {
+        0 => c[0] + t * (c[1] + t * (c[2] + t * c[3])),
+        1 => c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]),
+        2 => 2.0 * c[2] + 6.0 * t * c[3],
+        3 => 6.0 * c[3],
+        _ => 0.0,
+    }
+}
+
+/// `v / h^O` as `v * (1/h)^O`, the way the pointwise evaluator does it.
+#[inline(always)]
+pub(crate) fn per_h<const O: u32>(v: f64, inv: f64) -> f64 {
+    let mut v = v;
+    for _ in 0..O {
+        v *= inv;
+    }
+    v
+}
+
+/// Queries handed to the batch evaluators at once by the block search.
+pub(crate) const BLOCK: usize = 16;
+
+/// Knots between two entries of the search summary.
+pub(crate) const STRIDE: usize = 16;
+
+/// Fills `summary` with `knots[0], knots[STRIDE], knots[2 STRIDE], ...`: the
+/// random-order search looks there first (`N / 16` doubles, small enough to
+/// stay in cache) and then among the [`STRIDE`] knots of one stretch (two
+/// cache lines), instead of touching a new cache line at each of the last ten
+/// or so halvings of a search over all knots.
+pub(crate) fn summarise(knots: &[f64], summary: &mut Vec<f64>) {
+    summary.clear();
+    summary.extend(knots.iter().step_by(STRIDE).copied());
+}
+
+/// The batch evaluator's view of a spline.
+pub(crate) struct Batch<'a> {
+    pub(crate) knots: &'a [f64],
+    /// Every [`STRIDE`]-th knot, see [`summarise`].
+    pub(crate) summary: &'a [f64],
+    pub(crate) coefs: &'a [Piece],
+    pub(crate) scale: f64,
+}
+
+impl Batch<'_> {
+    /// Evaluates `out[i] = S^(O)(xs[i])` for every query inside `[tau_0, tau_{N-1})`
+    /// whose result is finite; calls `slow(i, x, out_i)` for the others (outside
+    /// the domain, NaN, the last knot, overflow), which writes `out[i]` itself or
+    /// fails.
+    ///
+    /// Queries go in blocks of [`BLOCK`]. A block is either walked (the piece of
+    /// the previous query is tried first, then a few steps forward, then a
+    /// binary search) or searched (a branchless binary search interleaved over
+    /// the block). A walked block with more than two jumps backward or far
+    /// forward hands the next block to the search; a searched block whose first
+    /// four queries are in order hands the next block back to the walk.
+    pub(crate) fn run<const O: u32, E>(
+        &self,
+        xs: &[f64],
+        out: &mut [f64],
+        mut slow: impl FnMut(usize, f64, &mut f64) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let knots = self.knots;
+        let coefs = self.coefs;
+        let m = coefs.len();
+        if m == 0 || knots.len() != m + 1 {
+            for (i, (&x, o)) in xs.iter().zip(out.iter_mut()).enumerate() {
+                slow(i, x, o)?;
+            }
+            return Ok(());
+        }
+        let (lo, hi) = (knots[0], knots[m]);
+        let scale = self.scale;
+        // The current piece of the walk.
+        let mut k = 0;
+        let mut k0 = knots[0];
+        let mut k1 = knots[1];
+        let mut inv = 1.0 / (k1 - k0);
+        let mut c = coefs[0].0;
+        let mut base = 0;
+        let mut search = false;
+        for (xb, ob) in xs.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
+            if !search {
+                let mut jumps = 0;
+                for (j, (&x, o)) in xb.iter().zip(ob.iter_mut()).enumerate() {
+                    // Inside the current piece implies inside the domain.
+                    if !(x >= k0 && x < k1) {
+                        if !(x >= lo && x < hi) {
+                            slow(base + j, x, o)?;
+                            continue;
+                        }
+                        let (next, far) = locate_from(knots, k, x);
+                        jumps += usize::from(far);
+                        k = next;
+                        k0 = knots[k];
+                        k1 = knots[k + 1];
+                        inv = 1.0 / (k1 - k0);
+                        c = coefs[k].0;
+                    }
+                    let t = (x - k0) * inv;
+                    let v = per_h::<O>(poly::<O>(&c, t) * scale, inv);
+                    if v.is_finite() {
+                        *o = v;
+                    } else {
+                        slow(base + j, x, o)?;
+                    }
+                }
+                search = jumps > 2;
+            } else {
+                let mut idx = [0usize; BLOCK];
+                search_block(knots, self.summary, xb, &mut idx);
+                for (j, ((&x, o), &q)) in xb.iter().zip(ob.iter_mut()).zip(&idx).enumerate() {
+                    if !(x >= lo && x < hi) {
+                        slow(base + j, x, o)?;
+                        continue;
+                    }
+                    let q = q.min(m - 1);
+                    let (a, b) = (knots[q], knots[q + 1]);
+                    let iv = 1.0 / (b - a);
+                    let t = (x - a) * iv;
+                    let v = per_h::<O>(poly::<O>(&coefs[q].0, t) * scale, iv);
+                    if v.is_finite() {
+                        *o = v;
+                    } else {
+                        slow(base + j, x, o)?;
+                    }
+                }
+                search = !(xb.len() >= 4 && xb[0] <= xb[1] && xb[1] <= xb[2] && xb[2] <= xb[3]);
+            }
+            base += xb.len();
+        }
+        Ok(())
+    }
+}
+
+/// The piece of `x` (inside the domain) starting the search at piece `k`: a few
+/// linear steps forward, then a binary search. The flag says whether it took
+/// the binary search.
+#[inline]
+fn locate_from(knots: &[f64], k: usize, x: f64) -> (usize, bool) {
+    let last = knots.len() - 2;
+    let mut k = k;
+    if x >= knots[k] {
+        for _ in 0..4 {
+            if k == last || x < knots[k + 1] {
+                return (k, false);
+            }
+            k += 1;
+        }
+        let rest = &knots[k + 1..];
+        ((k + rest.partition_point(|&v| v <= x)).min(last), true)
+    } else {
+        let found = knots[..k]
+            .partition_point(|&v| v <= x)
+            .saturating_sub(1)
+            .min(last);
+        (found, true)
+    }
+}
+
+/// For each query the last knot index `i` with `knots[i] <= x` (0 when there is
+/// none), by a branchless binary search interleaved over the block: first over
+/// the summary, then over the [`STRIDE`] knots of the stretch it names.
+#[inline]
+fn search_block(knots: &[f64], summary: &[f64], xb: &[f64], idx: &mut [usize; BLOCK]) {
+    let mut q = [0.0; BLOCK];
+    for (d, &s) in q.iter_mut().zip(xb) {
+        *d = s;
+    }
+    let mut stretch = [0usize; BLOCK];
+    halve(summary, summary.len(), &q, &mut stretch);
+    for (i, s) in idx.iter_mut().zip(&stretch) {
+        *i = s * STRIDE;
+    }
+    // The answer lies in [s STRIDE, (s + 1) STRIDE): past the last knot the
+    // probes read the last knot, which no query inside the domain reaches.
+    halve(knots, STRIDE.min(knots.len()), &q, idx);
+}
+
+/// Branchless binary search of `len` steps' worth from the bases in `idx`.
+#[inline(always)]
+fn halve(knots: &[f64], len: usize, q: &[f64; BLOCK], idx: &mut [usize; BLOCK]) {
+    let last = knots.len().saturating_sub(1);
+    let mut len = len;
+    while len > 1 {
+        let half = len / 2;
+        for (b, &x) in idx.iter_mut().zip(q.iter()) {
+            let probe = *b + half;
+            // The min only spares a bounds check (and keeps the probes of a
+            // stretch at the end inside the knots).
+            let v = knots[probe.min(last)];
+            // The outcome is random: a conditional move, not a branch that
+            // would mispredict half the time.
+            *b = core::hint::select_unpredictable(v <= x, probe, *b);
+        }
+        len -= half;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_division_terms_match() {
+        for i in 0..=100 {
+            let a = 1.0 / 3.0 + f64::from(i) / 300.0;
+            let want = alpha_terms(a);
+            let got = alpha_terms_one_division(a);
+            for j in 0..4 {
+                assert!(
+                    (want[j] - got[j]).abs() <= 4.0 * f64::EPSILON * want[j].abs(),
+                    "alpha {a} term {j}: want {}, got {}",
+                    want[j],
+                    got[j]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn renormalise_lands_in_one_two() {
+        for p in [1e-300, 3.5, 1e300, f64::MIN_POSITIVE] {
+            let (mut a, mut b) = (p, p / 4.0);
+            renormalise(&mut a, &mut b);
+            assert!((1.0..2.0).contains(&a), "{p} -> {a}");
+            assert_eq!(a / b, 4.0);
+        }
+    }
+
+    #[test]
+    fn inverse_power_of_two_brings_to_one_two() {
+        for x in [1e-300, 0.3, 1.0, 7.0, 1e300, f64::MAX] {
+            let s = inverse_power_of_two(x);
+            assert!((1.0..2.0).contains(&(x * s)), "{x} * {s}");
+        }
+        let s = inverse_power_of_two(1e-310);
+        assert!((2f64.powi(-52)..2.0).contains(&(1e-310 * s)), "{s}");
+        assert_eq!(inverse_power_of_two(0.0), 1.0);
+    }
+
+    #[test]
+    fn block_search_finds_the_last_knot_not_above() {
+        let knots: Vec<f64> = (0..77).map(|i| f64::from(i * i)).collect();
+        let xs: Vec<f64> = (0..16).map(|i| f64::from(i * 383 % 5800) - 5.0).collect();
+        let mut summary = Vec::new();
+        summarise(&knots, &mut summary);
+        let mut idx = [0; BLOCK];
+        search_block(&knots, &summary, &xs, &mut idx);
+        for (x, i) in xs.iter().zip(idx) {
+            let want = knots.partition_point(|&k| k <= *x).saturating_sub(1);
+            assert_eq!(i, want, "x = {x}");
+        }
+    }
+
+    #[test]
+    fn locate_from_matches_partition_point() {
+        let knots: Vec<f64> = (0..50).map(|i| f64::from(i) * 0.5).collect();
+        for start in [0, 3, 20, 48] {
+            for i in 0..98 {
+                let x = f64::from(i) * 0.25;
+                let want = knots.partition_point(|&k| k <= x).saturating_sub(1).min(48);
+                assert_eq!(locate_from(&knots, start, x).0, want, "from {start} x {x}");
+            }
+        }
+    }
+}
