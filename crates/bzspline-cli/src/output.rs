@@ -35,8 +35,17 @@ impl Sink {
                     Some(d) if !d.as_os_str().is_empty() => d,
                     _ => Path::new("."),
                 };
-                let tmp = tempfile::Builder::new()
-                    .prefix(".bzspline-")
+                let mut builder = tempfile::Builder::new();
+                builder.prefix(".bzspline-");
+                // Temporary files are private (0600) by default; the output is an
+                // ordinary file, so ask for 0666 and let the umask decide, as any
+                // other program writing a file would.
+                #[cfg(unix)]
+                {
+                    use std::os::unix::fs::PermissionsExt;
+                    builder.permissions(std::fs::Permissions::from_mode(0o666));
+                }
+                let tmp = builder
                     .tempfile_in(dir)
                     .with_context(|| format!("creating a file in {}", dir.display()))?;
                 Ok(Sink::File {
@@ -123,6 +132,23 @@ mod tests {
         emit(Some(&target), b"hello").unwrap();
         assert_eq!(std::fs::read(&target).unwrap(), b"hello");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn output_files_get_the_umask_permissions_not_0600() {
+        use std::os::unix::fs::PermissionsExt;
+        let status = std::fs::read_to_string("/proc/self/status").unwrap();
+        let umask = status
+            .lines()
+            .find_map(|l| l.strip_prefix("Umask:"))
+            .map(|v| u32::from_str_radix(v.trim(), 8).unwrap())
+            .unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("out.txt");
+        emit(Some(&target), b"x").unwrap();
+        let mode = std::fs::metadata(&target).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o666 & !umask, "mode {mode:o} with umask {umask:o}");
     }
 
     #[test]
