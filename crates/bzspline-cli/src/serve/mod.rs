@@ -52,10 +52,12 @@ pub struct ServeArgs {
     /// points); more get 422.
     #[arg(long, default_value_t = 200_000, value_name = "N")]
     pub max_samples: usize,
-    /// Time limit for one fit in milliseconds; slower ones get 504.
+    /// Time limit for one request (reading the body and fitting) in
+    /// milliseconds; slower ones get 504.
     #[arg(long, default_value_t = 5_000, value_name = "MS")]
     pub timeout_ms: u64,
-    /// Most fits computed at once; further requests get 503 at once.
+    /// Most fit requests handled at once (from reading the body to the end of
+    /// the fit); further ones get 503 at once.
     #[arg(long, default_value_t = 4, value_name = "N")]
     pub max_in_flight: usize,
     /// Do not log each fit to standard error.
@@ -169,13 +171,52 @@ fn error_response(e: &ApiError) -> Response {
 }
 
 async fn fit_handler(State(state): State<Arc<AppState>>, req: Request<Body>) -> Response {
-    match fit_request(&state, req).await {
-        Ok(v) => Json(v).into_response(),
-        Err(e) => error_response(&e),
+    let started = Instant::now();
+    // The permit is held from the first byte of the body to the end of the fit,
+    // so slow uploads count against the cap too.
+    let Ok(permit) = Arc::clone(&state.in_flight).try_acquire_owned() else {
+        return error_response(&ApiError::new(
+            503,
+            "too many requests in flight (--max-in-flight); try again",
+        ));
+    };
+    let outcome = tokio::time::timeout(state.timeout, fit_request(&state, req, permit)).await;
+    let result = outcome.unwrap_or_else(|_| {
+        Err(ApiError::new(
+            504,
+            format!(
+                "the request took longer than {} ms (--timeout-ms)",
+                state.timeout.as_millis()
+            ),
+        ))
+    });
+    match result {
+        Ok((mut value, n, fit_ms)) => {
+            if !state.quiet {
+                eprintln!(
+                    "fit: {n} points, {fit_ms:.3} ms computing, {:.3} ms in total",
+                    started.elapsed().as_secs_f64() * 1e3
+                );
+            }
+            value["fit_ms"] = serde_json::json!(fit_ms);
+            Json(value).into_response()
+        }
+        Err(e) => {
+            if !state.quiet {
+                eprintln!("fit refused ({}): {}", e.status, e.message);
+            }
+            error_response(&e)
+        }
     }
 }
 
-async fn fit_request(state: &AppState, req: Request<Body>) -> Result<serde_json::Value, ApiError> {
+/// Reads, checks and fits one request: the fit JSON, the number of points and
+/// the milliseconds spent computing.
+async fn fit_request(
+    state: &AppState,
+    req: Request<Body>,
+    permit: tokio::sync::OwnedSemaphorePermit,
+) -> Result<(serde_json::Value, usize, f64), ApiError> {
     let too_large = || {
         ApiError::new(
             413,
@@ -194,40 +235,15 @@ async fn fit_request(state: &AppState, req: Request<Body>) -> Result<serde_json:
         .await
         .map_err(|_| too_large())?;
     let request = api::parse(&body, state.limits)?;
-    let permit = Arc::clone(&state.in_flight)
-        .try_acquire_owned()
-        .map_err(|_| ApiError::new(503, "too many fits in flight (--max-in-flight); try again"))?;
     let n = request.spec.points.len();
-    let started = Instant::now();
     let task = tokio::task::spawn_blocking(move || {
         let _permit = permit;
         let t = Instant::now();
         let result = api::fit(&request);
         (result, t.elapsed())
     });
-    let (result, compute) = match tokio::time::timeout(state.timeout, task).await {
-        Ok(Ok(done)) => done,
-        Ok(Err(_)) => return Err(ApiError::new(500, "the fit stopped unexpectedly")),
-        Err(_) => {
-            return Err(ApiError::new(
-                504,
-                format!(
-                    "the fit took longer than {} ms (--timeout-ms)",
-                    state.timeout.as_millis()
-                ),
-            ))
-        }
-    };
-    let fit_ms = compute.as_secs_f64() * 1e3;
-    if !state.quiet {
-        eprintln!(
-            "fit: {n} points, {:.3} ms computing, {:.3} ms in total, {}",
-            fit_ms,
-            started.elapsed().as_secs_f64() * 1e3,
-            if result.is_ok() { "ok" } else { "refused" }
-        );
+    match task.await {
+        Ok((result, compute)) => result.map(|v| (v, n, compute.as_secs_f64() * 1e3)),
+        Err(_) => Err(ApiError::new(500, "the fit stopped unexpectedly")),
     }
-    let mut value = result?;
-    value["fit_ms"] = serde_json::json!(fit_ms);
-    Ok(value)
 }
