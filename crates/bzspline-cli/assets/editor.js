@@ -6,7 +6,7 @@
   const SVG_NS = 'http://www.w3.org/2000/svg';
   const ALPHA_MIN = 1 / 3;
   const ALPHA_MAX = 2 / 3;
-  const COMB_SAMPLES = 16;
+  const COMB_SAMPLES = 24;
   const EXAMPLE_1 = [1, 3, 3, 1, 2, 7, 1.5, 1, 10, 2, 1.5].map((f, i) => [i + 1, f]);
 
   const $ = (id) => document.getElementById(id);
@@ -77,6 +77,7 @@
   let inFlight = false;
   let dirty = false;
   let frame = 0;
+  let serverRefused = false; // the status line shows the server's refusal
   function requestFit() {
     dirty = true;
     if (!frame) frame = requestAnimationFrame(flush);
@@ -111,13 +112,16 @@
         $('info-rt').textContent = `${rt.toFixed(1)} ms`;
         el.fitJson.textContent = JSON.stringify(json);
         el.curve.classList.remove('stale');
-        if (el.status.classList.contains('error') && !dirty) say('Fitted.');
+        if (serverRefused && !dirty) say('Fitted.');
+        serverRefused = false;
       } else {
         el.curve.classList.add('stale');
+        serverRefused = true;
         say(`The server refused the fit (${res.status}): ${json.error}`, true);
       }
     } catch (e) {
       el.curve.classList.add('stale');
+      serverRefused = true;
       say(`No answer from the server: ${e.message}`, true);
     } finally {
       inFlight = false;
@@ -221,7 +225,7 @@
     if (fit && fit.comb && $('show-comb').checked && fit.comb.length) {
       const r = svg.getBoundingClientRect();
       const kmax = Math.max(...fit.comb.map((t) => Math.abs(t[4])));
-      const len = kmax > 0 ? (0.12 * Math.min(r.width, r.height)) / kmax : 0;
+      const len = kmax > 0 ? (0.08 * Math.min(r.width, r.height)) / kmax : 0;
       const tips = [];
       for (const [x, y, nx, ny, k] of fit.comb) {
         const [sx, sy] = toScreen([x, y]);

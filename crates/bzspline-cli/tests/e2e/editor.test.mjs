@@ -1,0 +1,199 @@
+// End-to-end test of the `bzspline serve` editor in headless Chromium.
+// Run with `node --test editor.test.mjs` (see run.sh). BZSPLINE_BIN names the
+// binary (default: the workspace's target/debug/bzspline).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import { mkdirSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const root = resolve(here, '../../../..');
+const bin = process.env.BZSPLINE_BIN || resolve(root, 'target/debug/bzspline');
+const screenshot = resolve(root, 'docs/editor.png');
+const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
+
+let server;
+let base;
+let browser;
+let page;
+
+function startServer() {
+  return new Promise((ok, fail) => {
+    server = spawn(bin, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    server.on('error', fail);
+    server.stderr.on('data', (d) => {
+      for (const line of d.toString().split('\n')) {
+        if (line.startsWith('fit: 1000 points')) serverLog.push(line);
+      }
+    });
+    let out = '';
+    server.stdout.on('data', (d) => {
+      out += d.toString();
+      const m = out.match(/http:\/\/[^\s]+\//);
+      if (m) ok(m[0]);
+    });
+    setTimeout(() => fail(new Error(`no address printed by ${bin}: ${out}`)), 15000);
+  });
+}
+const serverLog = [];
+
+async function apiFit(body) {
+  const res = await fetch(new URL('/api/fit', base), {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify(body),
+  });
+  assert.equal(res.status, 200, `the API refused ${JSON.stringify(body)}`);
+  return res.json();
+}
+
+// Waits until the page has no fit pending and at least `after` fits done.
+async function settled(after = 0) {
+  await page.waitForFunction((n) => window.bzEditor.idle() && window.bzEditor.fits > n, after);
+}
+const fits = () => page.evaluate(() => window.bzEditor.fits);
+const shownFit = async () => JSON.parse(await page.locator('#fit-json').textContent());
+const curvePath = () => page.locator('#curve').getAttribute('d');
+
+async function centre(selector) {
+  const box = await page.locator(selector).boundingBox();
+  assert.ok(box, `${selector} is not on the page`);
+  return [box.x + box.width / 2, box.y + box.height / 2];
+}
+
+async function drag(from, to, steps = 12) {
+  await page.mouse.move(...from);
+  await page.mouse.down();
+  await page.mouse.move(...to, { steps });
+}
+
+before(async () => {
+  base = await startServer();
+  browser = await chromium.launch({
+    executablePath: CHROMIUM,
+    args: [
+      '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+      '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    ],
+  });
+  page = await browser.newPage({ viewport: { width: 1280, height: 760 }, deviceScaleFactor: 1 });
+  page.on('pageerror', (e) => { throw e; });
+  await page.goto(base);
+  await settled();
+});
+
+after(async () => {
+  await browser?.close();
+  server?.kill();
+});
+
+test('starts from the paper\'s Example 1', async () => {
+  const fit = await shownFit();
+  assert.deepEqual(fit.knots, [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]);
+  assert.equal(fit.knot_values[0], 1);
+  assert.equal(fit.knot_values[10], 1.5);
+  assert.match(await curvePath(), /^M1 1 C/);
+  assert.equal(await page.locator('.pt').count(), 11);
+  assert.equal(await page.locator('.tp').count(), 10);
+});
+
+test('dragging a control point redraws the curve with the server\'s knot values', async () => {
+  const before = await curvePath();
+  const n = await fits();
+  const [x, y] = await centre('.pt[data-index="5"]');
+  await drag([x, y], [x, y + 120]);
+  await page.mouse.up();
+  await settled(n);
+  const after = await curvePath();
+  assert.notEqual(after, before, 'the drawn path did not change');
+  const points = await page.evaluate(() => window.bzEditor.state.points);
+  assert.ok(points[5][1] < 7, `point 5 did not move down: ${points[5]}`);
+  const shown = await shownFit();
+  const alphas = await page.evaluate(() => window.bzEditor.state.alphas);
+  const direct = await apiFit({ points, alphas });
+  assert.deepEqual(shown.knot_values, direct.knot_values);
+  assert.equal(shown.svg_path, direct.svg_path);
+  assert.equal(after, direct.svg_path);
+  // The side panel lists the same knot values.
+  const listed = await page.locator('#knot-list li').allTextContents();
+  assert.equal(listed.length, 11);
+  assert.ok(Math.abs(Number(listed[5]) - direct.knot_values[5]) < 1e-4, `${listed[5]} vs ${direct.knot_values[5]}`);
+});
+
+test('a function refuses a move that would break increasing x', async () => {
+  const [x, y] = await centre('.pt[data-index="3"]');
+  const [x2] = await centre('.pt[data-index="2"]');
+  await drag([x, y], [x2 - 30, y]);
+  await page.mouse.up();
+  await settled();
+  assert.match(await page.locator('#status').textContent(), /x must keep increasing/);
+  const pts = await page.evaluate(() => window.bzEditor.state.points);
+  assert.ok(pts[3][0] > pts[2][0], `x order broken: ${pts[2]} ${pts[3]}`);
+});
+
+test('dragging a tangent point stops at alpha = 1/3', async () => {
+  const n = await fits();
+  const from = await centre('.tp[data-leg="7"]');
+  const to = await centre('.pt[data-index="8"]');
+  // Past the far end of leg 7: the tangent point stops at 2/3 of the leg.
+  await drag(from, [to[0] + 40, to[1] - 40]);
+  assert.equal(await page.locator('#alpha-readout').textContent(), 'leg 7: 0.3333');
+  assert.match(await page.locator('#alpha-label text').textContent(), /= 0\.3333$/);
+  await page.mouse.up();
+  await settled(n);
+  const fit = await shownFit();
+  assert.ok(Math.abs(fit.alphas[7] - 1 / 3) < 1e-12, `alpha ${fit.alphas[7]}`);
+  assert.equal(await page.locator('.tp[data-leg="7"]').getAttribute('data-alpha'), '0.3333');
+  // And back the other way to 2/3.
+  const m = await fits();
+  const p7 = await centre('.pt[data-index="7"]');
+  await drag(await centre('.tp[data-leg="7"]'), [p7[0] - 40, p7[1] + 40]);
+  assert.equal(await page.locator('#alpha-readout').textContent(), 'leg 7: 0.6667');
+  await page.mouse.up();
+  await settled(m);
+  assert.ok(Math.abs((await shownFit()).alphas[7] - 2 / 3) < 1e-12);
+});
+
+test('a 1,000-point polygon is fitted on every move (timing reported, not asserted)', async () => {
+  const times = [];
+  for (let run = 0; run < 7; run++) {
+    const n = await fits();
+    await page.evaluate((r) => {
+      const pts = Array.from({ length: 1000 }, (_, i) => [i / 10, Math.sin(i / 7 + r) * 3 + Math.cos(i / 3) * 0.5]);
+      window.bzEditor.loadPoints(pts, 'function', false);
+    }, run);
+    await settled(n);
+    const fit = await page.evaluate(() => ({ n: window.bzEditor.fit.knot_values.length, ms: window.bzEditor.fit.fit_ms, rt: window.bzEditor.lastRoundTripMs }));
+    assert.equal(fit.n, 1000);
+    times.push(fit);
+  }
+  const median = (xs) => xs.slice().sort((a, b) => a - b)[Math.floor(xs.length / 2)];
+  console.log(`1000-point fit: server ${median(times.map((t) => t.ms)).toFixed(3)} ms, browser round trip ${median(times.map((t) => t.rt)).toFixed(1)} ms (median of ${times.length})`);
+  for (const line of serverLog.slice(-3)) console.log(`server log: ${line}`);
+});
+
+test('screenshot of the editor', async () => {
+  const n = await fits();
+  await page.click('#reset');
+  await page.check('#show-comb');
+  await page.check('#show-hull');
+  await settled(n);
+  // Shape it a little, and hold a tangent point so that its alpha shows.
+  const m = await fits();
+  const [x, y] = await centre('.pt[data-index="2"]');
+  await drag([x, y], [x, y - 60]);
+  await page.mouse.up();
+  await settled(m);
+  const k = await fits();
+  const from = await centre('.tp[data-leg="5"]');
+  const to = await centre('.pt[data-index="5"]');
+  await drag(from, [(from[0] + to[0]) / 2, (from[1] + to[1]) / 2]);
+  await settled(k);
+  mkdirSync(dirname(screenshot), { recursive: true });
+  await page.screenshot({ path: screenshot });
+  await page.mouse.up();
+  assert.ok((await shownFit()).comb.length > 0);
+});
