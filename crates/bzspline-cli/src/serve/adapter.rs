@@ -110,7 +110,7 @@ fn parameters(points: &[Vec<f64>], kind: ParamKind) -> Result<Vec<f64>, Error> {
                 ParamKind::Chordal => len,
                 ParamKind::Centripetal => len.sqrt(),
             };
-            if !(step > 0.0) && kind != ParamKind::Uniform {
+            if step.is_nan() || step <= 0.0 {
                 return Err(Error::RepeatedPoint { index: i });
             }
             t += step;

@@ -222,7 +222,7 @@ fn comb(segs: &[CubicBez<2>], samples: usize) -> Value {
             let d = s.deriv(t);
             let dd = s.deriv2(t);
             let speed = d[0].hypot(d[1]);
-            if !(speed > 0.0) || !speed.is_finite() {
+            if !speed.is_finite() || speed <= 0.0 {
                 continue;
             }
             let k = (d[0] * dd[1] - d[1] * dd[0]) / (speed * speed * speed);

@@ -42,7 +42,7 @@ impl HostGuard {
 
     fn allows(&self, host_port: &str) -> bool {
         let host_port = host_port.to_ascii_lowercase();
-        self.allowed.iter().any(|a| *a == host_port)
+        self.allowed.contains(&host_port)
     }
 
     /// `Ok` when the `Host` header names this server and the `Origin` header,
