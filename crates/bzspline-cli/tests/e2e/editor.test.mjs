@@ -157,6 +157,80 @@ test('dragging a tangent point stops at alpha = 1/3', async () => {
   assert.ok(Math.abs((await shownFit()).alphas[7] - 2 / 3) < 1e-12);
 });
 
+test('double-click adds a point on the nearest leg; right-click removes it; undo and redo', async () => {
+  const n0 = await page.locator('.pt').count();
+  const a = await centre('.pt[data-index="0"]');
+  const b = await centre('.pt[data-index="1"]');
+  let n = await fits();
+  await page.mouse.dblclick(a[0] + 0.3 * (b[0] - a[0]), a[1] + 0.3 * (b[1] - a[1]));
+  await settled(n);
+  assert.equal(await page.locator('.pt').count(), n0 + 1);
+  assert.equal((await shownFit()).knots.length, n0 + 1);
+  n = await fits();
+  await page.click('.pt[data-index="1"]', { button: 'right' });
+  await settled(n);
+  assert.equal(await page.locator('.pt').count(), n0);
+  n = await fits();
+  await page.click('#undo');
+  await settled(n);
+  assert.equal(await page.locator('.pt').count(), n0 + 1);
+  n = await fits();
+  await page.keyboard.press('Control+Shift+Z');
+  await settled(n);
+  assert.equal(await page.locator('.pt').count(), n0);
+});
+
+test('curve mode: chordal parameters, and back to a function only while x increases', async () => {
+  let n = await fits();
+  await page.selectOption('#mode', 'curve');
+  await page.selectOption('#param', 'chordal');
+  await settled(n);
+  let fit = await shownFit();
+  assert.equal(fit.dimension, 2);
+  const points = await page.evaluate(() => window.bzEditor.state.points);
+  const direct = await apiFit({ points, mode: 'curve', param: 'chordal', alphas: await page.evaluate(() => window.bzEditor.state.alphas) });
+  assert.deepEqual(fit.knot_values, direct.knot_values);
+  // Move a point left of its neighbour: allowed for a curve...
+  n = await fits();
+  const [x, y] = await centre('.pt[data-index="4"]');
+  const [x3] = await centre('.pt[data-index="3"]');
+  await drag([x, y], [x3 - 40, y]);
+  await page.mouse.up();
+  await settled(n);
+  fit = await shownFit();
+  assert.equal(fit.dimension, 2);
+  // ...but then y(x) is refused with a reason.
+  await page.selectOption('#mode', 'function');
+  assert.equal(await page.locator('#mode').inputValue(), 'curve');
+  assert.match(await page.locator('#status').textContent(), /needs increasing x/);
+  n = await fits();
+  await page.click('#undo');
+  await page.selectOption('#mode', 'function');
+  await settled(n);
+  assert.equal(await page.locator('#mode').inputValue(), 'function');
+  assert.equal((await shownFit()).dimension, 1);
+});
+
+test('points load from CSV and GeoJSON text, and export as CSV', async () => {
+  let n = await fits();
+  await page.evaluate(() => window.bzEditor.importText('x,y\n0,0\n1,2\n2,1\n3,3\n', 'test.csv'));
+  await settled(n);
+  assert.equal((await shownFit()).knots.length, 4);
+  assert.match(await page.locator('#status').textContent(), /Loaded 4 points from test.csv as a function/);
+  n = await fits();
+  const geo = { type: 'Feature', geometry: { type: 'LineString', coordinates: [[0, 0], [2, 1], [1, 3], [-1, 2]] } };
+  await page.evaluate((t) => window.bzEditor.importText(t, 'line.geojson'), JSON.stringify(geo));
+  await settled(n);
+  assert.equal(await page.locator('#mode').inputValue(), 'curve');
+  assert.equal((await shownFit()).dimension, 2);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export-csv')]);
+  const chunks = [];
+  for await (const c of await download.createReadStream()) chunks.push(c);
+  assert.equal(Buffer.concat(chunks).toString(), 'x,y\n0,0\n2,1\n1,3\n-1,2\n');
+  await page.evaluate(() => window.bzEditor.importText('1,2\nnot a number\n', 'bad.csv'));
+  assert.match(await page.locator('#status').textContent(), /line 2/);
+});
+
 test('a 1,000-point polygon is fitted on every move (timing reported, not asserted)', async () => {
   const times = [];
   for (let run = 0; run < 7; run++) {
