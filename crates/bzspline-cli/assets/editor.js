@@ -108,6 +108,7 @@
       if (res.ok) {
         fit = json;
         editor.lastRoundTripMs = rt;
+        $('info-build').textContent = `${json.build_ms.toFixed(3)} ms`;
         $('info-fit').textContent = `${json.fit_ms.toFixed(3)} ms`;
         $('info-rt').textContent = `${rt.toFixed(1)} ms`;
         el.fitJson.textContent = JSON.stringify(json);
@@ -578,7 +579,7 @@
   }
   $('export-json').addEventListener('click', () => {
     if (!fit) return say('Nothing fitted yet.', true);
-    const { fit_ms, ...rest } = fit;
+    const { fit_ms, build_ms, ...rest } = fit;
     download('bzspline-fit.json', 'application/json', JSON.stringify(rest, null, 2) + '\n');
   });
   $('export-csv').addEventListener('click', () => {

@@ -180,14 +180,18 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
     })
 }
 
-/// Builds the fit and its JSON, with the curvature comb when asked for.
+/// Builds the fit and its JSON, with the curvature comb when asked for and
+/// `build_ms`, the milliseconds the library took to build the fit.
 ///
 /// # Errors
 ///
 /// 422 with the library's message when the library refuses the data.
 pub fn fit(req: &FitRequest) -> Result<Value, ApiError> {
+    let started = std::time::Instant::now();
     let fitted = adapter::build(&req.spec).map_err(|e| ApiError::new(422, e.to_string()))?;
+    let build_ms = started.elapsed().as_secs_f64() * 1e3;
     let mut out = adapter::fit_json(&fitted);
+    out["build_ms"] = json!(build_ms);
     if req.samples > 0 {
         let segs = segments_of(&out);
         out["comb"] = comb(&segs, req.samples);

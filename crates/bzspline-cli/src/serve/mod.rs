@@ -193,8 +193,9 @@ async fn fit_handler(State(state): State<Arc<AppState>>, req: Request<Body>) -> 
     match result {
         Ok((mut value, n, fit_ms)) => {
             if !state.quiet {
+                let build_ms = value["build_ms"].as_f64().unwrap_or(f64::NAN);
                 eprintln!(
-                    "fit: {n} points, {fit_ms:.3} ms computing, {:.3} ms in total",
+                    "fit: {n} points, {build_ms:.3} ms building, {fit_ms:.3} ms with the JSON, {:.3} ms in total",
                     started.elapsed().as_secs_f64() * 1e3
                 );
             }
