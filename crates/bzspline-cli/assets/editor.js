@@ -30,6 +30,7 @@
   let fit = null; // the last successful response
   let selected = -1;
   let view = { sx: 1, tx: 0, ty: 0 }; // screen = (x * sx + tx, -y * sx + ty)
+  let size = { width: 800, height: 600 }; // the canvas, measured in fitView
   const history = { undo: [], redo: [] };
 
   const legCount = () => (state.mode === 'curve' && state.closed ? state.points.length : state.points.length - 1);
@@ -136,7 +137,9 @@
   const toScreen = ([x, y]) => [x * view.sx + view.tx, -y * view.sx + view.ty];
   const toData = (sx, sy) => [(sx - view.tx) / view.sx, -(sy - view.ty) / view.sx];
   function fitView() {
-    const r = svg.getBoundingClientRect();
+    const box = svg.getBoundingClientRect();
+    size = { width: box.width, height: box.height };
+    const r = size;
     const xs = state.points.map((p) => p[0]);
     const ys = state.points.map((p) => p[1]);
     let [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
@@ -157,6 +160,13 @@
     if (parent) parent.appendChild(n);
     return n;
   }
+  // Keeps exactly `count` children of `parent` with tag `tag`, reusing the ones
+  // there (so an element under the pointer survives a redraw), and returns them.
+  function pool(parent, count, tag) {
+    while (parent.childElementCount > count) parent.lastElementChild.remove();
+    while (parent.childElementCount < count) node(tag, {}, parent);
+    return parent.children;
+  }
   const fmt = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : +v.toFixed(4)).toString();
 
   function niceStep(span, target) {
@@ -168,7 +178,7 @@
   function drawGrid() {
     el.grid.replaceChildren();
     if (!$('show-grid').checked) return;
-    const r = svg.getBoundingClientRect();
+    const r = size;
     const [x0, y1] = toData(0, 0);
     const [x1, y0] = toData(r.width, r.height);
     const step = niceStep(Math.max(x1 - x0, y1 - y0), 12);
@@ -224,7 +234,7 @@
     // curvature comb
     el.comb.replaceChildren();
     if (fit && fit.comb && $('show-comb').checked && fit.comb.length) {
-      const r = svg.getBoundingClientRect();
+      const r = size;
       const kmax = Math.max(...fit.comb.map((t) => Math.abs(t[4])));
       const len = kmax > 0 ? (0.08 * Math.min(r.width, r.height)) / kmax : 0;
       const tips = [];
@@ -239,27 +249,40 @@
       node('polyline', { points: tips.join(' ') }, el.comb);
     }
     // knot points
-    el.knots.replaceChildren();
-    if (fit && $('show-knots').checked) {
-      for (const p of knotPoints(fit)) {
-        const [sx, sy] = toScreen(p);
-        node('rect', { x: sx - 4, y: sy - 4, width: 8, height: 8, transform: `rotate(45 ${sx} ${sy})` }, el.knots);
-      }
-    }
+    const kps = fit && $('show-knots').checked ? knotPoints(fit) : [];
+    const kEls = pool(el.knots, kps.length, 'rect');
+    kps.forEach((p, i) => {
+      const [sx, sy] = toScreen(p);
+      const r = kEls[i];
+      r.setAttribute('x', sx - 4);
+      r.setAttribute('y', sy - 4);
+      r.setAttribute('width', 8);
+      r.setAttribute('height', 8);
+      r.setAttribute('transform', `rotate(45 ${sx} ${sy})`);
+    });
     // tangent points on the legs
-    el.tangents.replaceChildren();
-    if (fit && fit.tangent_points) {
-      fit.tangent_points.forEach((p, k) => {
-        const [sx, sy] = toScreen(p);
-        const c = node('circle', { cx: sx, cy: sy, r: 5.5, class: 'tp', 'data-leg': k, 'data-alpha': (state.alphas[k] ?? 0.5).toFixed(4) }, el.tangents);
-        if (drag && drag.kind === 'tangent' && drag.index === k) c.classList.add('active');
-      });
-    }
+    const tps = fit && fit.tangent_points ? fit.tangent_points : [];
+    const tEls = pool(el.tangents, tps.length, 'circle');
+    tps.forEach((p, k) => {
+      const [sx, sy] = toScreen(p);
+      const c = tEls[k];
+      c.setAttribute('cx', sx);
+      c.setAttribute('cy', sy);
+      c.setAttribute('r', 5.5);
+      c.setAttribute('data-leg', k);
+      c.setAttribute('data-alpha', (state.alphas[k] ?? 0.5).toFixed(4));
+      c.setAttribute('class', drag && drag.kind === 'tangent' && drag.index === k ? 'tp active' : 'tp');
+    });
     // control points
-    el.points.replaceChildren();
+    const pEls = pool(el.points, pts.length, 'circle');
     pts.forEach((p, i) => {
       const [sx, sy] = toScreen(p);
-      node('circle', { cx: sx, cy: sy, r: 6.5, class: 'pt' + (i === selected ? ' selected' : ''), 'data-index': i }, el.points);
+      const c = pEls[i];
+      c.setAttribute('cx', sx);
+      c.setAttribute('cy', sy);
+      c.setAttribute('r', 6.5);
+      c.setAttribute('data-index', i);
+      c.setAttribute('class', i === selected ? 'pt selected' : 'pt');
     });
     // side panel
     $('info-n').textContent = `${pts.length}`;

@@ -18,6 +18,7 @@ use axum::extract::{Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
+use axum::serve::ListenerExt;
 use axum::{Json, Router};
 use tokio::sync::Semaphore;
 
@@ -116,6 +117,11 @@ async fn serve(args: &ServeArgs) -> anyhow::Result<()> {
         writeln!(out, "bzspline editor: http://{shown}/").context("writing to stdout")?;
         out.flush().context("writing to stdout")?;
     }
+    // Small JSON answers go out at once instead of waiting for the client's
+    // delayed acknowledgement (Nagle's algorithm).
+    let listener = listener.tap_io(|tcp| {
+        let _ = tcp.set_nodelay(true);
+    });
     axum::serve(listener, app).await.context("serving")
 }
 
