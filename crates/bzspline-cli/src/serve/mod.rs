@@ -47,7 +47,7 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = 1 << 20, value_name = "BYTES")]
     pub max_body: usize,
     /// Most control points in one request; more get 422.
-    #[arg(long, default_value_t = 100_000, value_name = "N")]
+    #[arg(long, default_value_t = 20_000, value_name = "N")]
     pub max_points: usize,
     /// Most curvature-comb samples in one request (samples per segment times
     /// points); more get 422.
@@ -55,12 +55,12 @@ pub struct ServeArgs {
     pub max_samples: usize,
     /// Time limit for one request (reading the body and fitting) in
     /// milliseconds; slower ones get 504.
-    #[arg(long, default_value_t = 5_000, value_name = "MS")]
+    #[arg(long, default_value_t = 5_000, value_name = "MS", value_parser = clap::value_parser!(u64).range(1..))]
     pub timeout_ms: u64,
     /// Most fit requests handled at once (from reading the body to the end of
     /// the fit); further ones get 503 at once.
-    #[arg(long, default_value_t = 4, value_name = "N")]
-    pub max_in_flight: usize,
+    #[arg(long, default_value_t = 4, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_in_flight: u32,
     /// Do not log each fit to standard error.
     #[arg(long)]
     pub quiet: bool,
@@ -103,7 +103,9 @@ async fn serve(args: &ServeArgs) -> anyhow::Result<()> {
         },
         max_body: args.max_body,
         timeout: Duration::from_millis(args.timeout_ms),
-        in_flight: Arc::new(Semaphore::new(args.max_in_flight.max(1))),
+        in_flight: Arc::new(Semaphore::new(
+            usize::try_from(args.max_in_flight).unwrap_or(usize::MAX),
+        )),
         quiet: args.quiet,
     });
     let app = router(state, guard);
