@@ -365,9 +365,11 @@
       const [sx, sy] = pointer(e);
       showAlpha(drag.index, sx, sy);
     } else {
+      // Dragging the background pans the view.
       selected = -1;
+      const [sx, sy] = pointer(e);
+      drag = { kind: 'pan', from: [sx, sy], tx: view.tx, ty: view.ty };
       draw();
-      return;
     }
     svg.setPointerCapture(e.pointerId);
     e.preventDefault();
@@ -376,6 +378,12 @@
   svg.addEventListener('pointermove', (e) => {
     if (!drag) return;
     const [sx, sy] = pointer(e);
+    if (drag.kind === 'pan') {
+      view.tx = drag.tx + sx - drag.from[0];
+      view.ty = drag.ty + sy - drag.from[1];
+      draw();
+      return;
+    }
     if (drag.kind === 'point') {
       const [x, y] = toData(sx, sy);
       const i = drag.index;
@@ -401,6 +409,10 @@
 
   function endDrag() {
     if (!drag) return;
+    if (drag.kind === 'pan') {
+      drag = null;
+      return;
+    }
     if (snapshot() === drag.before) {
       history.undo.pop(); // a click without a move changes nothing
       syncButtons();
@@ -413,6 +425,16 @@
     draw();
   }
   svg.addEventListener('pointerup', endDrag);
+  // The wheel zooms about the pointer.
+  svg.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    const [px, py] = pointer(e);
+    const [dx, dy] = toData(px, py);
+    view.sx *= Math.exp(-e.deltaY * 0.0015);
+    view.tx = px - dx * view.sx;
+    view.ty = py + dy * view.sx;
+    draw();
+  }, { passive: false });
   svg.addEventListener('pointercancel', endDrag);
 
   svg.addEventListener('dblclick', (e) => {
@@ -453,7 +475,7 @@
     }
   });
   document.addEventListener('keydown', (e) => {
-    if (e.target.tagName === 'TEXTAREA' || e.target.tagName === 'INPUT') return;
+    if (['TEXTAREA', 'INPUT', 'SELECT'].includes(e.target.tagName)) return;
     const mod = e.ctrlKey || e.metaKey;
     if ((e.key === 'Delete' || e.key === 'Backspace') && selected >= 0) {
       e.preventDefault();

@@ -243,6 +243,19 @@ test('points load from CSV and GeoJSON text, and export as CSV', async () => {
   assert.match(await page.locator('#status').textContent(), /line 2/);
 });
 
+test('the background pans and the wheel zooms without touching the points', async () => {
+  const points = JSON.stringify(await page.evaluate(() => window.bzEditor.state.points));
+  const before = await centre('.pt[data-index="0"]');
+  await page.mouse.move(640, 80);
+  await page.mouse.wheel(0, -300);
+  const zoomed = await centre('.pt[data-index="0"]');
+  assert.notDeepEqual(zoomed, before);
+  await page.click('#fit-view');
+  const back = await centre('.pt[data-index="0"]');
+  assert.ok(Math.abs(back[0] - before[0]) < 1 && Math.abs(back[1] - before[1]) < 1, `${back} vs ${before}`);
+  assert.equal(JSON.stringify(await page.evaluate(() => window.bzEditor.state.points)), points);
+});
+
 test('a 1,000-point polygon is fitted on every move (timing reported, not asserted)', async () => {
   const times = [];
   for (let run = 0; run < 7; run++) {
