@@ -218,7 +218,7 @@ fn segments_of(fit: &Value) -> Vec<CubicBez<2>> {
 /// with the unit normal `(nx, ny)` (the tangent turned left) and the
 /// curvature `k` at the point `(x, y)`, `samples + 1` per segment.
 fn comb(segs: &[CubicBez<2>], samples: usize) -> Value {
-    let mut teeth = Vec::with_capacity(segs.len() * (samples + 1));
+    let mut teeth = Vec::with_capacity(segs.len().saturating_mul(samples.saturating_add(1)));
     for s in segs {
         for i in 0..=samples {
             let t = i as f64 / samples as f64;
