@@ -160,6 +160,19 @@ fn fit_round_trip_and_page() {
     assert_eq!(status, 200, "{body}");
     assert_eq!(json_of(&body)["comb"].as_array().map(Vec::len), Some(50));
 
+    // A closed curve: the unit square's knot points sit 0.1 inside its corners.
+    let (status, body) = server
+        .post(r#"{"points": [[0, 0], [1, 0], [1, 1], [0, 1]], "mode": "curve", "closed": true}"#);
+    assert_eq!(status, 200, "{body}");
+    let v = json_of(&body);
+    assert_eq!(v["closed"], true, "{v}");
+    let first = &v["knot_values"][0];
+    assert!(
+        (first[0].as_f64().unwrap_or(f64::NAN) - 0.1).abs() < 1e-12
+            && (first[1].as_f64().unwrap_or(f64::NAN) - 0.1).abs() < 1e-12,
+        "wanted (0.1, 0.1), got {first}"
+    );
+
     let (status, html) = server.get("/");
     assert_eq!(status, 200);
     assert!(html.contains("bzspline editor"), "{html}");

@@ -3,7 +3,7 @@
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use super::adapter::{self, FitSpec, Mode, ParamKind};
+use crate::model::{self, FitSpec, Mode, ParamKind};
 use bzspline::CubicBez;
 
 /// A refused request: the HTTP status and a message for the JSON body.
@@ -188,9 +188,9 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
 /// 422 with the library's message when the library refuses the data.
 pub fn fit(req: &FitRequest) -> Result<Value, ApiError> {
     let started = std::time::Instant::now();
-    let fitted = adapter::build(&req.spec).map_err(|e| ApiError::new(422, e.to_string()))?;
+    let fitted = model::build(&req.spec).map_err(|e| ApiError::new(422, e.to_string()))?;
     let build_ms = started.elapsed().as_secs_f64() * 1e3;
-    let mut out = adapter::fit_json(&fitted);
+    let mut out = model::fit_json(&fitted);
     out["build_ms"] = json!(build_ms);
     if req.samples > 0 {
         let segs = segments_of(&out);

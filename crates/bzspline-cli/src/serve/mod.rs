@@ -3,7 +3,6 @@
 //! with the library and sent back as JSON with an SVG path of exact cubic
 //! segments.
 
-mod adapter;
 mod api;
 mod guard;
 

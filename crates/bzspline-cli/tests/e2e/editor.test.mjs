@@ -235,6 +235,17 @@ test('points load from CSV and GeoJSON text, and export as CSV', async () => {
   await settled(n);
   assert.equal(await page.locator('#mode').inputValue(), 'curve');
   assert.equal((await shownFit()).dimension, 2);
+  n = await fits();
+  const ring = { type: 'Polygon', coordinates: [[[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]]] };
+  await page.evaluate((t) => window.bzEditor.importText(t, 'square.geojson'), JSON.stringify(ring));
+  await settled(n);
+  const closed = await shownFit();
+  assert.equal(closed.closed, true);
+  assert.equal(await page.locator('#closed').isChecked(), true);
+  assert.equal(await page.locator('.tp').count(), 4, 'a closed square has four legs');
+  n = await fits();
+  await page.evaluate((t) => window.bzEditor.importText(t, 'line.geojson'), JSON.stringify(geo));
+  await settled(n);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export-csv')]);
   const chunks = [];
   for await (const c of await download.createReadStream()) chunks.push(c);
