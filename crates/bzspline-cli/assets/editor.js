@@ -535,6 +535,7 @@
   $('fit-view').addEventListener('click', fitView);
   $('reset').addEventListener('click', () => {
     remember();
+    state.param = 'uniform';
     loadPoints(EXAMPLE_1, 'function', false);
     say("The paper's Example 1.");
   });
