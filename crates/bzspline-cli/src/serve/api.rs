@@ -1,0 +1,288 @@
+//! `POST /api/fit`: the request body, its validation and the response.
+
+use serde::Deserialize;
+use serde_json::{json, Value};
+
+use crate::model::{self, FitSpec, Mode, ParamKind};
+use bzspline::CubicBez;
+
+/// A refused request: the HTTP status and a message for the JSON body.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ApiError {
+    /// The status code.
+    pub status: u16,
+    /// What was wrong, in words.
+    pub message: String,
+}
+
+impl ApiError {
+    /// A refusal with `status` and `message`.
+    pub fn new(status: u16, message: impl Into<String>) -> Self {
+        ApiError {
+            status,
+            message: message.into(),
+        }
+    }
+
+    /// The JSON body: `{"error": message, "status": status}`.
+    #[must_use]
+    pub fn body(&self) -> Value {
+        json!({ "error": self.message, "status": self.status })
+    }
+}
+
+/// The request body as sent; every field but `points` is optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRequest {
+    points: Vec<Vec<Value>>,
+    #[serde(default)]
+    mode: Option<String>,
+    #[serde(default)]
+    closed: Option<bool>,
+    #[serde(default)]
+    param: Option<String>,
+    #[serde(default)]
+    alpha: Option<Value>,
+    #[serde(default)]
+    alphas: Option<Vec<Value>>,
+    #[serde(default)]
+    samples: Option<usize>,
+}
+
+/// A validated request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitRequest {
+    /// What to build.
+    pub spec: FitSpec,
+    /// Samples per segment for the curvature comb (0 for none).
+    pub samples: usize,
+}
+
+/// Limits applied while parsing.
+#[derive(Debug, Clone, Copy)]
+pub struct ParseLimits {
+    /// Most control points accepted.
+    pub max_points: usize,
+    /// Most comb samples accepted in total.
+    pub max_samples: usize,
+}
+
+fn number(v: &Value, what: impl Fn() -> String) -> Result<f64, ApiError> {
+    match v.as_f64() {
+        Some(x) if x.is_finite() => Ok(x),
+        _ => Err(ApiError::new(
+            422,
+            format!(
+                "{} = {v} is not a finite number (JSON has no NaN or infinity; JSON.stringify writes them as null)",
+                what()
+            ),
+        )),
+    }
+}
+
+/// Parses and checks a request body.
+///
+/// # Errors
+///
+/// 400 when the body is not JSON, 422 when it is JSON of the wrong shape, has a
+/// value that is not a finite number, an unknown `mode` or `param`, or more
+/// points or samples than `limits` allow.
+pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
+    let value: Value = serde_json::from_slice(body)
+        .map_err(|e| ApiError::new(400, format!("the body is not valid JSON: {e}")))?;
+    let raw: RawRequest = serde_json::from_value(value).map_err(|e| {
+        ApiError::new(
+            422,
+            format!("the request does not have the expected fields: {e}"),
+        )
+    })?;
+    if raw.points.len() > limits.max_points {
+        return Err(ApiError::new(
+            422,
+            format!(
+                "{} points exceed the limit of {} (--max-points)",
+                raw.points.len(),
+                limits.max_points
+            ),
+        ));
+    }
+    let mut points = Vec::with_capacity(raw.points.len());
+    for (i, p) in raw.points.iter().enumerate() {
+        if p.len() != 2 {
+            return Err(ApiError::new(
+                422,
+                format!("points[{i}] has {} coordinates, expected 2", p.len()),
+            ));
+        }
+        let mut q = Vec::with_capacity(2);
+        for (j, c) in p.iter().enumerate() {
+            q.push(number(c, || format!("points[{i}][{j}]"))?);
+        }
+        points.push(q);
+    }
+    let mode = match raw.mode.as_deref() {
+        None | Some("function") => Mode::Function,
+        Some("curve") => Mode::Curve,
+        Some(other) => {
+            return Err(ApiError::new(
+                422,
+                format!("mode {other:?} is not \"function\" or \"curve\""),
+            ))
+        }
+    };
+    let param = match raw.param.as_deref() {
+        None | Some("uniform") => ParamKind::Uniform,
+        Some("chordal") => ParamKind::Chordal,
+        Some("centripetal") => ParamKind::Centripetal,
+        Some(other) => {
+            return Err(ApiError::new(
+                422,
+                format!("param {other:?} is not \"uniform\", \"chordal\" or \"centripetal\""),
+            ))
+        }
+    };
+    let alpha = match &raw.alpha {
+        None | Some(Value::Null) => None,
+        Some(v) => Some(number(v, || "alpha".to_owned())?),
+    };
+    let alphas = match &raw.alphas {
+        None => None,
+        Some(list) => Some(
+            list.iter()
+                .enumerate()
+                .map(|(k, v)| number(v, || format!("alphas[{k}]")))
+                .collect::<Result<Vec<f64>, ApiError>>()?,
+        ),
+    };
+    let samples = raw.samples.unwrap_or(0);
+    let total = samples.saturating_mul(points.len());
+    if total > limits.max_samples {
+        return Err(ApiError::new(
+            422,
+            format!(
+                "{samples} samples per segment on {} points exceed the limit of {} samples (--max-samples)",
+                points.len(),
+                limits.max_samples
+            ),
+        ));
+    }
+    Ok(FitRequest {
+        spec: FitSpec {
+            points,
+            mode,
+            closed: raw.closed.unwrap_or(false),
+            param,
+            alpha,
+            alphas,
+        },
+        samples,
+    })
+}
+
+/// Builds the fit and its JSON, with the curvature comb when asked for and
+/// `build_ms`, the milliseconds the library took to build the fit.
+///
+/// # Errors
+///
+/// 422 with the library's message when the library refuses the data.
+pub fn fit(req: &FitRequest) -> Result<Value, ApiError> {
+    let started = std::time::Instant::now();
+    let fitted = model::build(&req.spec).map_err(|e| ApiError::new(422, e.to_string()))?;
+    let build_ms = started.elapsed().as_secs_f64() * 1e3;
+    let mut out = model::fit_json(&fitted);
+    out["build_ms"] = json!(build_ms);
+    if req.samples > 0 {
+        let segs = segments_of(&out);
+        out["comb"] = comb(&segs, req.samples);
+    }
+    Ok(out)
+}
+
+/// The plane segments listed under `segments` in a fit's JSON.
+fn segments_of(fit: &Value) -> Vec<CubicBez<2>> {
+    let coord = |v: &Value| v.as_f64().unwrap_or(0.0);
+    fit["segments"]
+        .as_array()
+        .map(|segs| {
+            segs.iter()
+                .map(|s| {
+                    CubicBez::new(core::array::from_fn(|j| [coord(&s[j][0]), coord(&s[j][1])]))
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Samples of the signed curvature along the segments: `[x, y, nx, ny, k]`
+/// with the unit normal `(nx, ny)` (the tangent turned left) and the
+/// curvature `k` at the point `(x, y)`, `samples + 1` per segment.
+fn comb(segs: &[CubicBez<2>], samples: usize) -> Value {
+    let mut teeth = Vec::with_capacity(segs.len().saturating_mul(samples.saturating_add(1)));
+    for s in segs {
+        for i in 0..=samples {
+            let t = i as f64 / samples as f64;
+            let p = s.eval(t);
+            let d = s.deriv(t);
+            let dd = s.deriv2(t);
+            let speed = d[0].hypot(d[1]);
+            if !speed.is_finite() || speed <= 0.0 {
+                continue;
+            }
+            let k = (d[0] * dd[1] - d[1] * dd[0]) / (speed * speed * speed);
+            if k.is_finite() {
+                teeth.push([p[0], p[1], -d[1] / speed, d[0] / speed, k]);
+            }
+        }
+    }
+    json!(teeth)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LIMITS: ParseLimits = ParseLimits {
+        max_points: 5,
+        max_samples: 100,
+    };
+
+    #[test]
+    fn refusals_carry_their_status() {
+        let status = |body: &str| parse(body.as_bytes(), LIMITS).unwrap_err().status;
+        assert_eq!(status("{"), 400);
+        assert_eq!(status("{}"), 422);
+        assert_eq!(status(r#"{"points": [[0, null], [1, 2]]}"#), 422);
+        assert_eq!(
+            status(r#"{"points": [[0,1],[1,2],[2,3],[3,4],[4,5],[5,6]]}"#),
+            422
+        );
+        assert_eq!(
+            status(r#"{"points": [[0,1],[1,2]], "mode": "spiral"}"#),
+            422
+        );
+        assert_eq!(status(r#"{"points": [[0,1],[1,2]], "samples": 60}"#), 422);
+    }
+
+    #[test]
+    fn alpha_out_of_range_is_the_library_message() {
+        let req = parse(br#"{"points": [[0,1],[1,2],[2,0]], "alpha": 0.9}"#, LIMITS).unwrap();
+        let e = fit(&req).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.contains("outside [1/3, 2/3]"), "{}", e.message);
+    }
+
+    #[test]
+    fn comb_of_a_straight_polygon_is_flat() {
+        let req = parse(br#"{"points": [[0,0],[1,1],[2,2]], "samples": 4}"#, LIMITS).unwrap();
+        let v = fit(&req).unwrap();
+        let teeth = v["comb"].as_array().unwrap();
+        assert_eq!(teeth.len(), 10, "{v}");
+        for t in teeth {
+            assert!(
+                t[4].as_f64().unwrap().abs() < 1e-12,
+                "curvature of a line: {t}"
+            );
+        }
+    }
+}
