@@ -58,10 +58,18 @@ fuzz_target!(|bytes: &[u8]| {
     let mut b = CurveBuilder::new(&points, dim)
         .closed(closed)
         .param(param)
-        .repeats(if flags & 0x20 != 0 { Repeats::Drop } else { Repeats::Reject });
+        .repeats(if flags & 0x20 != 0 {
+            Repeats::Drop
+        } else {
+            Repeats::Reject
+        });
     b = match r.u8() % 4 {
         0 => b.alpha(r.alpha()),
-        1 => b.alphas(&(0..legs + usize::from(r.u8() % 8 == 0)).map(|_| r.alpha()).collect::<Vec<_>>()),
+        1 => b.alphas(
+            &(0..legs + usize::from(r.u8() % 8 == 0))
+                .map(|_| r.alpha())
+                .collect::<Vec<_>>(),
+        ),
         _ => b,
     };
     if std::env::var_os("FUZZ_DEBUG").is_some() {
@@ -76,8 +84,15 @@ fuzz_target!(|bytes: &[u8]| {
 fn check(c: &Curve, r: &mut Reader<'_>) {
     let dim = c.dim();
     assert!(dim >= 1 && c.len() >= 1);
-    assert!(c.alphas().iter().all(|a| (ALPHA_MIN..=ALPHA_MAX).contains(a)));
-    assert!(c.knots().windows(2).all(|w| w[0] < w[1]), "knots {:?}", c.knots());
+    assert!(c
+        .alphas()
+        .iter()
+        .all(|a| (ALPHA_MIN..=ALPHA_MAX).contains(a)));
+    assert!(
+        c.knots().windows(2).all(|w| w[0] < w[1]),
+        "knots {:?}",
+        c.knots()
+    );
     let pts = c.points();
     assert!(pts.iter().all(|v| v.is_finite()));
     let np = c.point_count();
@@ -108,7 +123,11 @@ fn check(c: &Curve, r: &mut Reader<'_>) {
         let p0 = c.eval(a).expect("start of the domain");
         let p1 = c.eval(b).expect("end of the domain");
         for j in 0..dim {
-            assert!((p0[j] - pts[j]).abs() <= tol, "start {p0:?} vs {:?}", &pts[..dim]);
+            assert!(
+                (p0[j] - pts[j]).abs() <= tol,
+                "start {p0:?} vs {:?}",
+                &pts[..dim]
+            );
             assert!((p1[j] - pts[(np - 1) * dim + j]).abs() <= tol, "end {p1:?}");
         }
     }
@@ -121,7 +140,10 @@ fn check(c: &Curve, r: &mut Reader<'_>) {
         let slack = tol + m * (4.0 * ulp / h) * 16.0;
         let q = c.eval(s).expect("tangent parameter inside the domain");
         for j in 0..dim {
-            assert!((q[j] - p[j]).abs() <= slack, "leg {k}: C({s}) = {q:?}, tangent point {p:?}");
+            assert!(
+                (q[j] - p[j]).abs() <= slack,
+                "leg {k}: C({s}) = {q:?}, tangent point {p:?}"
+            );
         }
     }
     // C1 through the Bezier control points, and the hull.
@@ -130,7 +152,10 @@ fn check(c: &Curve, r: &mut Reader<'_>) {
     // Interior Bezier control points lie outside the hull and can exceed the
     // range of a double when the points are near it (to_svg_path then refuses).
     let all_finite = segs.iter().flatten().all(|v| v.is_finite());
-    assert!(all_finite || m > f64::MAX / 64.0, "non-finite control point at scale {m}");
+    assert!(
+        all_finite || m > f64::MAX / 64.0,
+        "non-finite control point at scale {m}"
+    );
     for (k, s) in segs.iter().enumerate() {
         inside(&s[..dim], "segment start");
         inside(&s[3 * dim..], "segment end");
@@ -187,7 +212,13 @@ fn check(c: &Curve, r: &mut Reader<'_>) {
         assert!(p.iter().all(|v| v.is_finite()), "C({q}) = {p:?}");
     }
     let query: Vec<f64> = (0..dim)
-        .map(|j| if r.u8() % 4 == 0 { r.raw_f64() } else { lo[j] + (hi[j] - lo[j]) * r.unit() })
+        .map(|j| {
+            if r.u8() % 4 == 0 {
+                r.raw_f64()
+            } else {
+                lo[j] + (hi[j] - lo[j]) * r.unit()
+            }
+        })
         .collect();
     if let Ok(nr) = c.nearest(&query) {
         assert!(nr.param.is_finite() && nr.distance.is_finite() && nr.distance >= 0.0);

@@ -53,7 +53,10 @@ fn check_refusal(d: &Data, e: &Error) {
 fn check_accepted(d: &Data, s: &Spline) {
     let n = d.knots.len();
     assert!(n >= 2 && d.values.len() == n);
-    assert!(s.alphas().iter().all(|a| (ALPHA_MIN..=ALPHA_MAX).contains(a)));
+    assert!(s
+        .alphas()
+        .iter()
+        .all(|a| (ALPHA_MIN..=ALPHA_MAX).contains(a)));
     assert!(d.knots.windows(2).all(|w| w[0] < w[1]));
     let m = d.max_abs();
     let lo = d.values.iter().copied().fold(f64::INFINITY, f64::min);
@@ -84,7 +87,10 @@ fn check_accepted(d: &Data, s: &Spline) {
         let ulp = (f64::EPSILON * x.abs()).max(f64::from_bits(1));
         let rel = 4.0 * ulp / h;
         let slack = tol + m * rel * 16.0;
-        assert!((y - f).abs() <= slack, "S(x_{k}) = {y}, leg at {f}, tol {slack}");
+        assert!(
+            (y - f).abs() <= slack,
+            "S(x_{k}) = {y}, leg at {f}, tol {slack}"
+        );
     }
 
     // Tangency, C1 and hull through the unit coefficients, divided by the
@@ -138,14 +144,20 @@ fn check_accepted(d: &Data, s: &Spline) {
         for j in 0..=4 {
             let x = (d.knots[k] + h * f64::from(j) / 4.0).min(b);
             let y = s.eval(x).expect("inside the domain");
-            assert!(y.is_finite() && y >= lo - tol && y <= hi + tol, "S({x}) = {y}");
+            assert!(
+                y.is_finite() && y >= lo - tol && y <= hi + tol,
+                "S({x}) = {y}"
+            );
             if let Ok(v) = s.deriv(x, 1) {
                 assert!(v.is_finite());
             }
         }
     }
     let ((_, rlo), (_, rhi)) = s.range();
-    assert!(rlo >= lo - tol && rhi <= hi + tol, "range [{rlo}, {rhi}] vs [{lo}, {hi}]");
+    assert!(
+        rlo >= lo - tol && rhi <= hi + tol,
+        "range [{rlo}, {rhi}] vs [{lo}, {hi}]"
+    );
     for e in s.extrema() {
         assert!(e.x.is_finite() && e.y.is_finite() && e.x >= a && e.x <= b);
     }

@@ -87,7 +87,10 @@ fn check_error(s: &Spline, x: f64, e: &Error) {
     match *e {
         Error::NonFinite { value, .. } => assert!(!value.is_finite()),
         Error::OutOfDomain { x: q, .. } => {
-            assert!(s.extrapolation() == Extrapolate::Error && !(a..=b).contains(&q), "{e} at {x}");
+            assert!(
+                s.extrapolation() == Extrapolate::Error && !(a..=b).contains(&q),
+                "{e} at {x}"
+            );
         }
         Error::Overflow { .. } => {}
         _ => panic!("unexpected error {e} at {x}"),
