@@ -8,6 +8,81 @@
 
 use bzspline::{ALPHA_MAX, ALPHA_MIN};
 
+/// The command's input readers, compiled from their source file: the command
+/// is a binary crate, and this keeps it so without copying its code.
+#[path = "../../crates/bzspline-cli/src/input.rs"]
+pub mod input;
+
+/// The two types of the command's `cli` module that the readers name, with
+/// the same names and variants (the rest of that module is argument parsing).
+pub mod cli {
+    use std::path::PathBuf;
+
+    /// Where the control points come from.
+    #[derive(Debug, Clone, Default)]
+    pub struct InputArgs {
+        /// Input file.
+        pub file: Option<PathBuf>,
+        /// One of the paper's examples.
+        pub example: Option<u8>,
+        /// Input format.
+        pub input_format: Option<InputFormat>,
+    }
+
+    /// Formats the readers understand.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum InputFormat {
+        /// Comma-, semicolon- or tab-separated values.
+        Csv,
+        /// Tab-separated values.
+        Tsv,
+        /// JSON.
+        Json,
+        /// GeoJSON.
+        Geojson,
+        /// Newline-delimited GeoJSON.
+        Geojsonseq,
+    }
+}
+
+/// Checks what a reader returned: rows of one width, finite numbers, one
+/// position per row; or a one-line message naming the source.
+pub fn check_points(name: &str, result: &anyhow::Result<input::Points>) {
+    match result {
+        Ok(p) => {
+            assert_eq!(p.rows.len(), p.pos.len());
+            if let Some(w) = p.rows.first().map(Vec::len) {
+                assert!(p.rows.iter().all(|r| r.len() == w), "ragged rows accepted");
+            }
+            assert!(
+                p.rows.iter().flatten().all(|v| v.is_finite()),
+                "non-finite accepted"
+            );
+            // The command turns library errors into messages with positions.
+            if p.rows.first().is_some_and(|r| r.len() == 2) {
+                let x: Vec<f64> = p.rows.iter().map(|r| r[0]).collect();
+                let y: Vec<f64> = p.rows.iter().map(|r| r[1]).collect();
+                if let Err(e) = bzspline::Spline::new(&x, &y) {
+                    let msg = input::explain(p, &e).to_string();
+                    assert!(!msg.contains('\n'), "two-line message: {msg:?}");
+                }
+            }
+        }
+        Err(e) => {
+            let chain: Vec<String> = e.chain().map(ToString::to_string).collect();
+            let msg = chain.join(": ");
+            assert!(
+                !msg.contains('\n') && !msg.contains('\r'),
+                "two-line message: {msg:?}"
+            );
+            assert!(
+                msg.starts_with(name),
+                "message does not name the source: {msg:?}"
+            );
+        }
+    }
+}
+
 /// Reads bytes from the front of the fuzzer's input; zeros once it runs out.
 pub struct Reader<'a> {
     data: &'a [u8],
