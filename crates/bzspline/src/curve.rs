@@ -1153,7 +1153,10 @@ impl Curve {
 
     /// The four Bezier control points of segment `k`, each coordinate
     /// multiplied back, flat (`4 * dim` numbers), or `None` past the end.
-    /// Consecutive segments share their end points bit for bit.
+    /// Consecutive segments share their end points bit for bit. The two inner
+    /// control points lie outside the convex hull and can be infinite when the
+    /// points come near `f64::MAX` ([`Curve::to_svg_path`] then reports
+    /// [`Error::Overflow`]).
     #[must_use]
     pub fn segment_points(&self, k: usize) -> Option<Vec<f64>> {
         if k >= self.len() {

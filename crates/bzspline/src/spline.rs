@@ -723,7 +723,9 @@ impl Spline {
     }
 
     /// Piece `k` as a cubic Bezier segment in the plane: control points at
-    /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md.
+    /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md. The two
+    /// inner ordinates lie outside the range of the values and can be infinite
+    /// when the values come near `f64::MAX`.
     #[must_use]
     pub fn segment(&self, k: usize) -> Option<CubicBez<2>> {
         let c = &self.coefs.get(k)?.0;
