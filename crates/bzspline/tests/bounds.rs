@@ -3,7 +3,8 @@
 //! refused, for splines and for open and closed curves, on random data; curves
 //! whose parameters spread over twelve orders of magnitude keep tangency, C1,
 //! their end points and the box of their control points; the end values of a
-//! spline are exact at any magnitude.
+//! spline are exact at any magnitude; and a curve near `f64::MAX` found by
+//! fuzzing.
 
 use bzspline::{Curve, Error, Param, Spline, ALPHA_MAX, ALPHA_MIN};
 use proptest::collection::vec;
@@ -235,4 +236,45 @@ proptest! {
         prop_assert_eq!(kv[n - 1], values[n - 1]);
         prop_assert!(kv.iter().all(|v| v.is_finite()));
     }
+}
+
+/// Found by the curve_build fuzz target: a 1-D curve through 0, -f64::MAX and
+/// f64::MAX is accepted and finite everywhere, but the inner Bezier control
+/// points of its middle segment are beyond the range of a double, so the SVG
+/// export refuses with an overflow instead of printing `inf`.
+#[test]
+fn curve_near_f64_max_is_finite_but_its_bezier_form_overflows() {
+    let pts = [3.082_885_742_187_499e-146, 0.0, -f64::MAX, f64::MAX];
+    let c = Curve::builder(&pts, 1)
+        .alpha(ALPHA_MIN)
+        .build()
+        .expect("finite, distinct points");
+    let (lo, hi) = c.domain();
+    for i in 0..=64 {
+        let s = lo + (hi - lo) * f64::from(i) / 64.0;
+        let p = c.eval(s).expect("inside the domain");
+        assert!(p[0].is_finite(), "C({s}) = {p:?}");
+    }
+    let inner_overflow = (0..c.len())
+        .filter_map(|k| c.segment_points(k))
+        .any(|s| s.iter().any(|v| !v.is_finite()));
+    assert!(
+        inner_overflow,
+        "expected an inner control point beyond f64::MAX"
+    );
+    let planar = Curve::builder(
+        &pts.iter()
+            .enumerate()
+            .flat_map(|(i, &y)| [i as f64, y])
+            .collect::<Vec<_>>(),
+        2,
+    )
+    .alpha(ALPHA_MIN)
+    .build()
+    .expect("finite, distinct points");
+    assert!(
+        matches!(planar.to_svg_path(), Err(Error::Overflow { .. })),
+        "{:?}",
+        planar.to_svg_path()
+    );
 }
