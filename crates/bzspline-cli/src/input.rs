@@ -483,8 +483,8 @@ pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
 }
 
 /// Reads the control points of the first line in a GeoJSON document: a
-/// LineString, a MultiPoint, the outer ring of a Polygon, or the Point features
-/// of a collection in order.
+/// LineString, a MultiPoint, the outer ring of a Polygon (without the position
+/// that repeats the first), or the Point features of a collection in order.
 ///
 /// # Errors
 ///
@@ -535,12 +535,14 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
             ("LineString" | "MultiPoint", Some(Value::Array(c))) => c.clone(),
             ("Polygon", Some(Value::Array(rings))) => match rings.first() {
                 Some(Value::Array(c)) => {
-                    if c.first() != c.last() {
+                    if !same_position(c.first(), c.last()) {
                         return Err(anyhow!(
                             "{name}: feature {fi}: the ring is not closed (GeoJSON repeats its first position at the end)"
                         ));
                     }
-                    c.clone()
+                    // The repeat only closes the ring: the control points are
+                    // the distinct vertices (--closed closes the curve).
+                    c[..c.len().saturating_sub(1)].to_vec()
                 }
                 _ => continue,
             },
@@ -584,6 +586,14 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
         rows,
         pos,
     })
+}
+
+/// Whether two GeoJSON positions have the same numbers (`0` and `0.0` alike).
+fn same_position(a: Option<&Value>, b: Option<&Value>) -> bool {
+    let coords = |v: Option<&Value>| -> Option<Vec<Option<f64>>> {
+        Some(v?.as_array()?.iter().map(Value::as_f64).collect())
+    };
+    coords(a) == coords(b)
 }
 
 /// Checks that every row has `allowed` columns.
@@ -770,23 +780,53 @@ mod tests {
     fn geojson_without_usable_geometry_names_the_feature_and_type() {
         let doc = br#"{"type":"FeatureCollection","features":[
             {"type":"Feature","geometry":{"type":"GeometryCollection","geometries":[]}}]}"#;
-        let e = parse_geojson_points("g.geojson", doc).unwrap_err().to_string();
+        let e = parse_geojson_points("g.geojson", doc)
+            .unwrap_err()
+            .to_string();
         assert!(
-            e.contains("g.geojson: feature 0: a \"GeometryCollection\" geometry has no control points"),
+            e.contains(
+                "g.geojson: feature 0: a \"GeometryCollection\" geometry has no control points"
+            ),
             "{e}"
         );
         let empty = br#"{"type":"LineString","coordinates":[]}"#;
         let p = parse_geojson_points("g.geojson", empty).unwrap();
         assert!(p.rows.is_empty());
-        assert_eq!(p.end, Pos::Coord { feature: 0, index: 0 });
+        assert_eq!(
+            p.end,
+            Pos::Coord {
+                feature: 0,
+                index: 0
+            }
+        );
     }
 
     #[test]
     fn unclosed_polygon_ring_is_refused() {
         let open = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1]]]}"#;
-        let e = parse_geojson_points("p.geojson", open).unwrap_err().to_string();
-        assert!(e.contains("p.geojson: feature 0: the ring is not closed"), "{e}");
-        let closed = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1],[0,0]]]}"#;
-        assert_eq!(parse_geojson_points("p.geojson", closed).unwrap().rows.len(), 5);
+        let e = parse_geojson_points("p.geojson", open)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("p.geojson: feature 0: the ring is not closed"),
+            "{e}"
+        );
+        // Closed, with the repeat written as 0.0: read as its four vertices.
+        let closed = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1],[0.0,0.0]]]}"#;
+        let p = parse_geojson_points("p.geojson", closed).unwrap();
+        assert_eq!(
+            p.rows,
+            vec![
+                vec![0.0, 0.0],
+                vec![1.0, 0.0],
+                vec![1.0, 1.0],
+                vec![0.0, 1.0]
+            ]
+        );
+        let empty = br#"{"type":"Polygon","coordinates":[[]]}"#;
+        assert!(parse_geojson_points("p.geojson", empty)
+            .unwrap()
+            .rows
+            .is_empty());
     }
 }
