@@ -25,7 +25,7 @@ fuzz_target!(|bytes: &[u8]| {
     let mut points = Vec::with_capacity(n * dim.max(1));
     for i in 0..n * dim.max(1) {
         // Now and then a point repeating the previous one.
-        let v = if i >= dim && dim > 0 && r.u8() % 16 == 0 {
+        let v = if i >= dim && dim > 0 && r.u8().is_multiple_of(16) {
             points[i - dim]
         } else {
             r.value(magnitude)
@@ -41,7 +41,7 @@ fuzz_target!(|bytes: &[u8]| {
         1 => Param::Chordal,
         2 => Param::Centripetal,
         _ => {
-            let count = n + usize::from(closed) + usize::from(r.u8() % 4 == 0);
+            let count = n + usize::from(closed) + usize::from(r.u8().is_multiple_of(4));
             let mut x = r.unit() * magnitude;
             let mut given = Vec::with_capacity(count);
             for _ in 0..count {
@@ -66,7 +66,7 @@ fuzz_target!(|bytes: &[u8]| {
     b = match r.u8() % 4 {
         0 => b.alpha(r.alpha()),
         1 => b.alphas(
-            &(0..legs + usize::from(r.u8() % 8 == 0))
+            &(0..legs + usize::from(r.u8().is_multiple_of(8)))
                 .map(|_| r.alpha())
                 .collect::<Vec<_>>(),
         ),
@@ -83,7 +83,7 @@ fuzz_target!(|bytes: &[u8]| {
 
 fn check(c: &Curve, r: &mut Reader<'_>) {
     let dim = c.dim();
-    assert!(dim >= 1 && c.len() >= 1);
+    assert!(dim >= 1 && !c.is_empty());
     assert!(c
         .alphas()
         .iter()
@@ -213,7 +213,7 @@ fn check(c: &Curve, r: &mut Reader<'_>) {
     }
     let query: Vec<f64> = (0..dim)
         .map(|j| {
-            if r.u8() % 4 == 0 {
+            if r.u8().is_multiple_of(4) {
                 r.raw_f64()
             } else {
                 lo[j] + (hi[j] - lo[j]) * r.unit()
@@ -239,7 +239,7 @@ fn check(c: &Curve, r: &mut Reader<'_>) {
         }
     }
     let raw = r.raw_f64();
-    if !(raw > 0.0) {
+    if raw.is_nan() || raw <= 0.0 {
         assert!(c.arclen(raw).is_err(), "accuracy {raw} accepted");
         assert!(c.flatten(raw).is_err(), "tolerance {raw} accepted");
     }

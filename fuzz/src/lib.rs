@@ -177,7 +177,7 @@ impl Data {
         let mode = r.u8();
         let n = usize::from(r.u8() % 65);
         let mut knots = Vec::with_capacity(n);
-        if mode % 4 == 0 {
+        if mode.is_multiple_of(4) {
             // Hostile: any bits.
             for _ in 0..n {
                 knots.push(r.raw_f64());
