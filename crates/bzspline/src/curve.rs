@@ -884,7 +884,14 @@ impl Curve {
     pub fn eval(&self, s: f64) -> Result<Vec<f64>, Error> {
         let (k, t) = self.locate(s)?;
         let dim = self.dim;
-        let j = (k + 1) % self.n_points();
+        let n = self.n_points();
+        let j = (k + 1) % n;
+        if !self.closed && ((k == 0 && t == 0.0) || (t == 1.0 && j == n - 1)) {
+            // An open curve's end points are its end control points, also when
+            // one of them underflowed in scaling beside a much larger one.
+            let i = if t == 0.0 { 0 } else { n - 1 };
+            return Ok(self.points[i * dim..(i + 1) * dim].to_vec());
+        }
         Ok((0..dim)
             .map(|c| {
                 let v = if t == 1.0 {
@@ -1179,6 +1186,15 @@ impl Curve {
             ctrl[dim + c] = (p0 + s0 / 3.0) * s;
             ctrl[2 * dim + c] = (p3 - s1 / 3.0) * s;
             ctrl[3 * dim + c] = p3 * s;
+        }
+        if !self.closed {
+            // The end control points exactly, as `eval` gives them.
+            if k == 0 {
+                ctrl[..dim].copy_from_slice(&self.points[..dim]);
+            }
+            if j == n - 1 {
+                ctrl[3 * dim..].copy_from_slice(&self.points[(n - 1) * dim..]);
+            }
         }
         Some(ctrl)
     }

@@ -278,3 +278,19 @@ fn curve_near_f64_max_is_finite_but_its_bezier_form_overflows() {
         planar.to_svg_path()
     );
 }
+
+/// As for splines: a tiny first point beside f64::MAX underflowed in scaling,
+/// so an open curve started at 0 instead of at its first control point.
+#[test]
+fn open_curve_end_points_are_exact_beside_f64_max() {
+    let f0 = 1.568_603_515_624_999_3e-203;
+    let pts = [f0, -f0, 0.0, f64::MAX, 1.0, -f0];
+    let c = Curve::builder(&pts, 2).build().expect("distinct points");
+    let (lo, hi) = c.domain();
+    assert_eq!(c.eval(lo).expect("start"), vec![f0, -f0]);
+    assert_eq!(c.eval(hi).expect("end"), vec![1.0, -f0]);
+    let first = c.segment_points(0).expect("segment 0");
+    assert_eq!(&first[..2], &[f0, -f0]);
+    let last = c.segment_points(c.len() - 1).expect("last segment");
+    assert_eq!(&last[6..], &[1.0, -f0]);
+}
