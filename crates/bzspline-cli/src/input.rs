@@ -201,8 +201,16 @@ pub fn load(args: &InputArgs) -> Result<Points> {
 ///
 /// # Errors
 ///
-/// `FILE:LINE: not valid UTF-8` at the first bad byte.
+/// `FILE:LINE: not valid UTF-8` at the first bad byte; `FILE:1: UTF-16 text`
+/// for a UTF-16 byte-order mark.
 pub fn utf8<'a>(name: &str, bytes: &'a [u8]) -> Result<&'a str> {
+    if bytes.starts_with(b"\xFF\xFE") || bytes.starts_with(b"\xFE\xFF") {
+        return Err(anyhow!(
+            "{name}:1: UTF-16 text (byte-order mark 0x{:02X}{:02X}); save it as UTF-8",
+            bytes[0],
+            bytes[1]
+        ));
+    }
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     std::str::from_utf8(bytes).map_err(|e| {
         let good = &bytes[..e.valid_up_to()];
@@ -475,8 +483,8 @@ pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
 }
 
 /// Reads the control points of the first line in a GeoJSON document: a
-/// LineString, a MultiPoint, the outer ring of a Polygon, or the Point features
-/// of a collection in order.
+/// LineString, a MultiPoint, the outer ring of a Polygon (without the position
+/// that repeats the first), or the Point features of a collection in order.
 ///
 /// # Errors
 ///
@@ -499,10 +507,17 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
     };
     let mut rows = Vec::new();
     let mut pos = Vec::new();
+    let mut end = Pos::Item(0);
+    // The first feature passed over, for the message when none has points.
+    let mut skipped: Option<(usize, String)> = None;
     for (fi, f) in features.iter().enumerate() {
-        let Some(g) = geometry(f) else { continue };
+        let Some(g) = geometry(f) else {
+            skipped.get_or_insert((fi, "a feature without geometry".to_owned()));
+            continue;
+        };
         let coords = g.get("coordinates");
         let kind = g.get("type").and_then(Value::as_str).unwrap_or("");
+        skipped.get_or_insert((fi, format!("a {kind:?} geometry")));
         let list = match (kind, coords) {
             ("Point", Some(c)) => {
                 let row = json_rows(
@@ -519,7 +534,16 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
             }
             ("LineString" | "MultiPoint", Some(Value::Array(c))) => c.clone(),
             ("Polygon", Some(Value::Array(rings))) => match rings.first() {
-                Some(Value::Array(c)) => c.clone(),
+                Some(Value::Array(c)) => {
+                    if !same_position(c.first(), c.last()) {
+                        return Err(anyhow!(
+                            "{name}: feature {fi}: the ring is not closed (GeoJSON repeats its first position at the end)"
+                        ));
+                    }
+                    // The repeat only closes the ring: the control points are
+                    // the distinct vertices (--closed closes the curve).
+                    c[..c.len().saturating_sub(1)].to_vec()
+                }
                 _ => continue,
             },
             _ => continue,
@@ -531,7 +555,18 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
         pos = (0..rows.len())
             .map(|index| Pos::Coord { feature: fi, index })
             .collect();
+        end = Pos::Coord {
+            feature: fi,
+            index: rows.len(),
+        };
         break;
+    }
+    if rows.is_empty() && end == Pos::Item(0) {
+        if let Some((fi, what)) = skipped {
+            return Err(anyhow!(
+                "{name}: feature {fi}: {what} has no control points (expected a LineString, MultiPoint, Polygon or Point)"
+            ));
+        }
     }
     if let Some(w) = rows.first().map(Vec::len) {
         if let Some(i) = rows.iter().position(|r| r.len() != w) {
@@ -542,12 +577,23 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
             ));
         }
     }
+    if end == Pos::Item(0) {
+        end = Pos::Item(rows.len());
+    }
     Ok(Points {
         source: name.to_owned(),
-        end: Pos::Item(rows.len()),
+        end,
         rows,
         pos,
     })
+}
+
+/// Whether two GeoJSON positions have the same numbers (`0` and `0.0` alike).
+fn same_position(a: Option<&Value>, b: Option<&Value>) -> bool {
+    let coords = |v: Option<&Value>| -> Option<Vec<Option<f64>>> {
+        Some(v?.as_array()?.iter().map(Value::as_f64).collect())
+    };
+    coords(a) == coords(b)
 }
 
 /// Checks that every row has `allowed` columns.
@@ -716,5 +762,71 @@ mod tests {
         assert_eq!(p.rows, vec![vec![3.0, 4.0], vec![5.0, 6.0]]);
         let e = parse_json("a.json", b"[[0, 1],\n [1, \"x\"]]").unwrap_err();
         assert!(e.to_string().contains("points[1][1]"), "{e}");
+    }
+
+    #[test]
+    fn utf16_is_named_as_such() {
+        for bom in [&b"\xFF\xFE0\x00"[..], &b"\xFE\xFF\x000"[..]] {
+            let e = table_bytes(bom).unwrap_err().to_string();
+            assert!(e.starts_with("t.csv:1: UTF-16 text"), "{e}");
+        }
+    }
+
+    fn table_bytes(b: &[u8]) -> Result<Points> {
+        parse_table("t.csv", b, None)
+    }
+
+    #[test]
+    fn geojson_without_usable_geometry_names_the_feature_and_type() {
+        let doc = br#"{"type":"FeatureCollection","features":[
+            {"type":"Feature","geometry":{"type":"GeometryCollection","geometries":[]}}]}"#;
+        let e = parse_geojson_points("g.geojson", doc)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(
+                "g.geojson: feature 0: a \"GeometryCollection\" geometry has no control points"
+            ),
+            "{e}"
+        );
+        let empty = br#"{"type":"LineString","coordinates":[]}"#;
+        let p = parse_geojson_points("g.geojson", empty).unwrap();
+        assert!(p.rows.is_empty());
+        assert_eq!(
+            p.end,
+            Pos::Coord {
+                feature: 0,
+                index: 0
+            }
+        );
+    }
+
+    #[test]
+    fn unclosed_polygon_ring_is_refused() {
+        let open = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1]]]}"#;
+        let e = parse_geojson_points("p.geojson", open)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("p.geojson: feature 0: the ring is not closed"),
+            "{e}"
+        );
+        // Closed, with the repeat written as 0.0: read as its four vertices.
+        let closed = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1],[0.0,0.0]]]}"#;
+        let p = parse_geojson_points("p.geojson", closed).unwrap();
+        assert_eq!(
+            p.rows,
+            vec![
+                vec![0.0, 0.0],
+                vec![1.0, 0.0],
+                vec![1.0, 1.0],
+                vec![0.0, 1.0]
+            ]
+        );
+        let empty = br#"{"type":"Polygon","coordinates":[[]]}"#;
+        assert!(parse_geojson_points("p.geojson", empty)
+            .unwrap()
+            .rows
+            .is_empty());
     }
 }

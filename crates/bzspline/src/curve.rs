@@ -884,7 +884,14 @@ impl Curve {
     pub fn eval(&self, s: f64) -> Result<Vec<f64>, Error> {
         let (k, t) = self.locate(s)?;
         let dim = self.dim;
-        let j = (k + 1) % self.n_points();
+        let n = self.n_points();
+        let j = (k + 1) % n;
+        if !self.closed && ((k == 0 && t == 0.0) || (t == 1.0 && j == n - 1)) {
+            // An open curve's end points are its end control points, also when
+            // one of them underflowed in scaling beside a much larger one.
+            let i = if t == 0.0 { 0 } else { n - 1 };
+            return Ok(self.points[i * dim..(i + 1) * dim].to_vec());
+        }
         Ok((0..dim)
             .map(|c| {
                 let v = if t == 1.0 {
@@ -1153,7 +1160,10 @@ impl Curve {
 
     /// The four Bezier control points of segment `k`, each coordinate
     /// multiplied back, flat (`4 * dim` numbers), or `None` past the end.
-    /// Consecutive segments share their end points bit for bit.
+    /// Consecutive segments share their end points bit for bit. The two inner
+    /// control points lie outside the convex hull and can be infinite when the
+    /// points come near `f64::MAX` ([`Curve::to_svg_path`] then reports
+    /// [`Error::Overflow`]).
     #[must_use]
     pub fn segment_points(&self, k: usize) -> Option<Vec<f64>> {
         if k >= self.len() {
@@ -1176,6 +1186,15 @@ impl Curve {
             ctrl[dim + c] = (p0 + s0 / 3.0) * s;
             ctrl[2 * dim + c] = (p3 - s1 / 3.0) * s;
             ctrl[3 * dim + c] = p3 * s;
+        }
+        if !self.closed {
+            // The end control points exactly, as `eval` gives them.
+            if k == 0 {
+                ctrl[..dim].copy_from_slice(&self.points[..dim]);
+            }
+            if j == n - 1 {
+                ctrl[3 * dim..].copy_from_slice(&self.points[(n - 1) * dim..]);
+            }
         }
         Some(ctrl)
     }

@@ -723,7 +723,9 @@ impl Spline {
     }
 
     /// Piece `k` as a cubic Bezier segment in the plane: control points at
-    /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md.
+    /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md. The two
+    /// inner ordinates lie outside the range of the values and can be infinite
+    /// when the values come near `f64::MAX`.
     #[must_use]
     pub fn segment(&self, k: usize) -> Option<CubicBez<2>> {
         let c = &self.coefs.get(k)?.0;
@@ -832,6 +834,11 @@ impl Spline {
                 let inv = 1.0 / ((self.knots[k + 1] - self.knots[k]) * self.pre);
                 self.eval_locus(Locus::Piece(k, 1.0, inv), order)
             }
+            Locus::Piece(0, t, _) if order == 0 && t == 0.0 => {
+                // The first control value itself: scaled by the largest value
+                // it may have underflowed to 0.
+                Ok(self.values[0])
+            }
             Locus::Piece(k, t, inv) => {
                 let c = &self.coefs[k].0;
                 let mut v = poly_deriv(c, t, order) * self.scale;
@@ -925,7 +932,14 @@ impl Spline {
             })?;
             Ok(())
         };
-        if self.pre != 1.0 || order > 3 {
+        // The batch kernel sums the coefficients at tau_0 too; when the first
+        // value underflowed in scaling (values spanning some 600 decades) only
+        // the one-by-one path returns it exactly.
+        let first_exact = self
+            .coefs
+            .first()
+            .is_none_or(|c| c.0[0] * self.scale == self.values[0]);
+        if self.pre != 1.0 || order > 3 || (order == 0 && !first_exact) {
             for (i, (&x, o)) in xs.iter().zip(out.iter_mut()).enumerate() {
                 slow(i, x, o)?;
             }
@@ -1639,5 +1653,30 @@ mod tests {
         assert!(quadratic_roots(0.0, 0.0, 0.0).is_empty());
         let r = quadratic_roots(1e-20, 1.0, -0.25);
         assert!(r.iter().any(|t| (t - 0.25).abs() < 1e-15), "{r:?}");
+    }
+
+    #[test]
+    fn first_value_is_exact_beside_a_value_near_the_top_of_the_range() {
+        // Found by the spline_build fuzz target: F_0 divided by the scale of
+        // f64::MAX underflowed to 0, so S(tau_0) was 0 instead of F_0.
+        let f0 = 1.568_603_515_624_999_3e-203;
+        let s = Spline::with_alpha(&[0.0, 3.906_25e-303], &[f0, f64::MAX], ALPHA_MIN).unwrap();
+        assert_eq!(s.eval(0.0).unwrap(), f0, "S(tau_0) must be F_0");
+        assert_eq!(
+            s.eval(3.906_25e-303).unwrap(),
+            f64::MAX,
+            "S(tau_N) must be F_N"
+        );
+        assert_eq!(s.knot_values(), vec![f0, f64::MAX]);
+        // The batch evaluator agrees (on knots of ordinary size, which it
+        // handles without rescaling them).
+        let s = Spline::new(&[0.0, 1.0, 2.0], &[f0, f64::MAX, 0.0]).unwrap();
+        let xs = [0.0, 0.5, 0.0, 2.0];
+        let mut out = [0.0; 4];
+        s.eval_many(&xs, &mut out).unwrap();
+        for (x, y) in xs.iter().zip(out) {
+            assert_eq!(y, s.eval(*x).unwrap(), "batch at {x}");
+        }
+        assert_eq!(out[0], f0);
     }
 }
