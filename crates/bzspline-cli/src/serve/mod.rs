@@ -56,8 +56,9 @@ pub struct ServeArgs {
     /// milliseconds; slower ones get 504.
     #[arg(long, default_value_t = 5_000, value_name = "MS", value_parser = clap::value_parser!(u64).range(1..))]
     pub timeout_ms: u64,
-    /// Most fit requests handled at once (from reading the body to the end of
-    /// the fit); further ones get 503 at once.
+    /// Most fits computed at once; further ones get 503 at once. Bodies are
+    /// received outside this cap (up to 16 per slot, further ones get 503), so
+    /// slow uploads do not hold the fit slots.
     #[arg(long, default_value_t = 4, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub max_in_flight: u32,
     /// Do not log each fit to standard error.
@@ -65,12 +66,17 @@ pub struct ServeArgs {
     pub quiet: bool,
 }
 
+/// Bodies being received at once, per fit slot: slow uploads wait here, not
+/// in the fit slots, and their memory stays bounded (each at most --max-body).
+const UPLOADS_PER_FIT: usize = 16;
+
 /// What every handler shares.
 struct AppState {
     limits: ParseLimits,
     max_body: usize,
     timeout: Duration,
     in_flight: Arc<Semaphore>,
+    uploads: Arc<Semaphore>,
     quiet: bool,
 }
 
@@ -104,6 +110,11 @@ async fn serve(args: &ServeArgs) -> anyhow::Result<()> {
         timeout: Duration::from_millis(args.timeout_ms),
         in_flight: Arc::new(Semaphore::new(
             usize::try_from(args.max_in_flight).unwrap_or(usize::MAX),
+        )),
+        uploads: Arc::new(Semaphore::new(
+            usize::try_from(args.max_in_flight)
+                .unwrap_or(usize::MAX)
+                .saturating_mul(UPLOADS_PER_FIT),
         )),
         quiet: args.quiet,
     });
@@ -179,15 +190,15 @@ fn error_response(e: &ApiError) -> Response {
 
 async fn fit_handler(State(state): State<Arc<AppState>>, req: Request<Body>) -> Response {
     let started = Instant::now();
-    // The permit is held from the first byte of the body to the end of the fit,
-    // so slow uploads count against the cap too.
-    let Ok(permit) = Arc::clone(&state.in_flight).try_acquire_owned() else {
+    // Uploads have a cap of their own, so that slow clients sending their
+    // bodies cannot hold the fit slots that others need.
+    let Ok(upload) = Arc::clone(&state.uploads).try_acquire_owned() else {
         return error_response(&ApiError::new(
             503,
             "too many requests in flight (--max-in-flight); try again",
         ));
     };
-    let outcome = tokio::time::timeout(state.timeout, fit_request(&state, req, permit)).await;
+    let outcome = tokio::time::timeout(state.timeout, fit_request(&state, req, upload)).await;
     let result = outcome.unwrap_or_else(|_| {
         Err(ApiError::new(
             504,
@@ -223,7 +234,7 @@ async fn fit_handler(State(state): State<Arc<AppState>>, req: Request<Body>) -> 
 async fn fit_request(
     state: &AppState,
     req: Request<Body>,
-    permit: tokio::sync::OwnedSemaphorePermit,
+    upload: tokio::sync::OwnedSemaphorePermit,
 ) -> Result<(serde_json::Value, usize, f64), ApiError> {
     let too_large = || {
         ApiError::new(
@@ -242,6 +253,14 @@ async fn fit_request(
     let body = to_bytes(req.into_body(), state.max_body)
         .await
         .map_err(|_| too_large())?;
+    drop(upload);
+    // The fit slot is taken once the body is in.
+    let Ok(permit) = Arc::clone(&state.in_flight).try_acquire_owned() else {
+        return Err(ApiError::new(
+            503,
+            "too many requests in flight (--max-in-flight); try again",
+        ));
+    };
     let request = api::parse(&body, state.limits)?;
     let n = request.spec.points.len();
     let task = tokio::task::spawn_blocking(move || {
