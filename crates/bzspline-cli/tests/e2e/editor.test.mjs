@@ -1,6 +1,8 @@
 // End-to-end test of the `bzspline serve` editor in headless Chromium.
 // Run with `node --test editor.test.mjs` (see run.sh). BZSPLINE_BIN names the
-// binary (default: the workspace's target/debug/bzspline).
+// binary (default: the workspace's target/debug/bzspline). The screenshot goes to
+// target/e2e/editor.png, or to BZSPLINE_SCREENSHOT (docs/editor.png to refresh the
+// README's picture).
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
@@ -12,7 +14,7 @@ import { chromium } from 'playwright-core';
 const here = dirname(fileURLToPath(import.meta.url));
 const root = resolve(here, '../../../..');
 const bin = process.env.BZSPLINE_BIN || resolve(root, 'target/debug/bzspline');
-const screenshot = resolve(root, 'docs/editor.png');
+const screenshot = resolve(root, process.env.BZSPLINE_SCREENSHOT || 'target/e2e/editor.png');
 const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
 
 let server;
