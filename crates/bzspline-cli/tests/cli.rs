@@ -922,3 +922,124 @@ fn smooth_reads_a_table_or_an_example_as_one_line() {
         &["bad_nan.csv:3:", "not a finite number"],
     );
 }
+
+/// Convex hull of planar points (Andrew's monotone chain), counter-clockwise.
+fn convex_hull(pts: &[Vec<f64>]) -> Vec<[f64; 2]> {
+    let mut p: Vec<[f64; 2]> = pts.iter().map(|q| [q[0], q[1]]).collect();
+    p.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    p.dedup();
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut hull: Vec<[f64; 2]> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &[f64; 2]>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for &q in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+fn signed_area(r: &[Vec<f64>]) -> f64 {
+    r.windows(2)
+        .map(|w| w[0][0] * w[1][1] - w[1][0] * w[0][1])
+        .sum::<f64>()
+        / 2.0
+}
+
+#[test]
+fn smooth_real_country_outlines() {
+    // Natural Earth's 1:110m outlines of seven countries (islands, fjords, a long thin
+    // coast), as published: Polygons and MultiPolygons in longitude and latitude.
+    let input: Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture("countries.geojson")).unwrap())
+            .unwrap();
+    let tolerance = 0.01;
+    let text = ok(&["smooth", "countries.geojson", "--tolerance", "0.01"]);
+    let output: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(output["source"], input["source"]);
+    let (fin, fout) = (
+        input["features"].as_array().unwrap(),
+        output["features"].as_array().unwrap(),
+    );
+    assert_eq!(fin.len(), 7);
+    assert_eq!(fout.len(), fin.len());
+    let mut rings_checked = 0;
+    for (a, b) in fin.iter().zip(fout) {
+        assert_eq!(a["id"], b["id"]);
+        assert_eq!(a["properties"], b["properties"]);
+        assert_eq!(a["geometry"]["type"], b["geometry"]["type"]);
+        let polygons = |g: &Value| -> Vec<Value> {
+            if g["type"] == "Polygon" {
+                vec![g["coordinates"].clone()]
+            } else {
+                g["coordinates"].as_array().unwrap().clone()
+            }
+        };
+        let (pin, pout) = (polygons(&a["geometry"]), polygons(&b["geometry"]));
+        assert_eq!(pin.len(), pout.len(), "{}: polygon count", a["id"]);
+        for (ra, rb) in pin.iter().zip(&pout) {
+            let (ra, rb) = (ra.as_array().unwrap(), rb.as_array().unwrap());
+            assert_eq!(ra.len(), rb.len(), "{}: ring count", a["id"]);
+            for (ra, rb) in ra.iter().zip(rb) {
+                let (ra, rb) = (points(ra), points(rb));
+                assert!(
+                    rb.len() >= 4,
+                    "{}: a ring has at least four positions",
+                    a["id"]
+                );
+                assert_eq!(rb[0], rb[rb.len() - 1], "{}: ring not closed", a["id"]);
+                assert!(rb.iter().flatten().all(|v| v.is_finite()));
+                // The smooth ring keeps the outline's orientation (right-hand rule)...
+                let (sa, sb) = (signed_area(&ra), signed_area(&rb));
+                assert_eq!(sa.signum(), sb.signum(), "{}: orientation", a["id"]);
+                // ...and stays inside the convex hull of the outline's vertices.
+                let hull = convex_hull(&ra);
+                let scale = ra.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+                for q in &rb {
+                    for k in 0..hull.len() {
+                        let (o, e) = (hull[k], hull[(k + 1) % hull.len()]);
+                        let c = (e[0] - o[0]) * (q[1] - o[1]) - (e[1] - o[1]) * (q[0] - o[0]);
+                        let len = (e[0] - o[0]).hypot(e[1] - o[1]);
+                        assert!(
+                            c >= -1e-12 * scale * len,
+                            "{}: vertex {q:?} outside the hull",
+                            a["id"]
+                        );
+                    }
+                }
+                // Vertices sit on the smooth curve: every output vertex is within the
+                // tolerance-scaled reach of the outline (never farther than its longest leg).
+                let longest = ra
+                    .windows(2)
+                    .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                    .fold(0.0f64, f64::max);
+                for q in &rb {
+                    let d = ra
+                        .iter()
+                        .map(|p| (p[0] - q[0]).hypot(p[1] - q[1]))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        d <= longest + tolerance,
+                        "{}: vertex {q:?} far from the outline",
+                        a["id"]
+                    );
+                }
+                rings_checked += 1;
+            }
+        }
+    }
+    assert_eq!(rings_checked, 17, "every ring of the seven countries");
+}
