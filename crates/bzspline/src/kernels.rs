@@ -335,7 +335,7 @@ pub(crate) fn per_h<const O: u32>(v: f64, inv: f64) -> f64 {
 }
 
 /// Queries handed to the batch evaluators at once by the block search.
-pub(crate) const BLOCK: usize = 16;
+pub(crate) const BLOCK: usize = 32;
 
 /// Knots between two entries of the search summary.
 pub(crate) const STRIDE: usize = 16;
@@ -366,11 +366,11 @@ impl Batch<'_> {
     /// fails.
     ///
     /// Queries go in blocks of [`BLOCK`]. A block is either walked (the piece of
-    /// the previous query is tried first, then a few steps forward, then a
-    /// binary search) or searched (a branchless binary search interleaved over
-    /// the block). A walked block with more than two jumps backward or far
-    /// forward hands the next block to the search; a searched block whose first
-    /// four queries are in order hands the next block back to the walk.
+    /// the previous query is tried first, then a few steps forward, then the
+    /// summary's search) or searched (a branchless binary search interleaved
+    /// over the block). A walked block with more than two jumps backward or far
+    /// forward hands the next block to the search; a searched block whose
+    /// queries are all in order hands the next block back to the walk.
     pub(crate) fn run<const O: u32, E>(
         &self,
         xs: &[f64],
@@ -406,7 +406,7 @@ impl Batch<'_> {
                             slow(base + j, x, o)?;
                             continue;
                         }
-                        let (next, far) = locate_from(knots, k, x);
+                        let (next, far) = locate_from(knots, self.summary, k, x);
                         jumps += usize::from(far);
                         k = next;
                         k0 = knots[k];
@@ -442,7 +442,7 @@ impl Batch<'_> {
                         slow(base + j, x, o)?;
                     }
                 }
-                search = !(xb.len() >= 4 && xb[0] <= xb[1] && xb[1] <= xb[2] && xb[2] <= xb[3]);
+                search = !xb.is_sorted();
             }
             base += xb.len();
         }
@@ -451,10 +451,10 @@ impl Batch<'_> {
 }
 
 /// The piece of `x` (inside the domain) starting the search at piece `k`: a few
-/// linear steps forward, then a binary search. The flag says whether it took
-/// the binary search.
+/// linear steps forward, then the summary's search (see [`search_one`]). The
+/// flag says whether it took the search.
 #[inline]
-fn locate_from(knots: &[f64], k: usize, x: f64) -> (usize, bool) {
+fn locate_from(knots: &[f64], summary: &[f64], k: usize, x: f64) -> (usize, bool) {
     let last = knots.len() - 2;
     let mut k = k;
     if x >= knots[k] {
@@ -464,15 +464,33 @@ fn locate_from(knots: &[f64], k: usize, x: f64) -> (usize, bool) {
             }
             k += 1;
         }
-        let rest = &knots[k + 1..];
-        ((k + rest.partition_point(|&v| v <= x)).min(last), true)
-    } else {
-        let found = knots[..k]
-            .partition_point(|&v| v <= x)
-            .saturating_sub(1)
-            .min(last);
-        (found, true)
     }
+    (search_one(knots, summary, x).min(last), true)
+}
+
+/// The last knot index `i` with `knots[i] <= x` (0 when there is none): the
+/// search of [`search_block`] for one query.
+#[inline]
+fn search_one(knots: &[f64], summary: &[f64], x: f64) -> usize {
+    let mut s = 0;
+    let mut len = summary.len();
+    while len > 1 {
+        let half = len / 2;
+        let v = summary[s + half];
+        s = core::hint::select_unpredictable(v <= x, s + half, s);
+        len -= half;
+    }
+    let last = knots.len().saturating_sub(1);
+    let mut i = s * STRIDE;
+    let mut len = STRIDE.min(knots.len());
+    while len > 1 {
+        let half = len / 2;
+        let probe = i + half;
+        let v = knots[probe.min(last)];
+        i = core::hint::select_unpredictable(v <= x, probe, i);
+        len -= half;
+    }
+    i
 }
 
 /// For each query the last knot index `i` with `knots[i] <= x` (0 when there is
@@ -572,12 +590,23 @@ mod tests {
 
     #[test]
     fn locate_from_matches_partition_point() {
-        let knots: Vec<f64> = (0..50).map(|i| f64::from(i) * 0.5).collect();
-        for start in [0, 3, 20, 48] {
-            for i in 0..98 {
-                let x = f64::from(i) * 0.25;
-                let want = knots.partition_point(|&k| k <= x).saturating_sub(1).min(48);
-                assert_eq!(locate_from(&knots, start, x).0, want, "from {start} x {x}");
+        for n in [2, 3, 16, 17, 50, 257] {
+            let knots: Vec<f64> = (0..n).map(|i| f64::from(i) * 0.5).collect();
+            let mut summary = Vec::new();
+            summarise(&knots, &mut summary);
+            let last = knots.len() - 2;
+            for start in [0, 3, 20, 48, 255] {
+                let start = start.min(last);
+                for i in 0..(2 * n) {
+                    let x = f64::from(i) * 0.25;
+                    let want = knots
+                        .partition_point(|&k| k <= x)
+                        .saturating_sub(1)
+                        .min(last);
+                    let got = locate_from(&knots, &summary, start, x).0;
+                    assert_eq!(got, want, "n {n} from {start} x {x}");
+                    assert_eq!(search_one(&knots, &summary, x).min(last), want);
+                }
             }
         }
     }

@@ -1516,8 +1516,17 @@ mod tests {
                     random.extend_from_slice(&x);
                     let mut sorted = random.clone();
                     sorted.sort_by(f64::total_cmp);
+                    // Runs in order broken by jumps both ways, and descending:
+                    // the walk's far jumps and the hand-overs between walk and search.
+                    let mut jumpy: Vec<f64> = sorted
+                        .chunks(37)
+                        .rev()
+                        .flat_map(|c| c.iter().copied())
+                        .collect();
+                    jumpy.rotate_left(m / 3);
+                    let descending: Vec<f64> = sorted.iter().rev().copied().collect();
                     let mut out = vec![0.0; random.len()];
-                    for q in [&sorted, &random] {
+                    for q in [&sorted, &random, &jumpy, &descending] {
                         for order in 0..4 {
                             fast.deriv_many(q, order, &mut out).unwrap();
                             for (&xq, &y) in q.iter().zip(&out) {
