@@ -17,6 +17,9 @@ use std::time::Instant;
 
 use bzspline::{Alphas, Curve, Spline};
 
+/// Control points of the flattening benchmark's spiral.
+const SPIRAL: usize = 100_000;
+
 /// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
 struct Rng(u64);
 
@@ -147,18 +150,41 @@ fn main() {
     assert!(res.is_ok());
     let bytes = s.heap_bytes();
 
-    // A planar curve through the same points (default parameters), its
-    // flattening to 1e-3 and the local re-solve after moving one point.
+    // A planar curve through the same points (default parameters) and the
+    // local re-solve after moving one point.
     let pts: Vec<[f64; 2]> = knots.iter().zip(&values).map(|(x, y)| [*x, *y]).collect();
     let curve_build = {
         let mut keep = Vec::new();
         f_median(r, &mut keep, || Curve::open(&pts))
     };
-    let (curve_flatten, curve_move) = match Curve::open(&pts) {
-        Ok(mut c) => {
-            let flat = median_ns(r, || {
-                black_box(c.flatten(1e-3).map(|p| p.len()).unwrap_or(0));
+    // Flattening as the target states it: a 1e5-point planar curve (a jittered
+    // spiral of 100 turns) to a tolerance of 1e-3 of its size (the diagonal of
+    // its bounding box), against building the same curve.
+    let spiral: Vec<[f64; 2]> = (0..SPIRAL)
+        .map(|i| {
+            let th = i as f64 * (200.0 * std::f64::consts::PI / SPIRAL as f64);
+            let rad = 1.0 + th + 0.3 * rng.next();
+            [rad * th.cos(), rad * th.sin()]
+        })
+        .collect();
+    let spiral_build = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || Curve::open(&spiral))
+    };
+    let (spiral_flatten, spiral_vertices) = match Curve::open(&spiral) {
+        Ok(c) => {
+            let b = c.bbox();
+            let size = (b.max[0] - b.min[0]).hypot(b.max[1] - b.min[1]);
+            let mut verts = 0;
+            let ns = median_ns(r, || {
+                verts = black_box(c.flatten(1e-3 * size).map(|p| p.len()).unwrap_or(0));
             });
+            (ns, verts)
+        }
+        Err(_) => (f64::NAN, 0),
+    };
+    let curve_move = match Curve::open(&pts) {
+        Ok(mut c) => {
             let mid = n / 2;
             let mut up = false;
             let mv = median_ns(r, || {
@@ -170,9 +196,9 @@ fn main() {
                         .unwrap_or(0),
                 );
             });
-            (flat, mv)
+            mv
         }
-        Err(_) => (f64::NAN, f64::NAN),
+        Err(_) => f64::NAN,
     };
 
     let mut out = vec![0.0; m.max(mr)];
@@ -216,8 +242,9 @@ fn main() {
          \"deriv1_random_ns_per_point\": {}, \
          \"par_threads\": {}, \"par_eval_sorted_ns_per_point\": {}, \
          \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}, \
-         \"curve2d_construct_ns_per_point\": {}, \"curve2d_flatten_1e-3_ns_per_point\": {}, \
-         \"curve2d_move_point_ns\": {}}}",
+         \"curve2d_construct_ns_per_point\": {}, \"curve2d_move_point_ns\": {}, \
+         \"spiral_1e5_construct_ns_per_point\": {}, \
+         \"spiral_1e5_flatten_ns_per_point\": {}, \"spiral_1e5_flatten_vertices\": {}}}",
         num(reuse / n as f64),
         num(fresh_only / n as f64),
         num(per_interval / n as f64),
@@ -231,8 +258,10 @@ fn main() {
         num(prandom),
         num(bytes as f64 / n as f64),
         num(curve_build / n as f64),
-        num(curve_flatten / n as f64),
         num(curve_move),
+        num(spiral_build / SPIRAL as f64),
+        num(spiral_flatten / SPIRAL as f64),
+        spiral_vertices,
     );
 }
 

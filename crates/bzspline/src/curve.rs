@@ -38,8 +38,8 @@ use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::flatten::Polyline;
 use crate::spline::{
-    alpha_terms, check_finite, neighbour_weights, piece_coefs, power_of_two_scale, quadratic_roots,
-    resolve_alphas, validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
+    alpha_terms, check_finite, neighbour_weights, piece_coefs_with, power_of_two_scale,
+    quadratic_roots, resolve_alphas, validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
 };
 use crate::tridiag::CyclicThomas;
 
@@ -538,8 +538,13 @@ impl Curve {
                 (ParamKind::Given, Some(g))
             }
         };
-        // Keep-list: drop or refuse repeats.
         let pt = |i: usize| &b.points[i * dim..(i + 1) * dim];
+        let repeats = (1..n).any(|i| pt(i) == pt(i - 1)) || (b.closed && pt(n - 1) == pt(0));
+        if !repeats {
+            // Nothing to drop: the builder's points and alphas are the curve's.
+            return Self::solve_new(dim, b.closed, kind, b.points, Vec::new(), given, alphas);
+        }
+        // Keep-list: drop or refuse repeats.
         let mut keep: Vec<usize> = Vec::with_capacity(n);
         let mut dropped = Vec::new();
         for i in 0..n {
@@ -714,22 +719,38 @@ impl Curve {
                 }
             }
         }
-        self.coefs = vec![[0.0; 4]; self.len() * dim];
-        for k in 0..self.len() {
-            self.update_segment(k);
+        // Every segment: the alpha terms formed once per leg (once in all for
+        // one alpha), the closing leg of a closed curve last.
+        let legs = self.len();
+        let mut coefs = Vec::with_capacity(legs * dim);
+        let uniform = self
+            .alphas
+            .first()
+            .filter(|&&a| self.alphas.iter().all(|&b| b == a))
+            .map(|&a| alpha_terms(a));
+        for k in 0..legs {
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            let terms = uniform.unwrap_or_else(|| alpha_terms(self.alphas[k]));
+            let (f0, f1) = (&self.f[k * dim..][..dim], &self.f[j * dim..][..dim]);
+            let (d0, d1) = (&self.d[k * dim..][..dim], &self.d[j * dim..][..dim]);
+            for c in 0..dim {
+                coefs.push(piece_coefs_with(f0[c], f1[c], d0[c], d1[c], terms));
+            }
         }
+        self.coefs = coefs;
     }
 
     fn update_segment(&mut self, k: usize) {
         let (n, dim) = (self.n_points(), self.dim);
         let j = (k + 1) % n;
+        let terms = alpha_terms(self.alphas[k]);
         for c in 0..dim {
-            self.coefs[k * dim + c] = piece_coefs(
+            self.coefs[k * dim + c] = piece_coefs_with(
                 self.f[k * dim + c],
                 self.f[j * dim + c],
                 self.d[k * dim + c],
                 self.d[j * dim + c],
-                self.alphas[k],
+                terms,
             );
         }
     }

@@ -368,22 +368,28 @@ impl OpenSystem {
     pub(crate) fn new(widths: &[f64], alphas: &[f64]) -> Self {
         let n = widths.len() + 1;
         let m = n.saturating_sub(2);
-        let mut lower = Vec::with_capacity(m);
-        let mut diag = Vec::with_capacity(m);
-        let mut upper = Vec::with_capacity(m);
         let mut p_all = Vec::with_capacity(m);
-        for k in 1..n - 1 {
-            let (p, q) = neighbour_weights(widths[k - 1], widths[k]);
-            let [al, b1, _, _] = alpha_terms(alphas[k - 1]);
-            let [_, _, b2, cr] = alpha_terms(alphas[k]);
-            lower.push(-p * al);
-            diag.push(p * b1 + q * b2);
-            upper.push(-q * cr);
-            p_all.push(p);
-        }
+        // Each leg's terms are formed once (once in all for one alpha) and
+        // serve the rows on both sides of it.
+        let uniform = alphas
+            .first()
+            .filter(|&&a| alphas.iter().all(|&b| b == a))
+            .map(|&a| alpha_terms(a));
+        let terms = |k: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[k]));
+        let mut left = if m > 0 { terms(0) } else { [0.0; 4] };
         // Diagonal dominance with a strictly dominant first row (it has no lower
         // neighbour) keeps every pivot positive, so factoring cannot fail.
-        let thomas = Thomas::factor(&lower, &diag, &upper).unwrap_or_default();
+        let thomas = Thomas::factor_rows(m, |i| {
+            let k = i + 1;
+            let (p, q) = neighbour_weights(widths[k - 1], widths[k]);
+            let [al, b1, _, _] = left;
+            let right = terms(k);
+            let [_, _, b2, cr] = right;
+            left = right;
+            p_all.push(p);
+            (-p * al, p * b1 + q * b2, -q * cr)
+        })
+        .unwrap_or_default();
         OpenSystem { p: p_all, thomas }
     }
 
@@ -409,7 +415,13 @@ impl OpenSystem {
 /// with deviations `d0, d1` and shape parameter `a`.
 #[inline]
 pub(crate) fn piece_coefs(f0: f64, f1: f64, d0: f64, d1: f64, a: f64) -> [f64; 4] {
-    let [al, b1, b2, cr] = alpha_terms(a);
+    piece_coefs_with(f0, f1, d0, d1, alpha_terms(a))
+}
+
+/// [`piece_coefs`] with the [`alpha_terms`] of its shape parameter given.
+#[inline]
+pub(crate) fn piece_coefs_with(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> [f64; 4] {
+    let [al, b1, b2, cr] = terms;
     let df = f1 - f0;
     let s0 = df - d0 * b2 + d1 * cr; // h S'(tau_k + 0)
     let s1 = df + d1 * b1 - d0 * al; // h S'(tau_{k+1} - 0)

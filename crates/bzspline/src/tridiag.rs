@@ -30,21 +30,33 @@ impl Thomas {
         if lower.len() != n || upper.len() != n {
             return None;
         }
+        Self::factor_rows(n, |i| (lower[i], diag[i], upper[i]))
+    }
+
+    /// Factors the `n`-row matrix whose row `i` is `row(i) = (lower, diag,
+    /// upper)`, asking for the rows in order `0, 1, .., n - 1` once each, so
+    /// that the caller needs no arrays for them.
+    ///
+    /// Returns `None` as [`Self::factor`] does.
+    pub fn factor_rows(n: usize, mut row: impl FnMut(usize) -> (f64, f64, f64)) -> Option<Self> {
+        let mut lower = Vec::with_capacity(n);
         let mut inv_pivot = Vec::with_capacity(n);
         let mut up = Vec::with_capacity(n);
         let mut prev_up = 0.0;
         for i in 0..n {
-            let pivot = diag[i] - if i > 0 { lower[i] * prev_up } else { 0.0 };
+            let (l, d, u) = row(i);
+            let pivot = d - if i > 0 { l * prev_up } else { 0.0 };
             if pivot == 0.0 || !pivot.is_finite() {
                 return None;
             }
             let inv = 1.0 / pivot;
+            lower.push(l);
             inv_pivot.push(inv);
-            prev_up = if i + 1 < n { upper[i] * inv } else { 0.0 };
+            prev_up = if i + 1 < n { u * inv } else { 0.0 };
             up.push(prev_up);
         }
         Some(Thomas {
-            lower: lower.to_vec(),
+            lower,
             inv_pivot,
             upper: up,
         })
