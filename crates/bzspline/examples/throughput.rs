@@ -187,7 +187,7 @@ fn main() {
         Ok(mut c) => {
             let mid = n / 2;
             let mut up = false;
-            let mv = median_ns(r, || {
+            median_ns(r, || {
                 up = !up;
                 let y = values[mid] + if up { 1.0 } else { 0.0 };
                 black_box(
@@ -195,8 +195,7 @@ fn main() {
                         .map(|v| v.len())
                         .unwrap_or(0),
                 );
-            });
-            mv
+            })
         }
         Err(_) => f64::NAN,
     };
