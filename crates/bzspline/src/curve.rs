@@ -773,6 +773,31 @@ impl Curve {
         m0.max(norm(&a))
     }
 
+    /// The Bezier control points of planar segment `k` in units of
+    /// [`Self::unit`] (the arithmetic of [`Self::segment_points`]).
+    pub(crate) fn unit_bezier_2d(&self, k: usize) -> [[f64; 2]; 4] {
+        let n = self.n_points();
+        let j = if k + 1 == n { 0 } else { k + 1 };
+        let [al, b1, b2, cr] = alpha_terms(self.alphas[k]);
+        let coord = |c: usize| {
+            let (f0, f1) = (self.f[2 * k + c], self.f[2 * j + c]);
+            let (d0, d1) = (self.d[2 * k + c], self.d[2 * j + c]);
+            let df = f1 - f0;
+            let s0 = df - d0 * b2 + d1 * cr;
+            let s1 = df + d1 * b1 - d0 * al;
+            let (p0, p3) = (f0 + d0, f1 + d1);
+            let rel = self.scales[c] / self.gscale;
+            [
+                p0 * rel,
+                (p0 + s0 / 3.0) * rel,
+                (p3 - s1 / 3.0) * rel,
+                p3 * rel,
+            ]
+        };
+        let (x, y) = (coord(0), coord(1));
+        core::array::from_fn(|i| [x[i], y[i]])
+    }
+
     /// The point of segment `k` at local `t`, in the curve's units.
     pub(crate) fn segment_point(&self, k: usize, t: f64) -> Vec<f64> {
         let mut p = vec![0.0; self.dim];

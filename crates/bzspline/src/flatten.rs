@@ -125,10 +125,12 @@ fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
 
 impl Curve {
     /// A polyline whose distance from the curve is at most `tol` everywhere,
-    /// with the fewest equal parameter steps per segment that the bound on the
-    /// second derivative allows (see [`crate::flatten`]). The first vertex is
-    /// the start of the curve and the last its end (the start again for a
-    /// closed curve), exactly.
+    /// with few vertices (see [`crate::flatten`]): each segment gets the fewest
+    /// equal parameter steps that the bound on its second derivative allows,
+    /// and in the plane a run of segments that stays within `tol` of one chord
+    /// becomes that one chord (so vertices need not fall on the knots). The
+    /// first vertex is the start of the curve and the last its end (the start
+    /// again for a closed curve), exactly.
     ///
     /// # Errors
     ///
@@ -144,6 +146,9 @@ impl Curve {
     /// let p = c.flatten(1e-3)?;
     /// assert_eq!(p.point(0), p.point(p.len() - 1)); // closed
     /// assert!(p.len() > 8);
+    /// // Points on a straight line: one chord.
+    /// let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])?;
+    /// assert_eq!(line.flatten(1e-9)?.len(), 2);
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
@@ -166,10 +171,21 @@ impl Curve {
         let mut coords = Vec::with_capacity(total * dim);
         let mut params = Vec::with_capacity(total);
         let knots = self.knots();
-        for (k, &m) in counts.iter().enumerate() {
-            let start = usize::from(k > 0);
+        coords.extend(self.segment_point(0, 0.0));
+        params.push(knots[0]);
+        let mut k = 0;
+        while k < counts.len() {
+            let m = counts[k];
+            if m == 1 && dim == 2 {
+                // One chord from knot k to the farthest knot it can reach.
+                let end = self.chord_run(k, &counts, 0.999 * scaled_tol);
+                coords.extend(self.segment_point(end - 1, 1.0));
+                params.push(knots[end]);
+                k = end;
+                continue;
+            }
             let h = knots[k + 1] - knots[k];
-            for j in start..=m {
+            for j in 1..=m {
                 let t = j as f64 / m as f64;
                 coords.extend(self.segment_point(k, t));
                 params.push(if j == m {
@@ -178,8 +194,89 @@ impl Curve {
                     knots[k] + t * h
                 });
             }
+            k += 1;
         }
         Ok(Polyline::new(dim, coords, params))
+    }
+
+    /// For a planar curve, the last knot `e > k` such that the chord from
+    /// knot point `k` to knot point `e` stays within `tol` (in units of
+    /// [`Curve::unit`]) of the curve between them; segments `k..e` all need
+    /// one step (`counts`). Segment `k` alone always qualifies.
+    ///
+    /// Each segment lies in the convex hull of its Bezier control points, and
+    /// the distance to a line segment is convex, so the chord `A B` is close
+    /// enough when every control point `p` of the run is: either `|p - A| <=
+    /// tol`, or the direction of `B - A` is within `asin(tol / |p - A|)` of
+    /// `p - A` (the cone of directions whose ray from `A` passes within `tol` of
+    /// `p`) and `|B - A| >= |p - A|` (so `p` projects inside the chord). The
+    /// cones are intersected as the run grows: one pass, no square loop.
+    fn chord_run(&self, k: usize, counts: &[usize], tol: f64) -> usize {
+        let a = self.unit_bezier_2d(k)[0];
+        let mut cone: Option<([f64; 2], [f64; 2])> = None;
+        let mut reach = 0.0f64;
+        let mut best = k + 1;
+        let mut e = k;
+        'run: while e < counts.len() && counts[e] == 1 {
+            let ctrl = self.unit_bezier_2d(e);
+            for p in &ctrl[1..] {
+                let c = [p[0] - a[0], p[1] - a[1]];
+                let r = (c[0] * c[0] + c[1] * c[1]).sqrt();
+                if !r.is_finite() {
+                    break 'run;
+                }
+                if r <= tol {
+                    continue;
+                }
+                reach = reach.max(r);
+                let s = tol / r;
+                let co = (1.0 - s * s).sqrt();
+                let right = [c[0] * co + c[1] * s, c[1] * co - c[0] * s];
+                let left = [c[0] * co - c[1] * s, c[1] * co + c[0] * s];
+                cone = match cone {
+                    None => Some((right, left)),
+                    Some(arc) => match intersect_arcs(arc, (right, left)) {
+                        Some(x) => Some(x),
+                        None => break 'run,
+                    },
+                };
+            }
+            let b = ctrl[3];
+            let v = [b[0] - a[0], b[1] - a[1]];
+            let ok = match cone {
+                None => true,
+                Some(arc) => (v[0] * v[0] + v[1] * v[1]).sqrt() >= reach && in_arc(arc, v),
+            };
+            if ok {
+                best = e + 1;
+            }
+            e += 1;
+        }
+        best
+    }
+}
+
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Whether the direction `v` lies in the arc from `right` counter-clockwise to
+/// `left` (an arc of less than half a turn).
+fn in_arc((right, left): ([f64; 2], [f64; 2]), v: [f64; 2]) -> bool {
+    cross(right, v) >= 0.0 && cross(v, left) >= 0.0
+}
+
+/// The intersection of two arcs of directions, each less than half a turn
+/// (so the intersection is one arc or empty).
+fn intersect_arcs(
+    a: ([f64; 2], [f64; 2]),
+    b: ([f64; 2], [f64; 2]),
+) -> Option<([f64; 2], [f64; 2])> {
+    match (in_arc(a, b.0), in_arc(a, b.1)) {
+        (true, true) => Some(b),
+        (true, false) => Some((b.0, a.1)),
+        (false, true) => Some((a.0, b.1)),
+        (false, false) => in_arc(b, a.0).then_some(a),
     }
 }
 
@@ -322,8 +419,10 @@ mod tests {
             c.flatten(1e-300),
             Err(Error::InvalidArgument { .. })
         ));
-        // A straight curve needs one step per segment.
+        // A straight planar curve is one chord; in space, one step per segment.
         let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]).unwrap();
+        assert_eq!(line.flatten(1e-9).unwrap().len(), 2);
+        let line = Curve::open(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]).unwrap();
         assert_eq!(line.flatten(1e-9).unwrap().len(), 3);
     }
 }

@@ -345,6 +345,49 @@ proptest! {
     }
 
     #[test]
+    fn flattening_dense_points_merges_segments_within_tolerance(
+        n in 20usize..300,
+        radius in 1.0f64..1000.0,
+        span in 0.5f64..6.2,
+        wobble in prop::collection::vec(-1.0f64..1.0, 300),
+        rel_jitter in prop_oneof![Just(0.0), Just(1e-4), Just(1e-2)],
+        rel_tol in prop_oneof![Just(1e-3), Just(1e-2), Just(1e-1)],
+        closed in any::<bool>(),
+        param in param(),
+    ) {
+        // Many points on a circular arc, moved off it by a little noise: long
+        // runs of segments fit one chord at a coarse tolerance.
+        let pts: Vec<f64> = (0..n)
+            .flat_map(|i| {
+                let th = span * i as f64 / n as f64;
+                let r = radius * (1.0 + rel_jitter * wobble[i]);
+                [r * th.cos(), r * th.sin()]
+            })
+            .collect();
+        let Ok(c) = Curve::builder(&pts, 2).closed(closed).param(param).build() else {
+            return Ok(());
+        };
+        let tol = rel_tol * radius;
+        let p = c.flatten(tol).unwrap();
+        let (lo, hi) = c.domain();
+        prop_assert_eq!(p.point(0).unwrap().to_vec(), c.eval(lo).unwrap());
+        prop_assert_eq!(p.point(p.len() - 1).unwrap().to_vec(), c.eval(hi).unwrap());
+        let params = p.params();
+        prop_assert!(params.windows(2).all(|w| w[0] < w[1]));
+        for s in samples(&c, 100 * c.len()) {
+            let q = c.eval(s).unwrap();
+            let j = params.partition_point(|&x| x <= s).clamp(1, p.len() - 1);
+            let d = seg_dist(&q, p.point(j - 1).unwrap(), p.point(j).unwrap());
+            prop_assert!(d <= tol, "at {s}: {d} > {tol}");
+        }
+        if !closed && rel_jitter == 0.0 && rel_tol >= 1e-2 && n >= 100 {
+            // A chord of the arc within tol spans about sqrt(8 rel_tol) radians,
+            // many knots here: far fewer vertices than knots.
+            prop_assert!(p.len() * 3 < c.len(), "{} vertices for {} segments", p.len(), c.len());
+        }
+    }
+
+    #[test]
     fn nearest_point_beats_dense_search(
         dim in 2usize..=3,
         (pts, closed, param, alphas) in curve_strategy(3),
