@@ -16,12 +16,26 @@ pub struct ApiError {
 }
 
 impl ApiError {
-    /// A refusal with `status` and `message`.
+    /// A refusal with `status` and `message`. Control characters (which can
+    /// come from the request, in a field name quoted by the JSON reader) are
+    /// escaped, so that the message stays one line in the server's log.
     pub fn new(status: u16, message: impl Into<String>) -> Self {
-        ApiError {
-            status,
-            message: message.into(),
-        }
+        let message: String = message.into();
+        let message = if message.chars().any(char::is_control) {
+            message
+                .chars()
+                .map(|c| {
+                    if c.is_control() {
+                        c.escape_default().to_string()
+                    } else {
+                        c.to_string()
+                    }
+                })
+                .collect()
+        } else {
+            message
+        };
+        ApiError { status, message }
     }
 
     /// The JSON body: `{"error": message, "status": status}`.
@@ -246,6 +260,18 @@ mod tests {
         max_points: 5,
         max_samples: 100,
     };
+
+    /// Found by the serve_api fuzz target: a field name with a newline in it
+    /// was quoted into the message, which the server logs as one line.
+    #[test]
+    fn messages_stay_one_line_whatever_the_request_holds() {
+        let body = br#"{"nti\\\no\\\npoints": [[0,0],[1,2],[3,2],[4,0]], "alphas": [0.66]}"#;
+        let e = parse(body, LIMITS).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.contains("unknown field"), "{}", e.message);
+        assert!(!e.message.contains('\n'), "{:?}", e.message);
+        assert!(e.message.contains(r"\n"), "escaped: {:?}", e.message);
+    }
 
     #[test]
     fn refusals_carry_their_status() {
