@@ -13,6 +13,16 @@ use bzspline::{ALPHA_MAX, ALPHA_MIN};
 #[path = "../../crates/bzspline-cli/src/input.rs"]
 pub mod input;
 
+/// The command's model of a fit (what `fit` prints and `serve` answers),
+/// compiled from its source file like the readers.
+#[path = "../../crates/bzspline-cli/src/model.rs"]
+pub mod model;
+
+/// The editor server's `POST /api/fit` handler body: request parsing and the
+/// response, without the HTTP layer.
+#[path = "../../crates/bzspline-cli/src/serve/api.rs"]
+pub mod serve_api;
+
 /// The two types of the command's `cli` module that the readers name, with
 /// the same names and variants (the rest of that module is argument parsing).
 pub mod cli {
