@@ -9,6 +9,17 @@
 //! point of the curve is within `tol` of the polyline; this is the fewest equal
 //! steps the bound allows. Vertices are points of the curve, and the first and
 //! last are the curve's ends exactly.
+//!
+//! A planar curve through many points often needs fewer vertices than it has
+//! knots: where consecutive segments each need one step, the chord from a knot
+//! point `A` is extended over as many of them as it can span. Each segment lies
+//! in the convex hull of its four Bezier control points and the distance to a
+//! line segment is a convex function, so the chord `A B` is within `tol` of the
+//! curve between when every control point of the run is; that holds for a
+//! control point `p` when `|p - A| <= tol`, or when `B - A` lies within
+//! `asin(tol / |p - A|)` of the direction of `p - A` and `|B - A| >= |p - A|`.
+//! The cones of allowed directions are intersected as the run grows, so the
+//! search is one pass.
 
 use crate::curve::Curve;
 use crate::error::{Error, Field};
