@@ -766,36 +766,66 @@ impl Curve {
 
     /// The largest `|d^2 r / dt^2|` on segment `k`, in units of [`Self::unit`].
     pub(crate) fn accel_bound(&self, k: usize) -> f64 {
-        let mut a = vec![0.0; self.dim];
-        self.local(k, 0.0, 2, &mut a);
-        let m0 = norm(&a);
-        self.local(k, 1.0, 2, &mut a);
-        m0.max(norm(&a))
+        // r'' = 2 c2 + 6 c3 t per coordinate: its norm at t = 0 and t = 1.
+        let dim = self.dim;
+        let (mut s0, mut s1) = (0.0f64, 0.0f64);
+        let mut big = false;
+        for c in 0..dim {
+            let q = &self.coefs[k * dim + c];
+            let rel = self.scales[c] / self.gscale;
+            let (a0, a1) = (2.0 * q[2] * rel, (2.0 * q[2] + 6.0 * q[3]) * rel);
+            s0 += a0 * a0;
+            s1 += a1 * a1;
+            big |= !(a0.abs() < 1e150 && a1.abs() < 1e150);
+        }
+        if big {
+            // Squares could overflow: the norms the careful way.
+            let mut a = vec![0.0; dim];
+            self.local(k, 0.0, 2, &mut a);
+            let m0 = norm(&a);
+            self.local(k, 1.0, 2, &mut a);
+            return m0.max(norm(&a));
+        }
+        s0.max(s1).sqrt()
+    }
+
+    /// What multiplies scaled coordinate `c` to give it in units of
+    /// [`Self::unit`] (a power of two).
+    pub(crate) fn unit_rel(&self, c: usize) -> f64 {
+        self.scales[c] / self.gscale
     }
 
     /// The Bezier control points of planar segment `k` in units of
-    /// [`Self::unit`] (the arithmetic of [`Self::segment_points`]).
-    pub(crate) fn unit_bezier_2d(&self, k: usize) -> [[f64; 2]; 4] {
-        let n = self.n_points();
-        let j = if k + 1 == n { 0 } else { k + 1 };
-        let [al, b1, b2, cr] = alpha_terms(self.alphas[k]);
-        let coord = |c: usize| {
-            let (f0, f1) = (self.f[2 * k + c], self.f[2 * j + c]);
-            let (d0, d1) = (self.d[2 * k + c], self.d[2 * j + c]);
-            let df = f1 - f0;
-            let s0 = df - d0 * b2 + d1 * cr;
-            let s1 = df + d1 * b1 - d0 * al;
-            let (p0, p3) = (f0 + d0, f1 + d1);
-            let rel = self.scales[c] / self.gscale;
-            [
-                p0 * rel,
-                (p0 + s0 / 3.0) * rel,
-                (p3 - s1 / 3.0) * rel,
-                p3 * rel,
-            ]
+    /// [`Self::unit`], for the flattening's chord test (the arithmetic of
+    /// [`Self::segment_points`] with a multiplication by 1/3 for the division,
+    /// so they may differ from those in the last place). `terms` are the
+    /// [`alpha_terms`] of the segment's alpha, `rel` [`Self::unit_rel`] of both
+    /// coordinates.
+    #[inline]
+    pub(crate) fn unit_bezier_2d(&self, k: usize, terms: [f64; 4], rel: [f64; 2]) -> [[f64; 2]; 4] {
+        // The next knot point; the closing segment of a closed curve ends at
+        // the first (no division by the dimension to count the points).
+        let j = if self.closed && k + 1 == self.len() {
+            0
+        } else {
+            k + 1
         };
-        let (x, y) = (coord(0), coord(1));
-        core::array::from_fn(|i| [x[i], y[i]])
+        let [al, b1, b2, cr] = terms;
+        let (f0, f1) = (&self.f[2 * k..2 * k + 2], &self.f[2 * j..2 * j + 2]);
+        let (d0, d1) = (&self.d[2 * k..2 * k + 2], &self.d[2 * j..2 * j + 2]);
+        let third = 1.0 / 3.0;
+        let mut ctrl = [[0.0; 2]; 4];
+        for (c, &rel) in rel.iter().enumerate() {
+            let df = f1[c] - f0[c];
+            let s0 = df - d0[c] * b2 + d1[c] * cr;
+            let s1 = df + d1[c] * b1 - d0[c] * al;
+            let (p0, p3) = (f0[c] + d0[c], f1[c] + d1[c]);
+            let col = [p0, p0 + s0 * third, p3 - s1 * third, p3];
+            for (row, v) in ctrl.iter_mut().zip(col) {
+                row[c] = v * rel;
+            }
+        }
+        ctrl
     }
 
     /// The point of segment `k` at local `t`, in the curve's units.

@@ -23,7 +23,7 @@
 
 use crate::curve::Curve;
 use crate::error::{Error, Field};
-use crate::spline::Spline;
+use crate::spline::{alpha_terms, Spline};
 
 /// The most vertices one flattening may produce; a tolerance that would need
 /// more is refused.
@@ -122,16 +122,23 @@ fn check_tol(tol: f64) -> Result<(), Error> {
 /// Steps for a segment whose `|r''|` is at most `accel`, for tolerance `tol`
 /// (same units). A small margin covers the rounding of the vertices.
 fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
-    let m = (accel / (8.0 * tol * 0.999)).sqrt().ceil();
-    // Also catches NaN.
-    if m.is_nan() || m >= MAX_FLATTEN_VERTICES as f64 {
+    let x = (accel / (8.0 * tol * 0.999)).sqrt();
+    // The ceiling by hand (f64::ceil is a library call on baseline x86-64);
+    // the comparison also catches NaN.
+    let m = if x < MAX_FLATTEN_VERTICES as f64 {
+        let m = x as usize;
+        m + usize::from((m as f64) < x)
+    } else {
+        MAX_FLATTEN_VERTICES
+    };
+    if m >= MAX_FLATTEN_VERTICES {
         return Err(Error::InvalidArgument {
             what:
                 "the flattening tolerance is too small for the curve: too many vertices; tolerance",
             value: tol,
         });
     }
-    Ok((m as usize).max(1))
+    Ok(m.max(1))
 }
 
 impl Curve {
@@ -165,31 +172,32 @@ impl Curve {
     pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
         check_tol(tol)?;
         let scaled_tol = tol / self.unit();
-        let mut counts = Vec::with_capacity(self.len());
-        let mut total = 1usize;
-        for k in 0..self.len() {
-            let m = steps(self.accel_bound(k), scaled_tol)?;
-            total = total.saturating_add(m);
-            if total > MAX_FLATTEN_VERTICES {
-                return Err(Error::InvalidArgument {
-                    what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-                    value: tol,
-                });
-            }
-            counts.push(m);
-        }
+        let too_many = || Error::InvalidArgument {
+            what:
+                "the flattening tolerance is too small for the curve: too many vertices; tolerance",
+            value: tol,
+        };
         let dim = self.dim();
-        let mut coords = Vec::with_capacity(total * dim);
-        let mut params = Vec::with_capacity(total);
         let knots = self.knots();
+        let mut coords = Vec::with_capacity((self.len() + 1) * dim);
+        let mut params = Vec::with_capacity(self.len() + 1);
         coords.extend(self.segment_point(0, 0.0));
         params.push(knots[0]);
+        // The alpha terms once for all segments when the alphas are all one.
+        let alphas = self.alphas();
+        let uniform = alphas
+            .first()
+            .filter(|&&a| alphas.iter().all(|&b| b == a))
+            .map(|&a| alpha_terms(a));
         let mut k = 0;
-        while k < counts.len() {
-            let m = counts[k];
+        while k < self.len() {
+            let m = steps(self.accel_bound(k), scaled_tol)?;
+            if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
+                return Err(too_many());
+            }
             if m == 1 && dim == 2 {
                 // One chord from knot k to the farthest knot it can reach.
-                let end = self.chord_run(k, &counts, 0.999 * scaled_tol);
+                let end = self.chord_run(k, uniform, 0.999 * scaled_tol);
                 coords.extend(self.segment_point(end - 1, 1.0));
                 params.push(knots[end]);
                 k = end;
@@ -212,8 +220,9 @@ impl Curve {
 
     /// For a planar curve, the last knot `e > k` such that the chord from
     /// knot point `k` to knot point `e` stays within `tol` (in units of
-    /// [`Curve::unit`]) of the curve between them; segments `k..e` all need
-    /// one step (`counts`). Segment `k` alone always qualifies.
+    /// [`Curve::unit`]) of the curve between them. Segment `k` alone always
+    /// qualifies (the caller has found that it needs one step). `uniform`
+    /// holds the alpha terms when every segment has the same alpha.
     ///
     /// Each segment lies in the convex hull of its Bezier control points, and
     /// the distance to a line segment is convex, so the chord `A B` is close
@@ -222,28 +231,35 @@ impl Curve {
     /// `p - A` (the cone of directions whose ray from `A` passes within `tol` of
     /// `p`) and `|B - A| >= |p - A|` (so `p` projects inside the chord). The
     /// cones are intersected as the run grows: one pass, no square loop.
-    fn chord_run(&self, k: usize, counts: &[usize], tol: f64) -> usize {
-        let a = self.unit_bezier_2d(k)[0];
+    fn chord_run(&self, k: usize, uniform: Option<[f64; 4]>, tol: f64) -> usize {
+        let alphas = self.alphas();
+        let terms = |e: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[e]));
+        let rel = [self.unit_rel(0), self.unit_rel(1)];
+        let a = self.unit_bezier_2d(k, terms(k), rel)[0];
+        let tol2 = tol * tol;
         let mut cone: Option<([f64; 2], [f64; 2])> = None;
-        let mut reach = 0.0f64;
+        // The largest squared distance from `a` of a control point that
+        // constrains the direction.
+        let mut reach2 = 0.0f64;
         let mut best = k + 1;
         let mut e = k;
-        'run: while e < counts.len() && counts[e] == 1 {
-            let ctrl = self.unit_bezier_2d(e);
+        'run: while e < self.len() {
+            let ctrl = self.unit_bezier_2d(e, terms(e), rel);
             for p in &ctrl[1..] {
                 let c = [p[0] - a[0], p[1] - a[1]];
-                let r = (c[0] * c[0] + c[1] * c[1]).sqrt();
-                if !r.is_finite() {
+                let r2 = c[0] * c[0] + c[1] * c[1];
+                if !r2.is_finite() {
                     break 'run;
                 }
-                if r <= tol {
+                if r2 <= tol2 {
                     continue;
                 }
-                reach = reach.max(r);
-                let s = tol / r;
-                let co = (1.0 - s * s).sqrt();
-                let right = [c[0] * co + c[1] * s, c[1] * co - c[0] * s];
-                let left = [c[0] * co - c[1] * s, c[1] * co + c[0] * s];
+                reach2 = reach2.max(r2);
+                // `c` turned by -/+ asin(tol / |c|), both scaled by |c|:
+                // c sqrt(|c|^2 - tol^2) -/+ perp(c) tol.
+                let q = (r2 - tol2).sqrt();
+                let right = [c[0] * q + c[1] * tol, c[1] * q - c[0] * tol];
+                let left = [c[0] * q - c[1] * tol, c[1] * q + c[0] * tol];
                 cone = match cone {
                     None => Some((right, left)),
                     Some(arc) => match intersect_arcs(arc, (right, left)) {
@@ -256,7 +272,7 @@ impl Curve {
             let v = [b[0] - a[0], b[1] - a[1]];
             let ok = match cone {
                 None => true,
-                Some(arc) => (v[0] * v[0] + v[1] * v[1]).sqrt() >= reach && in_arc(arc, v),
+                Some(arc) => v[0] * v[0] + v[1] * v[1] >= reach2 && in_arc(arc, v),
             };
             if ok {
                 best = e + 1;
