@@ -46,8 +46,17 @@ fuzz_target!(|bytes: &[u8]| {
     let req = match parse(bytes, limits) {
         Ok(r) => r,
         Err(e) => {
-            assert!((400..500).contains(&e.status), "status {} for {}", e.status, e.message);
-            assert!(!e.message.is_empty() && !e.message.contains('\n'), "{:?}", e.message);
+            assert!(
+                (400..500).contains(&e.status),
+                "status {} for {}",
+                e.status,
+                e.message
+            );
+            assert!(
+                !e.message.is_empty() && !e.message.contains('\n'),
+                "{:?}",
+                e.message
+            );
             return;
         }
     };
@@ -62,7 +71,11 @@ fuzz_target!(|bytes: &[u8]| {
         }
         Err(e) => {
             assert_eq!(e.status, 422, "{}", e.message);
-            assert!(!e.message.is_empty() && !e.message.contains('\n'), "{:?}", e.message);
+            assert!(
+                !e.message.is_empty() && !e.message.contains('\n'),
+                "{:?}",
+                e.message
+            );
         }
     }
 });

@@ -37,6 +37,21 @@ pub mod cli {
         pub example: Option<u8>,
         /// Input format.
         pub input_format: Option<InputFormat>,
+        /// Most points.
+        pub max_points: u64,
+        /// Most bytes.
+        pub max_bytes: u64,
+    }
+
+    impl InputArgs {
+        /// The reading limits.
+        #[must_use]
+        pub fn limits(&self) -> crate::input::Limits {
+            crate::input::Limits {
+                max_points: usize::try_from(self.max_points).unwrap_or(usize::MAX),
+                max_bytes: self.max_bytes,
+            }
+        }
     }
 
     /// Formats the readers understand.
@@ -55,23 +70,26 @@ pub mod cli {
     }
 }
 
+/// The point limit the reader targets run with, small enough to be reached.
+pub const MAX_POINTS: usize = 64;
+
 /// Checks what a reader returned: rows of one width, finite numbers, one
 /// position per row; or a one-line message naming the source.
 pub fn check_points(name: &str, result: &anyhow::Result<input::Points>) {
     match result {
         Ok(p) => {
-            assert_eq!(p.rows.len(), p.pos.len());
-            if let Some(w) = p.rows.first().map(Vec::len) {
-                assert!(p.rows.iter().all(|r| r.len() == w), "ragged rows accepted");
+            assert_eq!(p.coords.len(), p.len() * p.width, "rows of one width");
+            assert!(p.len() <= MAX_POINTS, "more points than the limit");
+            if let input::Positions::Lines(l) | input::Positions::Features(l) = &p.pos {
+                assert_eq!(l.len(), p.len(), "one position per row");
             }
             assert!(
-                p.rows.iter().flatten().all(|v| v.is_finite()),
+                p.coords.iter().all(|v| v.is_finite()),
                 "non-finite accepted"
             );
             // The command turns library errors into messages with positions.
-            if p.rows.first().is_some_and(|r| r.len() == 2) {
-                let x: Vec<f64> = p.rows.iter().map(|r| r[0]).collect();
-                let y: Vec<f64> = p.rows.iter().map(|r| r[1]).collect();
+            if p.width == 2 && !p.is_empty() {
+                let (x, y) = (p.column(0), p.column(1));
                 if let Err(e) = bzspline::Spline::new(&x, &y) {
                     let msg = input::explain(p, &e).to_string();
                     assert!(!msg.contains('\n'), "two-line message: {msg:?}");

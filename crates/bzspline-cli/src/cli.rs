@@ -52,6 +52,37 @@ pub struct InputArgs {
     /// Input format; by default from the file's extension, else CSV.
     #[arg(long, value_enum, value_name = "FORMAT")]
     pub input_format: Option<InputFormat>,
+    /// Refuse inputs with more than N control points (a table's rows, a line's
+    /// positions). Fitting a table takes about 100 bytes per point for y(x) and
+    /// 400 for a planar curve: at the default, 2 GB and 8 GB.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = crate::input::Limits::DEFAULT.max_points as u64,
+        value_parser = clap::value_parser!(u64).range(2..)
+    )]
+    pub max_points: u64,
+    /// Refuse input files (or standard input) larger than this many bytes, before
+    /// reading them. JSON and GeoJSON are read into a document tree first, which
+    /// takes 5 to 30 times their size in memory.
+    #[arg(
+        long,
+        value_name = "BYTES",
+        default_value_t = crate::input::Limits::DEFAULT.max_bytes,
+        value_parser = clap::value_parser!(u64).range(1..)
+    )]
+    pub max_bytes: u64,
+}
+
+impl InputArgs {
+    /// The reading limits these arguments set.
+    #[must_use]
+    pub fn limits(&self) -> crate::input::Limits {
+        crate::input::Limits {
+            max_points: usize::try_from(self.max_points).unwrap_or(usize::MAX),
+            max_bytes: self.max_bytes,
+        }
+    }
 }
 
 /// Formats the readers understand.

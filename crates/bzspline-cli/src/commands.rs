@@ -41,7 +41,7 @@ pub fn run(cli: Cli) -> Result<()> {
 /// that overflow a double.
 pub fn fit_points(points: &Points, shape: &Shape) -> Result<Fitted> {
     check_columns(points, shape)?;
-    let built = model::build(&spec_of(points.rows.clone(), shape));
+    let built = model::build(&spec_of(points, shape));
     checked(points, built)
 }
 
@@ -52,9 +52,10 @@ fn check_columns(points: &Points, shape: &Shape) -> Result<()> {
     }
 }
 
-fn spec_of(points: Vec<Vec<f64>>, shape: &Shape) -> FitSpec {
+fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
     FitSpec {
-        points,
+        points: std::borrow::Cow::Borrowed(&points.coords),
+        dim: points.width,
         mode: shape.mode,
         closed: shape.closed,
         param: shape.param,
@@ -67,23 +68,24 @@ fn spec_of(points: Vec<Vec<f64>>, shape: &Shape) -> FitSpec {
 fn checked(points: &Points, built: Result<Fitted, bzspline::Error>) -> Result<Fitted> {
     let fitted = built.map_err(|e| input::explain(points, &e))?;
     let finite = match &fitted {
+        // The segments' end points are the knot values (knot points).
         Fitted::Function(s) => {
-            s.segments()
+            (0..s.len()).all(|k| {
+                s.segment(k)
+                    .is_some_and(|b| b.p.iter().flatten().all(|v| v.is_finite()))
+            }) && s
+                .tangent_points()
                 .iter()
-                .all(|b| b.p.iter().flatten().all(|v| v.is_finite()))
-                && s.knot_values().iter().all(|v| v.is_finite())
-                && s.tangent_points()
-                    .iter()
-                    .all(|(x, y)| x.is_finite() && y.is_finite())
+                .all(|(x, y)| x.is_finite() && y.is_finite())
         }
         Fitted::Curve(c) => {
             (0..c.len()).all(|k| {
                 c.segment_points(k)
                     .is_some_and(|p| p.iter().all(|v| v.is_finite()))
-            }) && model::all_finite(&c.knot_points())
-                && c.tangent_points()
-                    .iter()
-                    .all(|(t, p)| t.is_finite() && p.iter().all(|v| v.is_finite()))
+            }) && c
+                .tangent_points()
+                .iter()
+                .all(|(t, p)| t.is_finite() && p.iter().all(|v| v.is_finite()))
         }
     };
     if !finite {
@@ -128,8 +130,10 @@ fn fit(a: &FitArgs) -> Result<()> {
             }
         }
         FitFormat::Svg => {
-            let path = model::svg(&fitted).ok_or_else(|| anyhow!("an SVG path needs 2D points"))?;
-            writeln!(sink, "{path}").context("writing output")?;
+            if !model::write_svg(&fitted, &mut sink).context("writing output")? {
+                bail!("an SVG path needs 2D points");
+            }
+            writeln!(sink).context("writing output")?;
         }
     }
     sink.finish()
@@ -234,11 +238,12 @@ fn eval(a: &EvalArgs) -> Result<()> {
             (xs.clone(), pos)
         }
         (None, Some(path)) => {
-            let (name, bytes) = input::read_source(Some(path))?;
-            let t = input::parse_table(&name, &bytes, None)?;
+            let limits = a.input.limits();
+            let (name, bytes) = input::read_source(Some(path), limits.max_bytes)?;
+            let t = input::parse_table(&name, &bytes, None, limits.max_points)?;
             input::check_columns(&t, &[1], "1 (one abscissa per line)")?;
-            let pos = (0..t.rows.len()).map(|i| t.at(i)).collect();
-            (t.rows.iter().map(|r| r[0]).collect(), pos)
+            let pos = (0..t.len()).map(|i| t.at(i)).collect();
+            (t.column(0), pos)
         }
         (None, None) => bail!("give --at X1,... or --at-file FILE"),
     };

@@ -37,30 +37,122 @@ impl fmt::Display for Pos {
     }
 }
 
-/// Points read from one source, each with its position.
+/// Where each row of a [`Points`] came from, stored compactly: a table keeps one
+/// line number per row, a JSON array or a GeoJSON coordinate list none at all.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Positions {
+    /// Row `i` is on line `lines[i]` of a table.
+    Lines(Vec<usize>),
+    /// Row `i` is element `i` of a JSON array.
+    Items,
+    /// Row `i` is coordinate `i` of GeoJSON feature `feature`.
+    Coords {
+        /// The feature (or geometry) in the document.
+        feature: usize,
+    },
+    /// Row `i` is the only coordinate of Point feature `features[i]`.
+    Features(Vec<usize>),
+}
+
+/// Points read from one source: rows of numbers, all of one width, stored flat,
+/// each with its position.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Points {
     /// The source's name in messages: the path, `<stdin>` or `example 1`.
     pub source: String,
-    /// The rows of numbers, all of one width.
-    pub rows: Vec<Vec<f64>>,
+    /// Numbers per row.
+    pub width: usize,
+    /// Number of rows (kept apart from `coords` for rows of width 0).
+    pub len: usize,
+    /// The numbers, row after row.
+    pub coords: Vec<f64>,
     /// Where each row came from.
-    pub pos: Vec<Pos>,
+    pub pos: Positions,
     /// Where the source ended (the last line of a table), for "no data" errors.
     pub end: Pos,
 }
 
 impl Points {
+    /// `len` rows of `width` numbers from a flat list, with their positions.
+    fn new(
+        source: &str,
+        (width, len): (usize, usize),
+        coords: Vec<f64>,
+        pos: Positions,
+        end: Pos,
+    ) -> Self {
+        Points {
+            source: source.to_owned(),
+            width,
+            len,
+            coords,
+            pos,
+            end,
+        }
+    }
+
+    /// Number of rows.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when there are no rows.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Row `i` (empty past the last row).
+    #[must_use]
+    pub fn row(&self, i: usize) -> &[f64] {
+        self.coords
+            .get(i * self.width..(i + 1) * self.width)
+            .unwrap_or_default()
+    }
+
+    /// The rows in order.
+    pub fn rows(&self) -> impl ExactSizeIterator<Item = &[f64]> + '_ {
+        (0..self.len).map(|i| self.row(i))
+    }
+
+    /// Column `j` of every row.
+    #[must_use]
+    pub fn column(&self, j: usize) -> Vec<f64> {
+        self.rows()
+            .map(|r| r.get(j).copied().unwrap_or(0.0))
+            .collect()
+    }
+
+    /// Where row `i` came from (the end of the source past the last row).
+    #[must_use]
+    pub fn pos(&self, i: usize) -> Pos {
+        if i >= self.len {
+            return self.end;
+        }
+        match &self.pos {
+            Positions::Lines(l) => l.get(i).map_or(self.end, |&l| Pos::Line(l)),
+            Positions::Items => Pos::Item(i),
+            Positions::Coords { feature } => Pos::Coord {
+                feature: *feature,
+                index: i,
+            },
+            Positions::Features(f) => f
+                .get(i)
+                .map_or(self.end, |&feature| Pos::Coord { feature, index: 0 }),
+        }
+    }
+
     /// `FILE:LINE` (or `FILE: point [i]`) for row `i`.
     #[must_use]
     pub fn at(&self, i: usize) -> String {
-        locate(&self.source, self.pos.get(i).copied().unwrap_or(self.end))
+        locate(&self.source, self.pos(i))
     }
 
     /// The position of row `i` in words (`line 4`).
     #[must_use]
     pub fn pos_words(&self, i: usize) -> String {
-        self.pos.get(i).copied().unwrap_or(self.end).to_string()
+        self.pos(i).to_string()
     }
 }
 
@@ -94,55 +186,89 @@ pub const EXAMPLE2: [f64; 11] = [
 /// The paper's example `n` (1 or 2) as points `(tau, F)`.
 #[must_use]
 pub fn example(n: u8) -> Points {
-    let rows: Vec<Vec<f64>> = if n == 1 {
+    let coords: Vec<f64> = if n == 1 {
         EXAMPLE1
             .iter()
             .enumerate()
-            .map(|(i, &y)| vec![i as f64 + 1.0, y])
+            .flat_map(|(i, &y)| [i as f64 + 1.0, y])
             .collect()
     } else {
         // 0.1 * i, written as i / 10 so that 0.3 is the double nearest 0.3.
         EXAMPLE2
             .iter()
             .enumerate()
-            .map(|(i, &y)| vec![i as f64 / 10.0, y])
+            .flat_map(|(i, &y)| [i as f64 / 10.0, y])
             .collect()
     };
-    let pos = (0..rows.len()).map(Pos::Item).collect();
-    Points {
-        source: format!("example {n}"),
-        rows,
-        pos,
-        end: Pos::Item(11),
-    }
+    Points::new(
+        &format!("example {n}"),
+        (2, EXAMPLE1.len()),
+        coords,
+        Positions::Items,
+        Pos::Item(11),
+    )
 }
 
-/// Reads all of a file (or standard input for `None` or `-`).
+/// How much input the readers take: more is refused with an error, before
+/// memory runs out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Most points (rows of a table, positions of a line) in one input.
+    pub max_points: usize,
+    /// Most bytes in one input file or standard input.
+    pub max_bytes: u64,
+}
+
+impl Limits {
+    /// The command's defaults (see `--max-points` and `--max-bytes`).
+    pub const DEFAULT: Limits = Limits {
+        max_points: 20_000_000,
+        max_bytes: 1 << 30,
+    };
+}
+
+/// Reads all of a file (or standard input for `None` or `-`), refusing more
+/// than `max_bytes` bytes before reading them (a file) or as soon as they have
+/// arrived (standard input).
 ///
 /// # Errors
 ///
-/// The I/O error, with the file's name.
-pub fn read_source(file: Option<&Path>) -> Result<(String, Vec<u8>)> {
-    let mut bytes = Vec::new();
+/// The I/O error, with the file's name; the size limit, named `--max-bytes`.
+pub fn read_source(file: Option<&Path>, max_bytes: u64) -> Result<(String, Vec<u8>)> {
+    let too_big = |name: &str| {
+        anyhow!("{name}: larger than {max_bytes} bytes (--max-bytes); split the input or raise the limit")
+    };
     match file {
-        None => read_stdin(&mut bytes).map(|()| ("<stdin>".to_owned(), bytes)),
-        Some(p) if p == Path::new("-") => {
-            read_stdin(&mut bytes).map(|()| ("<stdin>".to_owned(), bytes))
-        }
-        Some(p) => {
+        Some(p) if p != Path::new("-") => {
             let name = p.display().to_string();
-            let bytes = std::fs::read(p).with_context(|| format!("reading {name}"))?;
+            let f = std::fs::File::open(p).with_context(|| format!("reading {name}"))?;
+            let size = f.metadata().map(|m| m.len()).unwrap_or(0);
+            if size > max_bytes {
+                return Err(too_big(&name));
+            }
+            let mut bytes = Vec::with_capacity(usize::try_from(size).unwrap_or(0));
+            f.take(max_bytes.saturating_add(1))
+                .read_to_end(&mut bytes)
+                .with_context(|| format!("reading {name}"))?;
+            if bytes.len() as u64 > max_bytes {
+                return Err(too_big(&name));
+            }
+            Ok((name, bytes))
+        }
+        _ => {
+            let name = "<stdin>".to_owned();
+            let mut bytes = Vec::new();
+            std::io::stdin()
+                .lock()
+                .take(max_bytes.saturating_add(1))
+                .read_to_end(&mut bytes)
+                .context("reading standard input")?;
+            if bytes.len() as u64 > max_bytes {
+                return Err(too_big(&name));
+            }
             Ok((name, bytes))
         }
     }
-}
-
-fn read_stdin(bytes: &mut Vec<u8>) -> Result<()> {
-    std::io::stdin()
-        .lock()
-        .read_to_end(bytes)
-        .context("reading standard input")?;
-    Ok(())
 }
 
 /// The format of `file`: the explicit one, else by extension, else CSV.
@@ -174,12 +300,14 @@ pub fn load(args: &InputArgs) -> Result<Points> {
         return Ok(example(n));
     }
     let file = args.file.as_deref();
-    let (name, bytes) = read_source(file)?;
+    let limits = args.limits();
+    let (name, bytes) = read_source(file, limits.max_bytes)?;
+    let max = limits.max_points;
     match format_of(file, args.input_format) {
-        InputFormat::Csv => parse_table(&name, &bytes, None),
-        InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t')),
-        InputFormat::Json => parse_json(&name, &bytes),
-        InputFormat::Geojson => parse_geojson_points(&name, &bytes),
+        InputFormat::Csv => parse_table(&name, &bytes, None, max),
+        InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t'), max),
+        InputFormat::Json => parse_json(&name, &bytes, max),
+        InputFormat::Geojson => parse_geojson_points(&name, &bytes, max),
         InputFormat::Geojsonseq => {
             // The first feature of the stream.
             let text = utf8(&name, &bytes)?;
@@ -192,7 +320,7 @@ pub fn load(args: &InputArgs) -> Result<Points> {
                 })
                 .unwrap_or((0, ""));
             let line = line.trim_matches(|c: char| c.is_whitespace() || c == '\u{1e}');
-            parse_geojson_points(&format!("{name}:{}", i + 1), line.as_bytes())
+            parse_geojson_points(&format!("{name}:{}", i + 1), line.as_bytes(), max)
         }
     }
 }
@@ -292,7 +420,12 @@ fn show(field: &str) -> String {
 ///
 /// `FILE:LINE: ...` for invalid UTF-8, a field that is not a finite number, a row
 /// with another number of fields than the first, a header after data.
-pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Points> {
+pub fn parse_table(
+    name: &str,
+    bytes: &[u8],
+    delimiter: Option<u8>,
+    max_points: usize,
+) -> Result<Points> {
     let text = utf8(name, bytes)?;
     let delimiter = delimiter.unwrap_or_else(|| sniff_delimiter(text));
     let mut reader = csv::ReaderBuilder::new()
@@ -302,15 +435,14 @@ pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Po
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
-    let mut rows: Vec<Vec<f64>> = Vec::new();
-    let mut pos = Vec::new();
+    let mut coords: Vec<f64> = Vec::new();
+    let mut lines: Vec<usize> = Vec::new();
     let mut header_line: Option<usize> = None;
     let mut first_width: Option<(usize, usize)> = None;
     let mut record = csv::StringRecord::new();
-    let mut line = 0usize;
-    let line_starts: Vec<usize> = std::iter::once(0)
-        .chain(text.match_indices('\n').map(|(i, _)| i + 1))
-        .collect();
+    // The line of byte `counted`: newlines are counted once, as records advance.
+    let mut line = 1usize;
+    let mut counted = 0usize;
     loop {
         let more = reader
             .read_record(&mut record)
@@ -323,18 +455,22 @@ pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Po
             .position()
             .map_or(0, |p| usize::try_from(p.byte()).unwrap_or(usize::MAX));
         // Records come in order: move the line cursor forward.
-        let start = skip_blank(text, byte);
-        while line < line_starts.len() && line_starts[line] <= start {
-            line += 1;
+        let start = skip_blank(text, byte).min(text.len());
+        if start > counted {
+            line += text.as_bytes()[counted..start]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count();
+            counted = start;
         }
         if record.iter().all(str::is_empty) || record.get(0).is_some_and(|f| f.starts_with('#')) {
             continue; // a line of spaces, or an indented comment
         }
-        let mut row = Vec::with_capacity(first_width.map_or(2, |(w, _)| w));
+        let row_start = coords.len();
         let mut bad = None;
         for (i, field) in record.iter().enumerate() {
             match parse_number(field) {
-                Ok(v) => row.push(v),
+                Ok(v) => coords.push(v),
                 Err(msg) => {
                     bad = Some((i, msg));
                     break;
@@ -342,8 +478,9 @@ pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Po
             }
         }
         if let Some((i, msg)) = bad {
+            coords.truncate(row_start);
             let numeric = record.iter().filter(|f| parse_number(f).is_ok()).count();
-            if rows.is_empty() && header_line.is_none() && numeric == 0 {
+            if lines.is_empty() && header_line.is_none() && numeric == 0 {
                 header_line = Some(line);
                 continue;
             }
@@ -354,31 +491,40 @@ pub fn parse_table(name: &str, bytes: &[u8], delimiter: Option<u8>) -> Result<Po
             };
             return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", i + 1));
         }
+        let width = coords.len() - row_start;
         match first_width {
-            None => first_width = Some((row.len(), line)),
-            Some((w, first)) if w != row.len() => {
-                let hint = if delimiter == b',' && row.len() > w {
+            None => first_width = Some((width, line)),
+            Some((w, first)) if w != width => {
+                let hint = if delimiter == b',' && width > w {
                     " (a comma used as the decimal separator?)"
                 } else {
                     ""
                 };
                 return Err(anyhow!(
-                    "{name}:{line}: {} fields, but line {first} has {w}{hint}",
-                    row.len()
+                    "{name}:{line}: {width} fields, but line {first} has {w}{hint}"
                 ));
             }
             Some(_) => {}
         }
-        rows.push(row);
-        pos.push(Pos::Line(line));
+        if lines.len() >= max_points {
+            return Err(too_many(&format!("{name}:{line}"), max_points));
+        }
+        lines.push(line);
     }
     let last_line = text.lines().count().max(1);
-    Ok(Points {
-        source: name.to_owned(),
-        rows,
-        pos,
-        end: Pos::Line(last_line),
-    })
+    let width = first_width.map_or(0, |(w, _)| w);
+    Ok(Points::new(
+        name,
+        (width, lines.len()),
+        coords,
+        Positions::Lines(lines),
+        Pos::Line(last_line),
+    ))
+}
+
+/// The error for an input with more than `max` points, at `at`.
+fn too_many(at: &str, max: usize) -> anyhow::Error {
+    anyhow!("{at}: more than {max} points (--max-points); split the input or raise the limit")
 }
 
 fn json_number(source: &str, at: &str, v: &Value) -> Result<f64> {
@@ -392,33 +538,44 @@ fn json_number(source: &str, at: &str, v: &Value) -> Result<f64> {
     }
 }
 
-fn json_rows(source: &str, items: &[Value], what: &str) -> Result<Vec<Vec<f64>>> {
-    let mut rows = Vec::with_capacity(items.len());
+/// The points of a JSON array (arrays of numbers, or numbers), flat, and their
+/// width; at most `max` of them.
+fn json_rows(source: &str, items: &[Value], what: &str, max: usize) -> Result<(Vec<f64>, usize)> {
+    if items.len() > max {
+        return Err(too_many(&format!("{source}: {what}[{max}]"), max));
+    }
+    let mut coords = Vec::new();
+    let mut width = None;
     for (i, item) in items.iter().enumerate() {
-        let row = match item {
-            Value::Array(a) => a
-                .iter()
-                .enumerate()
-                .map(|(j, v)| json_number(source, &format!("{what}[{i}][{j}]"), v))
-                .collect::<Result<Vec<f64>>>()?,
-            Value::Number(_) => vec![json_number(source, &format!("{what}[{i}]"), item)?],
+        let start = coords.len();
+        match item {
+            Value::Array(a) => {
+                for (j, v) in a.iter().enumerate() {
+                    coords.push(json_number(source, &format!("{what}[{i}][{j}]"), v)?);
+                }
+            }
+            Value::Number(_) => coords.push(json_number(source, &format!("{what}[{i}]"), item)?),
             other => {
                 return Err(anyhow!(
                     "{source}: {what}[{i}]: expected a point (an array of numbers), found {other}"
                 ))
             }
-        };
-        if let Some(first) = rows.first().map(Vec::len) {
-            if row.len() != first {
+        }
+        let w = coords.len() - start;
+        match width {
+            None => {
+                width = Some(w);
+                coords.reserve(w * items.len());
+            }
+            Some(first) if first != w => {
                 return Err(anyhow!(
-                    "{source}: {what}[{i}]: {} coordinates, but {what}[0] has {first}",
-                    row.len()
+                    "{source}: {what}[{i}]: {w} coordinates, but {what}[0] has {first}"
                 ));
             }
+            Some(_) => {}
         }
-        rows.push(row);
     }
-    Ok(rows)
+    Ok((coords, width.unwrap_or(0)))
 }
 
 fn parse_json_value(name: &str, bytes: &[u8]) -> Result<Value> {
@@ -433,20 +590,21 @@ fn parse_json_value(name: &str, bytes: &[u8]) -> Result<Value> {
 /// # Errors
 ///
 /// `FILE:LINE: invalid JSON`, or `FILE: points[i]: ...` for a bad element.
-pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
+pub fn parse_json(name: &str, bytes: &[u8], max_points: usize) -> Result<Points> {
     let v = parse_json_value(name, bytes)?;
-    let rows = match &v {
-        Value::Array(items) => json_rows(name, items, "points")?,
+    let rows = |items: &[Value], what: &str| json_rows(name, items, what, max_points);
+    let ((coords, width), len) = match &v {
+        Value::Array(items) => (rows(items, "points")?, items.len()),
         Value::Object(o) => {
             if let Some(Value::Array(items)) = o.get("points") {
-                json_rows(name, items, "points")?
+                (rows(items, "points")?, items.len())
             } else if let (Some(Value::Array(k)), Some(Value::Array(vals))) =
                 (o.get("knots"), o.get("values"))
             {
-                let values = json_rows(name, vals, "values")?;
+                let (values, vw) = rows(vals, "values")?;
                 if vals.first().is_some_and(Value::is_array) {
                     // A curve's control points: its knots are parameters.
-                    values
+                    ((values, vw), vals.len())
                 } else {
                     if k.len() != vals.len() {
                         return Err(anyhow!(
@@ -455,15 +613,13 @@ pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
                             vals.len()
                         ));
                     }
-                    let knots = json_rows(name, k, "knots")?;
-                    knots
-                        .into_iter()
-                        .zip(values)
-                        .map(|(mut k, v)| {
-                            k.extend(v);
-                            k
-                        })
-                        .collect()
+                    let (knots, kw) = rows(k, "knots")?;
+                    let mut coords = Vec::with_capacity(knots.len() + values.len());
+                    for i in 0..k.len() {
+                        coords.extend_from_slice(&knots[i * kw..(i + 1) * kw]);
+                        coords.extend_from_slice(&values[i * vw..(i + 1) * vw]);
+                    }
+                    ((coords, kw + vw), k.len())
                 }
             } else {
                 return Err(anyhow!(
@@ -473,13 +629,13 @@ pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
         }
         _ => return Err(anyhow!("{name}: expected an array of points")),
     };
-    let pos = (0..rows.len()).map(Pos::Item).collect();
-    Ok(Points {
-        source: name.to_owned(),
-        end: Pos::Item(rows.len()),
-        rows,
-        pos,
-    })
+    Ok(Points::new(
+        name,
+        (width, len),
+        coords,
+        Positions::Items,
+        Pos::Item(len),
+    ))
 }
 
 /// Reads the control points of the first line in a GeoJSON document: a
@@ -489,7 +645,7 @@ pub fn parse_json(name: &str, bytes: &[u8]) -> Result<Points> {
 /// # Errors
 ///
 /// `FILE:LINE: invalid JSON`, or `FILE: feature i, coordinate j: ...`.
-pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
+pub fn parse_geojson_points(name: &str, bytes: &[u8], max_points: usize) -> Result<Points> {
     let v = parse_json_value(name, bytes)?;
     let features: Vec<&Value> = match v.get("type").and_then(Value::as_str) {
         Some("FeatureCollection") => v
@@ -505,9 +661,10 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
             _ => Some(f.clone()),
         }
     };
-    let mut rows = Vec::new();
-    let mut pos = Vec::new();
-    let mut end = Pos::Item(0);
+    // Point features, one row each, in document order.
+    let mut coords: Vec<f64> = Vec::new();
+    let mut width: Option<usize> = None;
+    let mut point_features: Vec<usize> = Vec::new();
     // The first feature passed over, for the message when none has points.
     let mut skipped: Option<(usize, String)> = None;
     for (fi, f) in features.iter().enumerate() {
@@ -515,24 +672,26 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
             skipped.get_or_insert((fi, "a feature without geometry".to_owned()));
             continue;
         };
-        let coords = g.get("coordinates");
+        let at = format!("feature {fi}: coordinates");
         let kind = g.get("type").and_then(Value::as_str).unwrap_or("");
         skipped.get_or_insert((fi, format!("a {kind:?} geometry")));
-        let list = match (kind, coords) {
+        let list = match (kind, g.get("coordinates")) {
             ("Point", Some(c)) => {
-                let row = json_rows(
-                    name,
-                    std::slice::from_ref(c),
-                    &format!("feature {fi}: coordinates"),
-                )?;
-                rows.extend(row);
-                pos.push(Pos::Coord {
-                    feature: fi,
-                    index: 0,
-                });
+                if point_features.len() >= max_points {
+                    return Err(too_many(&format!("{name}: feature {fi}"), max_points));
+                }
+                let (row, w) = json_rows(name, std::slice::from_ref(c), &at, 1)?;
+                if let Some(first) = width.filter(|&first| first != w) {
+                    return Err(anyhow!(
+                        "{name}: feature {fi}, coordinate 0: {w} coordinates, expected {first}"
+                    ));
+                }
+                width = Some(w);
+                coords.extend(row);
+                point_features.push(fi);
                 continue;
             }
-            ("LineString" | "MultiPoint", Some(Value::Array(c))) => c.clone(),
+            ("LineString" | "MultiPoint", Some(Value::Array(c))) => &c[..],
             ("Polygon", Some(Value::Array(rings))) => match rings.first() {
                 Some(Value::Array(c)) => {
                     if !same_position(c.first(), c.last()) {
@@ -542,50 +701,44 @@ pub fn parse_geojson_points(name: &str, bytes: &[u8]) -> Result<Points> {
                     }
                     // The repeat only closes the ring: the control points are
                     // the distinct vertices (--closed closes the curve).
-                    c[..c.len().saturating_sub(1)].to_vec()
+                    &c[..c.len().saturating_sub(1)]
                 }
                 _ => continue,
             },
             _ => continue,
         };
-        if !rows.is_empty() {
+        if !point_features.is_empty() {
             break;
         }
-        rows = json_rows(name, &list, &format!("feature {fi}: coordinates"))?;
-        pos = (0..rows.len())
-            .map(|index| Pos::Coord { feature: fi, index })
-            .collect();
-        end = Pos::Coord {
-            feature: fi,
-            index: rows.len(),
-        };
-        break;
+        // The first line: its coordinates are the control points.
+        let len = list.len();
+        let (coords, w) = json_rows(name, list, &at, max_points)?;
+        return Ok(Points::new(
+            name,
+            (w, len),
+            coords,
+            Positions::Coords { feature: fi },
+            Pos::Coord {
+                feature: fi,
+                index: len,
+            },
+        ));
     }
-    if rows.is_empty() && end == Pos::Item(0) {
+    if point_features.is_empty() {
         if let Some((fi, what)) = skipped {
             return Err(anyhow!(
                 "{name}: feature {fi}: {what} has no control points (expected a LineString, MultiPoint, Polygon or Point)"
             ));
         }
     }
-    if let Some(w) = rows.first().map(Vec::len) {
-        if let Some(i) = rows.iter().position(|r| r.len() != w) {
-            return Err(anyhow!(
-                "{}: {} coordinates, expected {w}",
-                locate(name, pos[i]),
-                rows[i].len()
-            ));
-        }
-    }
-    if end == Pos::Item(0) {
-        end = Pos::Item(rows.len());
-    }
-    Ok(Points {
-        source: name.to_owned(),
-        end,
-        rows,
-        pos,
-    })
+    let len = point_features.len();
+    Ok(Points::new(
+        name,
+        (width.unwrap_or(0), len),
+        coords,
+        Positions::Features(point_features),
+        Pos::Item(len),
+    ))
 }
 
 /// Whether two GeoJSON positions have the same numbers (`0` and `0.0` alike).
@@ -596,17 +749,18 @@ fn same_position(a: Option<&Value>, b: Option<&Value>) -> bool {
     coords(a) == coords(b)
 }
 
-/// Checks that every row has `allowed` columns.
+/// Checks that the rows have one of the `allowed` widths.
 ///
 /// # Errors
 ///
 /// `FILE:LINE: N columns, expected ...` at the first row that does not.
 pub fn check_columns(points: &Points, allowed: &[usize], what: &str) -> Result<()> {
-    if let Some(i) = points.rows.iter().position(|r| !allowed.contains(&r.len())) {
+    // Every row has the width of the first.
+    if !points.is_empty() && !allowed.contains(&points.width) {
         return Err(anyhow!(
             "{}: {} columns, expected {what}",
-            points.at(i),
-            points.rows[i].len()
+            points.at(0),
+            points.width
         ));
     }
     Ok(())
@@ -617,7 +771,7 @@ pub fn check_columns(points: &Points, allowed: &[usize], what: &str) -> Result<(
 #[must_use]
 pub fn explain(points: &Points, e: &bzspline::Error) -> anyhow::Error {
     use bzspline::{Error as E, Field};
-    let n = points.rows.len();
+    let n = points.len();
     match *e {
         E::TooFewPoints { found: 0, .. } => anyhow!(
             "{}: no data points (need at least 2)",
@@ -694,8 +848,14 @@ pub fn explain(points: &Points, e: &bzspline::Error) -> anyhow::Error {
 mod tests {
     use super::*;
 
+    const MAX: usize = Limits::DEFAULT.max_points;
+
+    fn rows(p: &Points) -> Vec<Vec<f64>> {
+        p.rows().map(<[f64]>::to_vec).collect()
+    }
+
     fn table(s: &str) -> Result<Points> {
-        parse_table("t.csv", s.as_bytes(), None)
+        parse_table("t.csv", s.as_bytes(), None, MAX)
     }
 
     #[test]
@@ -706,12 +866,12 @@ mod tests {
                 .as_str(),
         )
         .unwrap();
-        assert_eq!(p.rows, vec![vec![1e-3, 2.0]]);
-        assert_eq!(p.pos, vec![Pos::Line(4)]);
+        assert_eq!(rows(&p), vec![vec![1e-3, 2.0]]);
+        assert_eq!((p.len(), p.pos(0)), (1, Pos::Line(4)));
         let p = table("x;y\n.5;1\n  # indented comment\n2;3\n").unwrap();
-        assert_eq!(p.rows, vec![vec![0.5, 1.0], vec![2.0, 3.0]]);
+        assert_eq!(rows(&p), vec![vec![0.5, 1.0], vec![2.0, 3.0]]);
         let p = table("1\t2\n3\t4\n").unwrap();
-        assert_eq!(p.rows.len(), 2);
+        assert_eq!(p.len(), 2);
     }
 
     #[test]
@@ -724,7 +884,7 @@ mod tests {
         assert!(e.starts_with("t.csv:2: 3 fields, but line 1 has 2"), "{e}");
         let e = table("1,2\n2,1e400\n").unwrap_err().to_string();
         assert!(e.contains("t.csv:2:") && e.contains("not a finite"), "{e}");
-        let e = parse_table("t.csv", b"1,2\n3,\xff\n", None)
+        let e = parse_table("t.csv", b"1,2\n3,\xff\n", None, MAX)
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("t.csv:2: not valid UTF-8"), "{e}");
@@ -750,17 +910,18 @@ mod tests {
 
     #[test]
     fn json_accepts_pairs_and_the_fit_form() {
-        let p = parse_json("a.json", b"[[0, 1], [1, 2.5]]").unwrap();
-        assert_eq!(p.rows, vec![vec![0.0, 1.0], vec![1.0, 2.5]]);
-        let p = parse_json("a.json", br#"{"knots": [0, 1], "values": [3, 4]}"#).unwrap();
-        assert_eq!(p.rows, vec![vec![0.0, 3.0], vec![1.0, 4.0]]);
+        let p = parse_json("a.json", b"[[0, 1], [1, 2.5]]", MAX).unwrap();
+        assert_eq!(rows(&p), vec![vec![0.0, 1.0], vec![1.0, 2.5]]);
+        let p = parse_json("a.json", br#"{"knots": [0, 1], "values": [3, 4]}"#, MAX).unwrap();
+        assert_eq!(rows(&p), vec![vec![0.0, 3.0], vec![1.0, 4.0]]);
         let p = parse_json(
             "a.json",
             br#"{"knots": [0, 1], "values": [[3, 4], [5, 6]]}"#,
+            MAX,
         )
         .unwrap();
-        assert_eq!(p.rows, vec![vec![3.0, 4.0], vec![5.0, 6.0]]);
-        let e = parse_json("a.json", b"[[0, 1],\n [1, \"x\"]]").unwrap_err();
+        assert_eq!(rows(&p), vec![vec![3.0, 4.0], vec![5.0, 6.0]]);
+        let e = parse_json("a.json", b"[[0, 1],\n [1, \"x\"]]", MAX).unwrap_err();
         assert!(e.to_string().contains("points[1][1]"), "{e}");
     }
 
@@ -773,14 +934,14 @@ mod tests {
     }
 
     fn table_bytes(b: &[u8]) -> Result<Points> {
-        parse_table("t.csv", b, None)
+        parse_table("t.csv", b, None, MAX)
     }
 
     #[test]
     fn geojson_without_usable_geometry_names_the_feature_and_type() {
         let doc = br#"{"type":"FeatureCollection","features":[
             {"type":"Feature","geometry":{"type":"GeometryCollection","geometries":[]}}]}"#;
-        let e = parse_geojson_points("g.geojson", doc)
+        let e = parse_geojson_points("g.geojson", doc, MAX)
             .unwrap_err()
             .to_string();
         assert!(
@@ -790,8 +951,8 @@ mod tests {
             "{e}"
         );
         let empty = br#"{"type":"LineString","coordinates":[]}"#;
-        let p = parse_geojson_points("g.geojson", empty).unwrap();
-        assert!(p.rows.is_empty());
+        let p = parse_geojson_points("g.geojson", empty, MAX).unwrap();
+        assert!(p.is_empty());
         assert_eq!(
             p.end,
             Pos::Coord {
@@ -804,7 +965,7 @@ mod tests {
     #[test]
     fn unclosed_polygon_ring_is_refused() {
         let open = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1]]]}"#;
-        let e = parse_geojson_points("p.geojson", open)
+        let e = parse_geojson_points("p.geojson", open, MAX)
             .unwrap_err()
             .to_string();
         assert!(
@@ -813,9 +974,9 @@ mod tests {
         );
         // Closed, with the repeat written as 0.0: read as its four vertices.
         let closed = br#"{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,1],[0.0,0.0]]]}"#;
-        let p = parse_geojson_points("p.geojson", closed).unwrap();
+        let p = parse_geojson_points("p.geojson", closed, MAX).unwrap();
         assert_eq!(
-            p.rows,
+            rows(&p),
             vec![
                 vec![0.0, 0.0],
                 vec![1.0, 0.0],
@@ -824,9 +985,8 @@ mod tests {
             ]
         );
         let empty = br#"{"type":"Polygon","coordinates":[[]]}"#;
-        assert!(parse_geojson_points("p.geojson", empty)
+        assert!(parse_geojson_points("p.geojson", empty, MAX)
             .unwrap()
-            .rows
             .is_empty());
     }
 }

@@ -2,6 +2,9 @@
 //! ([`Fitted`]) and its JSON form. The `fit`, `plot` and `serve` commands all go
 //! through [`build`] and [`fit_json`].
 
+use std::borrow::Cow;
+use std::fmt;
+
 use bzspline::{Alphas, CubicBez, Curve, CurveBuilder, Param, Spline};
 use serde::Serialize;
 use serde_json::Value;
@@ -28,9 +31,11 @@ pub enum ParamKind {
 
 /// Everything needed to build a spline.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FitSpec {
-    /// The rows: `[x, y]` for a function, the coordinates for a curve.
-    pub points: Vec<Vec<f64>>,
+pub struct FitSpec<'a> {
+    /// The rows, flat: `x, y` for a function, the coordinates for a curve.
+    pub points: Cow<'a, [f64]>,
+    /// Numbers per row.
+    pub dim: usize,
     /// Function or curve.
     pub mode: Mode,
     /// Closed curve (ignored for functions).
@@ -61,26 +66,19 @@ pub enum Fitted {
 /// or non-increasing x, or bad alphas; [`bzspline::Error::LengthMismatch`] (field
 /// `points`) when a row of a function is not a pair (callers that know lines
 /// check the columns first, see `input::check_columns`).
-pub fn build(spec: &FitSpec) -> Result<Fitted, bzspline::Error> {
+pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
+    let rows = spec.points.len().checked_div(spec.dim).unwrap_or(0);
     match spec.mode {
         Mode::Function => {
-            let mut xs = Vec::with_capacity(spec.points.len());
-            let mut ys = Vec::with_capacity(spec.points.len());
-            for p in &spec.points {
-                match p.as_slice() {
-                    [x, y] => {
-                        xs.push(*x);
-                        ys.push(*y);
-                    }
-                    _ => {
-                        return Err(bzspline::Error::LengthMismatch {
-                            field: bzspline::Field::Coordinate,
-                            expected: 2,
-                            found: p.len(),
-                        })
-                    }
-                }
+            if spec.dim != 2 && rows > 0 {
+                return Err(bzspline::Error::LengthMismatch {
+                    field: bzspline::Field::Coordinate,
+                    expected: 2,
+                    found: spec.dim,
+                });
             }
+            let (xs, ys): (Vec<f64>, Vec<f64>) =
+                spec.points.chunks_exact(2).map(|p| (p[0], p[1])).unzip();
             let alphas = match (&spec.alphas, spec.alpha) {
                 (Some(a), _) => Alphas::PerInterval(a),
                 (None, Some(a)) => Alphas::Uniform(a),
@@ -89,21 +87,13 @@ pub fn build(spec: &FitSpec) -> Result<Fitted, bzspline::Error> {
             Ok(Fitted::Function(Spline::build(&xs, &ys, alphas)?))
         }
         Mode::Curve => {
-            let Some(dim) = spec.points.first().map(Vec::len) else {
+            if rows == 0 {
                 return Err(bzspline::Error::TooFewPoints {
                     found: 0,
                     min: if spec.closed { 3 } else { 2 },
                 });
-            };
-            if let Some(bad) = spec.points.iter().find(|p| p.len() != dim) {
-                return Err(bzspline::Error::LengthMismatch {
-                    field: bzspline::Field::Coordinate,
-                    expected: dim,
-                    found: bad.len(),
-                });
             }
-            let flat = spec.points.concat();
-            let mut b = CurveBuilder::new(&flat, dim)
+            let mut b = CurveBuilder::new(&spec.points, spec.dim)
                 .closed(spec.closed)
                 .param(match spec.param {
                     ParamKind::Uniform => Param::Uniform,
@@ -136,32 +126,98 @@ fn bez_points<const D: usize>(b: &CubicBez<D>) -> Vec<Vec<f64>> {
     b.p.iter().map(|p| p.to_vec()).collect()
 }
 
-/// The SVG path (`M x y C ...`) of planar Bezier segments.
-#[must_use]
-pub fn svg_path(segments: &[CubicBez<2>]) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    for (k, b) in segments.iter().enumerate() {
-        let [p0, p1, p2, p3] = b.p;
-        if k == 0 {
-            let _ = write!(out, "M {} {}", p0[0], p0[1]);
-        }
-        let _ = write!(
-            out,
-            " C {} {} {} {} {} {}",
-            p1[0], p1[1], p2[0], p2[1], p3[0], p3[1]
-        );
-    }
-    out
-}
-
 /// The SVG path of a planar fit (a closed curve's ends with `Z`); `None` in 3D.
 #[must_use]
 pub fn svg(f: &Fitted) -> Option<String> {
     match f {
-        Fitted::Function(s) => Some(svg_path(&s.segments())),
+        Fitted::Function(s) => Some(FunctionPath(s).to_string()),
         Fitted::Curve(c) if c.dim() == 2 => c.to_svg_path().ok(),
         Fitted::Curve(_) => None,
+    }
+}
+
+/// Writes the SVG path of a planar fit to `w` (a function's segment by segment,
+/// without building the string first); `Ok(false)` in 3D.
+///
+/// # Errors
+///
+/// Write errors of `w`.
+pub fn write_svg<W: std::io::Write>(f: &Fitted, w: &mut W) -> std::io::Result<bool> {
+    match f {
+        Fitted::Function(s) => write!(w, "{}", FunctionPath(s)).map(|()| true),
+        other => match svg(other) {
+            Some(p) => w.write_all(p.as_bytes()).map(|()| true),
+            None => Ok(false),
+        },
+    }
+}
+
+/// The SVG path (`M x y C ...`) of a function's segments, formed while it is
+/// written.
+struct FunctionPath<'a>(&'a Spline);
+
+impl fmt::Display for FunctionPath<'_> {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for k in 0..self.0.len() {
+            let Some(b) = self.0.segment(k) else { break };
+            let [p0, p1, p2, p3] = b.p;
+            if k == 0 {
+                write!(out, "M {} {}", p0[0], p0[1])?;
+            }
+            write!(
+                out,
+                " C {} {} {} {} {} {}",
+                p1[0], p1[1], p2[0], p2[1], p3[0], p3[1]
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// A function's knot values, formed while serializing.
+struct KnotValues<'a>(&'a Spline);
+
+impl Serialize for KnotValues<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let sp = self.0;
+        s.collect_seq(
+            (0..sp.len())
+                .filter_map(|k| sp.segment(k))
+                .enumerate()
+                .flat_map(|(k, b)| {
+                    let first = (k == 0).then_some(b.p[0][1]);
+                    first.into_iter().chain(std::iter::once(b.p[3][1]))
+                }),
+        )
+    }
+}
+
+/// A function's Bezier segments, formed while serializing.
+struct FunctionSegments<'a>(&'a Spline);
+
+impl Serialize for FunctionSegments<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let sp = self.0;
+        s.collect_seq((0..sp.len()).filter_map(|k| sp.segment(k)).map(|b| b.p))
+    }
+}
+
+/// A function's tangent points, formed while serializing.
+struct FunctionTangents<'a>(&'a Spline);
+
+impl Serialize for FunctionTangents<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.tangent_points().iter().map(|&(x, y)| [x, y]))
+    }
+}
+
+/// Serializes a [`fmt::Display`] value as a JSON string without building it
+/// first (serde_json escapes it as it is written).
+struct AsStr<T>(T);
+
+impl<T: fmt::Display> Serialize for AsStr<T> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(&self.0)
     }
 }
 
@@ -205,10 +261,10 @@ struct FunctionFit<'a> {
     knots: &'a [f64],
     alphas: &'a [f64],
     values: &'a [f64],
-    knot_values: Vec<f64>,
-    tangent_points: Vec<[f64; 2]>,
-    segments: Vec<[[f64; 2]; 4]>,
-    svg_path: String,
+    knot_values: KnotValues<'a>,
+    tangent_points: FunctionTangents<'a>,
+    segments: FunctionSegments<'a>,
+    svg_path: AsStr<FunctionPath<'a>>,
 }
 
 /// The `fit` object of a curve, in key order.
@@ -230,22 +286,19 @@ struct CurveFit<'a> {
 /// Serializes the `fit` object of `f` with `ser`.
 fn serialize_fit<S: serde::Serializer>(f: &Fitted, ser: S) -> Result<S::Ok, S::Error> {
     match f {
-        Fitted::Function(s) => {
-            let segments: Vec<[[f64; 2]; 4]> = s.segments().iter().map(|b| b.p).collect();
-            FunctionFit {
-                mode: "function",
-                closed: false,
-                dimension: 1,
-                knots: s.knots(),
-                alphas: s.alphas(),
-                values: s.values(),
-                knot_values: s.knot_values(),
-                tangent_points: s.tangent_points().iter().map(|&(x, y)| [x, y]).collect(),
-                svg_path: svg_path(&s.segments()),
-                segments,
-            }
-            .serialize(ser)
+        Fitted::Function(s) => FunctionFit {
+            mode: "function",
+            closed: false,
+            dimension: 1,
+            knots: s.knots(),
+            alphas: s.alphas(),
+            values: s.values(),
+            knot_values: KnotValues(s),
+            tangent_points: FunctionTangents(s),
+            segments: FunctionSegments(s),
+            svg_path: AsStr(FunctionPath(s)),
         }
+        .serialize(ser),
         Fitted::Curve(c) => {
             let mut knot_values = c.knot_points();
             if c.is_closed() {
@@ -367,14 +420,15 @@ pub fn all_finite(rows: &[Vec<f64>]) -> bool {
 mod tests {
     use super::*;
 
-    fn example1() -> FitSpec {
+    fn example1() -> FitSpec<'static> {
         let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
         FitSpec {
             points: f
                 .iter()
                 .enumerate()
-                .map(|(i, &y)| vec![i as f64 + 1.0, y])
+                .flat_map(|(i, &y)| [i as f64 + 1.0, y])
                 .collect(),
+            dim: 2,
             mode: Mode::Function,
             closed: false,
             param: ParamKind::Uniform,
@@ -409,12 +463,7 @@ mod tests {
     #[test]
     fn the_streamed_object_is_the_value_laid_out() {
         let mut closed = example1();
-        closed.points = vec![
-            vec![0.0, 0.0],
-            vec![1.0, 0.0],
-            vec![1.0, 1.0],
-            vec![0.0, 1.0],
-        ];
+        closed.points = Cow::Borrowed(&[0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0]);
         closed.mode = Mode::Curve;
         closed.closed = true;
         for spec in [example1(), closed] {
@@ -432,7 +481,8 @@ mod tests {
     #[test]
     fn a_row_of_three_numbers_is_refused_for_a_function() {
         let mut spec = example1();
-        spec.points[3].push(0.0);
+        spec.points = Cow::Owned(vec![0.0, 1.0, 2.0, 1.0, 2.0, 3.0]);
+        spec.dim = 3;
         let e = build(&spec).unwrap_err();
         assert!(
             matches!(e, bzspline::Error::LengthMismatch { found: 3, .. }),

@@ -26,6 +26,7 @@ struct Options {
     alpha: f64,
     param: Param,
     tolerance: f64,
+    limits: input::Limits,
 }
 
 /// Runs `smooth`.
@@ -52,6 +53,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             ParamArg::Centripetal => Param::Centripetal,
         },
         tolerance: a.tolerance,
+        limits: a.input.limits(),
     };
     let file = a.input.file.as_deref();
     let format = match (a.input.example, a.input.input_format) {
@@ -71,7 +73,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     let mut sink = Sink::create(a.output.output.as_deref())?;
     let doc = match format {
         InputFormat::Geojson | InputFormat::Json => {
-            let (name, bytes) = input::read_source(file)?;
+            let (name, bytes) = input::read_source(file, opts.limits.max_bytes)?;
             let text = input::utf8(&name, &bytes)?;
             let doc: GeoJson = serde_json::from_str(text)
                 .map_err(|e| anyhow!("{name}:{}: invalid GeoJSON: {e}", e.line()))?;
@@ -85,7 +87,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             // A table (or an example) is one line: its rows are the vertices.
             let points = input::load(&a.input)?;
             input::check_columns(&points, &[2, 3], "2 or 3 coordinates")?;
-            let line: Vec<Position> = points.rows.iter().cloned().map(Position::from).collect();
+            let line: Vec<Position> = points.rows().map(|r| Position::from(r.to_vec())).collect();
             let mut feature = Feature::from(Geometry::new(GeometryValue::LineString {
                 coordinates: line,
             }));
@@ -132,15 +134,20 @@ fn stream(file: Option<&Path>, opts: &Options, sink: &mut Sink) -> Result<()> {
     let mut reader = BufReader::new(reader);
     let mut buf = Vec::new();
     let mut line_no = 0usize;
+    let max_bytes = opts.limits.max_bytes;
     loop {
         buf.clear();
-        let n = reader
+        let n = (&mut reader)
+            .take(max_bytes.saturating_add(1))
             .read_until(b'\n', &mut buf)
             .with_context(|| format!("reading {name}"))?;
         if n == 0 {
             break;
         }
         line_no += 1;
+        if n as u64 > max_bytes {
+            bail!("{name}:{line_no}: a line longer than {max_bytes} bytes (--max-bytes)");
+        }
         if let Some(bar) = &bar {
             bar.inc(n as u64);
         }
@@ -260,6 +267,10 @@ fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Po
     if !(2..=3).contains(&dim) {
         bail!("coordinate 0 has {dim} numbers; only 2 (x, y) or 3 (x, y, z) are supported");
     }
+    let max = opts.limits.max_points;
+    if line.len() > max {
+        bail!("more than {max} positions (--max-points)");
+    }
     if let Some(i) = line.iter().position(|p| p.len() != dim) {
         bail!(
             "coordinate {i} has {} numbers, coordinate 0 has {dim}",
@@ -335,6 +346,7 @@ mod tests {
             alpha: 0.5,
             param: Param::Centripetal,
             tolerance: tol,
+            limits: input::Limits::DEFAULT,
         }
     }
 

@@ -831,6 +831,71 @@ fn smooth_streams_newline_delimited_geojson() {
 }
 
 #[test]
+fn input_limits_are_refused_with_their_option_named() {
+    // Standard input past --max-bytes, a table past --max-points (at the first
+    // line beyond it), and both limits in smooth, streamed or not.
+    assert_data_error(
+        &["fit", "--max-bytes", "8"],
+        Some(b"0,0\n1,1\n2,0\n"),
+        &["<stdin>: larger than 8 bytes (--max-bytes)"],
+    );
+    assert_data_error(
+        &["sample", "--n", "3", "--max-points", "2"],
+        Some(b"# x, y\n0,0\n1,1\n\n2,0\n"),
+        &["<stdin>:5: more than 2 points (--max-points)"],
+    );
+    assert_data_error(
+        &[
+            "eval",
+            "--example",
+            "1",
+            "--at-file",
+            "xs.txt",
+            "--max-points",
+            "2",
+        ],
+        None,
+        &["xs.txt:", "more than 2 points (--max-points)"],
+    );
+    assert_data_error(
+        &[
+            "smooth",
+            "lines.geojsonl",
+            "--tolerance",
+            "0.1",
+            "--max-points",
+            "3",
+        ],
+        None,
+        &["lines.geojsonl:3:", "more than 3 positions (--max-points)"],
+    );
+    assert_data_error(
+        &[
+            "smooth",
+            "lines.geojsonl",
+            "--tolerance",
+            "0.1",
+            "--max-bytes",
+            "64",
+        ],
+        None,
+        &["lines.geojsonl:1: a line longer than 64 bytes (--max-bytes)"],
+    );
+    assert_data_error(
+        &[
+            "smooth",
+            "shapes.geojson",
+            "--tolerance",
+            "0.1",
+            "--max-bytes",
+            "64",
+        ],
+        None,
+        &["shapes.geojson: larger than 64 bytes (--max-bytes)"],
+    );
+}
+
+#[test]
 fn smooth_errors_name_the_feature_or_line() {
     assert_data_error(
         &["smooth", "bad_lines.geojsonl", "--tolerance", "0.1"],

@@ -204,9 +204,8 @@ pub(crate) mod tests {
     use super::*;
 
     pub(crate) fn example(n: u8, alpha: f64) -> PlotData {
-        let rows = crate::input::example(n).rows;
-        let x: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-        let f: Vec<f64> = rows.iter().map(|r| r[1]).collect();
+        let points = crate::input::example(n);
+        let (x, f) = (points.column(0), points.column(1));
         let s = Spline::with_alpha(&x, &f, alpha).unwrap();
         PlotData::from_spline(&s, None)
     }

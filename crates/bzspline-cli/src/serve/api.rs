@@ -68,7 +68,7 @@ struct RawRequest {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitRequest {
     /// What to build.
-    pub spec: FitSpec,
+    pub spec: FitSpec<'static>,
     /// Samples per segment for the curvature comb (0 for none).
     pub samples: usize,
 }
@@ -121,7 +121,7 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
             ),
         ));
     }
-    let mut points = Vec::with_capacity(raw.points.len());
+    let mut points = Vec::with_capacity(2 * raw.points.len());
     for (i, p) in raw.points.iter().enumerate() {
         if p.len() != 2 {
             return Err(ApiError::new(
@@ -129,11 +129,9 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
                 format!("points[{i}] has {} coordinates, expected 2", p.len()),
             ));
         }
-        let mut q = Vec::with_capacity(2);
         for (j, c) in p.iter().enumerate() {
-            q.push(number(c, || format!("points[{i}][{j}]"))?);
+            points.push(number(c, || format!("points[{i}][{j}]"))?);
         }
-        points.push(q);
     }
     let mode = match raw.mode.as_deref() {
         None | Some("function") => Mode::Function,
@@ -170,20 +168,21 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
         ),
     };
     let samples = raw.samples.unwrap_or(0);
-    let total = samples.saturating_mul(points.len());
+    let total = samples.saturating_mul(raw.points.len());
     if total > limits.max_samples {
         return Err(ApiError::new(
             422,
             format!(
                 "{samples} samples per segment on {} points exceed the limit of {} samples (--max-samples)",
-                points.len(),
+                raw.points.len(),
                 limits.max_samples
             ),
         ));
     }
     Ok(FitRequest {
         spec: FitSpec {
-            points,
+            points: points.into(),
+            dim: 2,
             mode,
             closed: raw.closed.unwrap_or(false),
             param,

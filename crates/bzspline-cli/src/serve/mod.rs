@@ -262,7 +262,7 @@ async fn fit_request(
         ));
     };
     let request = api::parse(&body, state.limits)?;
-    let n = request.spec.points.len();
+    let n = request.spec.points.len() / request.spec.dim.max(1);
     let task = tokio::task::spawn_blocking(move || {
         let _permit = permit;
         let t = Instant::now();
