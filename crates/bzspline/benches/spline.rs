@@ -12,7 +12,7 @@
 use std::hint::black_box;
 use std::time::Duration;
 
-use bzspline::{Alphas, Curve, Spline};
+use bzspline::{Alphas, Curve, CurveBuilder, Spline};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 /// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
@@ -139,6 +139,9 @@ fn curves(c: &mut Criterion) {
         let Ok(mut curve) = Curve::open(&pts) else {
             continue;
         };
+        g.bench_with_input(BenchmarkId::new("rebuild", n), &n, |b, _| {
+            b.iter(|| CurveBuilder::new(black_box(pts.as_flattened()), 2).build_into(&mut curve));
+        });
         g.bench_with_input(BenchmarkId::new("flatten_1e-3", n), &n, |b, _| {
             b.iter(|| curve.flatten(black_box(1e-3)));
         });

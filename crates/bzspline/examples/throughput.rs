@@ -15,7 +15,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use bzspline::{Alphas, Curve, Spline};
+use bzspline::{Alphas, Curve, CurveBuilder, Spline};
 
 /// Control points of the flattening benchmark's spiral.
 const SPIRAL: usize = 100_000;
@@ -157,6 +157,18 @@ fn main() {
         let mut keep = Vec::new();
         f_median(r, &mut keep, || Curve::open(&pts))
     };
+    // The same curve built again into its own allocations, as `rebuild` does
+    // for the spline.
+    let curve_rebuild = match Curve::open(&pts) {
+        Ok(mut c) => {
+            let flat = pts.as_flattened();
+            median_ns(r, || {
+                let res = CurveBuilder::new(black_box(flat), 2).build_into(&mut c);
+                black_box(res.is_ok());
+            })
+        }
+        Err(_) => f64::NAN,
+    };
     // Flattening as the target states it: a 1e5-point planar curve (a jittered
     // spiral of 100 turns) to a tolerance of 1e-3 of its size (the diagonal of
     // its bounding box), against building the same curve.
@@ -241,7 +253,8 @@ fn main() {
          \"deriv1_random_ns_per_point\": {}, \
          \"par_threads\": {}, \"par_eval_sorted_ns_per_point\": {}, \
          \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}, \
-         \"curve2d_construct_ns_per_point\": {}, \"curve2d_move_point_ns\": {}, \
+         \"curve2d_construct_ns_per_point\": {}, \"curve2d_rebuild_ns_per_point\": {}, \
+         \"curve2d_move_point_ns\": {}, \
          \"spiral_1e5_construct_ns_per_point\": {}, \
          \"spiral_1e5_flatten_ns_per_point\": {}, \"spiral_1e5_flatten_vertices\": {}}}",
         num(reuse / n as f64),
@@ -257,6 +270,7 @@ fn main() {
         num(prandom),
         num(bytes as f64 / n as f64),
         num(curve_build / n as f64),
+        num(curve_rebuild / n as f64),
         num(curve_move),
         num(spiral_build / SPIRAL as f64),
         num(spiral_flatten / SPIRAL as f64),

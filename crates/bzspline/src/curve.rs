@@ -34,12 +34,15 @@ mod arclen;
 mod edit;
 mod nearest;
 
+use std::borrow::Cow;
+
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::flatten::Polyline;
+use crate::kernels;
 use crate::spline::{
-    alpha_terms, check_finite, neighbour_weights, piece_coefs_with, power_of_two_scale,
-    quadratic_roots, resolve_alphas, validate_knots, Alphas, OpenSystem, DEFAULT_ALPHA,
+    alpha_terms, check_alphas, check_finite, check_knots, neighbour_weights, piece_coefs_with,
+    power_of_two_scale, quadratic_roots, resolve_alphas, Alphas, OpenSystem, DEFAULT_ALPHA,
 };
 use crate::tridiag::CyclicThomas;
 
@@ -94,9 +97,10 @@ pub enum Repeats {
 /// # Ok::<(), bzspline::Error>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
-pub struct CurveBuilder {
+pub struct CurveBuilder<'a> {
     dim: usize,
-    points: Vec<f64>,
+    /// Borrowed from the caller until the curve copies them.
+    points: Cow<'a, [f64]>,
     closed: bool,
     param: Param,
     alpha: f64,
@@ -104,13 +108,13 @@ pub struct CurveBuilder {
     repeats: Repeats,
 }
 
-impl CurveBuilder {
+impl<'a> CurveBuilder<'a> {
     /// A builder for the points stored flat, `dim` coordinates per point.
     #[must_use]
-    pub fn new(points: &[f64], dim: usize) -> Self {
+    pub fn new(points: &'a [f64], dim: usize) -> Self {
         CurveBuilder {
             dim,
-            points: points.to_vec(),
+            points: Cow::Borrowed(points),
             closed: false,
             param: Param::Uniform,
             alpha: DEFAULT_ALPHA,
@@ -186,7 +190,34 @@ impl CurveBuilder {
     /// - the knot errors of [`crate::Spline::with_alphas`] for the parameters
     ///   (not increasing, an interval too small relative to the span).
     pub fn build(self) -> Result<Curve, Error> {
-        Curve::build_from(self)
+        let mut c = Curve::empty();
+        Curve::build_from(self, &mut c)?;
+        Ok(c)
+    }
+
+    /// Validates the inputs and solves into `curve`, reusing its allocations:
+    /// rebuilding a curve of the same size allocates nothing (with uniform
+    /// parameters and no repeated points), which saves the page faults of fresh
+    /// memory on long curves. The result is the curve [`CurveBuilder::build`]
+    /// returns.
+    ///
+    /// # Errors
+    ///
+    /// As [`CurveBuilder::build`]; on error `curve` is left unchanged.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, CurveBuilder};
+    /// let mut c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// CurveBuilder::new(&[0.0, 0.0, 1.0, 2.0, 2.0, 0.0], 2).build_into(&mut c)?;
+    /// assert_eq!(c.point(1), Some(&[1.0, 2.0][..]));
+    /// assert!(CurveBuilder::new(&[0.0, 0.0, 0.0, 0.0], 2).build_into(&mut c).is_err());
+    /// assert_eq!(c.point(1), Some(&[1.0, 2.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn build_into(self, curve: &mut Curve) -> Result<(), Error> {
+        Curve::build_from(self, curve)
     }
 }
 
@@ -461,13 +492,13 @@ impl ClosedSystem {
 impl Curve {
     /// A builder for points stored flat, `dim` coordinates per point.
     #[must_use]
-    pub fn builder(points: &[f64], dim: usize) -> CurveBuilder {
+    pub fn builder(points: &[f64], dim: usize) -> CurveBuilder<'_> {
         CurveBuilder::new(points, dim)
     }
 
     /// A builder for points given as arrays (`[[f64; 2]]`, `[[f64; 3]]`, ...).
     #[must_use]
-    pub fn builder_from<const D: usize>(points: &[[f64; D]]) -> CurveBuilder {
+    pub fn builder_from<const D: usize>(points: &[[f64; D]]) -> CurveBuilder<'_> {
         CurveBuilder::new(points.as_flattened(), D)
     }
 
@@ -489,7 +520,29 @@ impl Curve {
         Self::builder_from(points).closed(true).build()
     }
 
-    fn build_from(b: CurveBuilder) -> Result<Self, Error> {
+    /// A curve with no points, to be built into.
+    fn empty() -> Self {
+        Curve {
+            dim: 1,
+            closed: false,
+            kind: ParamKind::Uniform,
+            points: Vec::new(),
+            dropped: Vec::new(),
+            knots: Vec::new(),
+            alphas: Vec::new(),
+            scales: Vec::new(),
+            gscale: 1.0,
+            chord_scale: 1.0,
+            knot_unit: 1.0,
+            f: Vec::new(),
+            d: Vec::new(),
+            coefs: Vec::new(),
+        }
+    }
+
+    /// Validates the builder's inputs and solves into `target`, which changes
+    /// only on success.
+    fn build_from(b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
         let dim = b.dim;
         if dim == 0 {
             return Err(Error::InvalidArgument {
@@ -517,10 +570,11 @@ impl Curve {
             return Err(Error::TooFewPoints { found: n, min });
         }
         let legs = if b.closed { n } else { n - 1 };
-        let alphas = match &b.alphas {
-            Some(a) => resolve_alphas(Alphas::PerInterval(a), legs)?,
-            None => resolve_alphas(Alphas::Uniform(b.alpha), legs)?,
+        let choice = match &b.alphas {
+            Some(a) => Alphas::PerInterval(a),
+            None => Alphas::Uniform(b.alpha),
         };
+        check_alphas(choice, legs)?;
         let (kind, given) = match b.param {
             Param::Uniform => (ParamKind::Uniform, None),
             Param::Chordal => (ParamKind::Chordal, None),
@@ -542,7 +596,17 @@ impl Curve {
         let repeats = (1..n).any(|i| pt(i) == pt(i - 1)) || (b.closed && pt(n - 1) == pt(0));
         if !repeats {
             // Nothing to drop: the builder's points and alphas are the curve's.
-            return Self::solve_new(dim, b.closed, kind, b.points, Vec::new(), given, alphas);
+            let given = given.as_deref();
+            return Self::solve_into(
+                target,
+                dim,
+                b.closed,
+                kind,
+                &b.points,
+                Vec::new(),
+                given,
+                choice,
+            );
         }
         // Keep-list: drop or refuse repeats.
         let mut keep: Vec<usize> = Vec::with_capacity(n);
@@ -588,6 +652,7 @@ impl Curve {
         // Each kept leg keeps the alpha of the one original leg of nonzero length
         // it stands for: the leg that leaves the run of copies of its start.
         let legs_kept = if b.closed { nk } else { nk - 1 };
+        let alphas = resolve_alphas(choice, legs)?;
         let alphas: Vec<f64> = keep[..legs_kept]
             .iter()
             .map(|&a| {
@@ -605,30 +670,34 @@ impl Curve {
             }
             v
         });
-        Self::solve_new(dim, b.closed, kind, points, dropped, given, alphas)
+        let (given, alphas) = (given.as_deref(), Alphas::PerInterval(&alphas));
+        Self::solve_into(target, dim, b.closed, kind, &points, dropped, given, alphas)
     }
 
-    /// Parameters for the kind, validates them, and solves.
-    fn solve_new(
+    /// Parameters for the kind, validates them, and solves into `c`, reusing
+    /// its allocations; `c` changes only on success. `alphas` are checked.
+    #[allow(clippy::too_many_arguments)] // the parts of a builder, validated
+    fn solve_into(
+        c: &mut Curve,
         dim: usize,
         closed: bool,
         kind: ParamKind,
-        points: Vec<f64>,
+        points: &[f64],
         dropped: Vec<usize>,
-        given: Option<Vec<f64>>,
-        alphas: Vec<f64>,
-    ) -> Result<Self, Error> {
+        given: Option<&[f64]>,
+        alphas: Alphas<'_>,
+    ) -> Result<(), Error> {
         let n = points.len() / dim;
         let legs = if closed { n } else { n - 1 };
         let mut chord_scale = 1.0;
         let mut knot_unit = 1.0;
-        let knots = match (&kind, given) {
-            (ParamKind::Given, Some(g)) => g,
-            (ParamKind::Uniform, _) | (ParamKind::Given, None) => {
-                (0..=legs).map(|i| i as f64).collect()
-            }
+        // Parameters other than uniform ones are formed aside and validated
+        // before anything in `c` changes.
+        let aside: Option<Vec<f64>> = match (&kind, given) {
+            (ParamKind::Given, Some(g)) => Some(g.to_vec()),
+            (ParamKind::Uniform, _) | (ParamKind::Given, None) => None,
             (ParamKind::Chordal | ParamKind::Centripetal, _) => {
-                chord_scale = power_of_two_scale(&points);
+                chord_scale = power_of_two_scale(points);
                 let mut chord = vec![0.0; dim];
                 let mut knots = Vec::with_capacity(legs + 1);
                 let mut acc = 0.0;
@@ -656,41 +725,94 @@ impl Curve {
                         *k *= unit;
                     }
                 }
-                knots
+                Some(knots)
             }
         };
-        let widths = validate_knots(&knots)?;
-        let scales: Vec<f64> = (0..dim)
-            .map(|c| power_of_two_scale(points.iter().skip(c).step_by(dim)))
-            .collect();
-        let gscale = scales.iter().fold(0.0f64, |m, s| m.max(*s));
-        let f: Vec<f64> = points
-            .iter()
-            .enumerate()
-            .map(|(i, v)| v * (1.0 / scales[i % dim]))
-            .collect();
-        let mut curve = Curve {
-            dim,
-            closed,
-            kind,
-            points,
-            dropped,
-            knots,
-            alphas,
-            scales,
-            gscale,
-            chord_scale,
-            knot_unit,
-            f,
-            d: Vec::new(),
-            coefs: Vec::new(),
-        };
-        curve.solve_all(&widths);
-        Ok(curve)
+        if let Some(k) = &aside {
+            check_knots(k)?;
+        }
+        // From here on nothing fails.
+        match aside {
+            Some(k) => c.knots = k,
+            None => {
+                c.knots.clear();
+                c.knots.extend((0..=legs).map(|i| i as f64));
+            }
+        }
+        c.alphas.clear();
+        match alphas {
+            Alphas::Uniform(a) => c.alphas.resize(legs, a),
+            Alphas::PerInterval(a) => c.alphas.extend_from_slice(a),
+        }
+        c.scales.clear();
+        c.scales
+            .extend((0..dim).map(|j| power_of_two_scale(points.iter().skip(j).step_by(dim))));
+        c.gscale = c.scales.iter().fold(0.0f64, |m, s| m.max(*s));
+        c.f.clear();
+        c.f.reserve(points.len());
+        for p in points.chunks_exact(dim) {
+            c.f.extend(p.iter().zip(&c.scales).map(|(v, s)| v * (1.0 / s)));
+        }
+        c.points.clear();
+        c.points.extend_from_slice(points);
+        c.dim = dim;
+        c.closed = closed;
+        c.kind = kind;
+        c.dropped = dropped;
+        c.chord_scale = chord_scale;
+        c.knot_unit = knot_unit;
+        c.solve_all();
+        Ok(())
+    }
+
+    /// [`Self::solve_into`] for a new curve.
+    #[allow(clippy::too_many_arguments)] // the parts of a curve, validated
+    fn solve_new(
+        dim: usize,
+        closed: bool,
+        kind: ParamKind,
+        points: &[f64],
+        dropped: Vec<usize>,
+        given: Option<&[f64]>,
+        alphas: &[f64],
+    ) -> Result<Self, Error> {
+        let mut c = Curve::empty();
+        let alphas = Alphas::PerInterval(alphas);
+        Self::solve_into(&mut c, dim, closed, kind, points, dropped, given, alphas)?;
+        Ok(c)
     }
 
     /// Solves every coordinate and rebuilds every segment.
-    fn solve_all(&mut self, widths: &[f64]) {
+    fn solve_all(&mut self) {
+        let dim = self.dim;
+        if !self.closed && (1..=3).contains(&dim) {
+            // One fused sweep for all coordinates (the arithmetic of
+            // `Spline`'s construction).
+            let uniform = self
+                .alphas
+                .first()
+                .copied()
+                .filter(|&a| self.alphas.iter().all(|&b| b == a));
+            let span = self.knots.last().copied().unwrap_or(0.0)
+                - self.knots.first().copied().unwrap_or(0.0);
+            let ws = kernels::inverse_power_of_two(span);
+            let (knots, f, alphas) = (&self.knots, &self.f, &self.alphas);
+            let (coefs, d) = (&mut self.coefs, &mut self.d);
+            match dim {
+                1 => kernels::build_open_curve::<1>(knots, f, alphas, uniform, ws, coefs, d),
+                2 => kernels::build_open_curve::<2>(knots, f, alphas, uniform, ws, coefs, d),
+                _ => kernels::build_open_curve::<3>(knots, f, alphas, uniform, ws, coefs, d),
+            }
+            return;
+        }
+        let widths: Vec<f64> = self.knots.windows(2).map(|w| w[1] - w[0]).collect();
+        self.solve_general(&widths);
+    }
+
+    /// [`Self::solve_all`] one coordinate at a time through the factored
+    /// system: closed curves, more than three dimensions, and the reference
+    /// the fused sweep is tested against.
+    fn solve_general(&mut self, widths: &[f64]) {
         let (n, dim) = (self.points.len() / self.dim, self.dim);
         self.d = vec![0.0; n * dim];
         let mut col = vec![0.0; n];
@@ -1356,6 +1478,116 @@ mod tests {
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)
+    }
+
+    /// xorshift64*: doubles in `[0, 1)`.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    #[test]
+    fn building_into_a_curve_gives_the_built_curve_and_keeps_it_on_error() {
+        let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+        let helix: Vec<f64> = (0..9)
+            .flat_map(|i| {
+                let t = f64::from(i);
+                [t.cos(), t.sin(), 0.3 * t]
+            })
+            .collect();
+        let repeated = [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 2.0, 0.0];
+        let wave = [0.0, 2.0, 1.0, 3.0, 2.5, 4.0, 0.5, 1.0];
+        let builders = [
+            Curve::builder(&square, 2),
+            Curve::builder(&square, 2)
+                .closed(true)
+                .param(Param::Chordal),
+            Curve::builder(&helix, 3)
+                .param(Param::Centripetal)
+                .alpha(0.4),
+            Curve::builder(&helix, 3).closed(true).alpha(0.6),
+            Curve::builder(&wave, 1).param(Param::Given((0..8).map(f64::from).collect())),
+            Curve::builder(&repeated, 2).repeats(Repeats::Drop),
+            Curve::builder(&helix, 9).closed(true),
+        ];
+        for b in &builders {
+            let want = b.clone().build().unwrap();
+            for seed in &builders {
+                let mut c = seed.clone().build().unwrap();
+                b.clone().build_into(&mut c).unwrap();
+                assert_eq!(c, want, "{b:?} into {seed:?}");
+            }
+            // A refused build leaves the curve as it was.
+            let mut c = want.clone();
+            let bad = [
+                Curve::builder(&repeated, 2),
+                Curve::builder(&square, 2).alpha(0.9),
+                Curve::builder(&square, 2).param(Param::Given(vec![0.0, 1.0, 1.0, 2.0])),
+                Curve::builder(&[0.0, 0.0, 1e-300, 0.0, 1.0, 0.0], 2).param(Param::Chordal),
+            ];
+            for e in bad {
+                assert!(e.clone().build_into(&mut c).is_err(), "{e:?}");
+                assert_eq!(c, want);
+            }
+        }
+    }
+
+    #[test]
+    fn fused_open_curves_match_the_coordinate_by_coordinate_solve() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        for dim in 1..=3 {
+            for n in [2usize, 3, 4, 5, 6, 17, 64, 257] {
+                for (param, uniform) in [
+                    (Param::Uniform, true),
+                    (Param::Chordal, false),
+                    (Param::Centripetal, true),
+                ] {
+                    // Coordinates of different magnitudes in each dimension.
+                    let pts: Vec<f64> = (0..n * dim)
+                        .map(|i| (rng.next() - 0.5) * [1.0, 1e-200, 3e250][i % dim])
+                        .collect();
+                    let alphas: Vec<f64> = (0..n - 1)
+                        .map(|_| ALPHA_MIN + (ALPHA_MAX - ALPHA_MIN) * rng.next())
+                        .collect();
+                    let b = Curve::builder(&pts, dim).param(param.clone());
+                    let fast = if uniform {
+                        b.alpha(alphas[0])
+                    } else {
+                        b.alphas(&alphas)
+                    }
+                    .build()
+                    .unwrap();
+                    let widths: Vec<f64> = fast.knots.windows(2).map(|w| w[1] - w[0]).collect();
+                    let mut slow = fast.clone();
+                    slow.solve_general(&widths);
+                    // Scaled numbers lie in [-2, 2]: compare them absolutely.
+                    let tol = 1e-13;
+                    for (i, (p, q)) in fast.d.iter().zip(&slow.d).enumerate() {
+                        assert!(
+                            (p - q).abs() <= tol,
+                            "dim {dim} n {n} {param:?}: deviation {i}: want {q}, got {p}"
+                        );
+                    }
+                    assert_eq!(fast.coefs.len(), slow.coefs.len());
+                    for (i, (p, q)) in fast.coefs.iter().zip(&slow.coefs).enumerate() {
+                        for j in 0..4 {
+                            assert!(
+                                (p[j] - q[j]).abs() <= 4.0 * tol,
+                                "dim {dim} n {n} {param:?}: piece {i} coef {j}: want {}, got {}",
+                                q[j],
+                                p[j]
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 
     const SQUARE: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];

@@ -86,18 +86,79 @@ fn alpha_terms_one_division(a: f64) -> [f64; 4] {
 /// Coefficients of a piece from its scaled values, deviations and alpha terms
 /// (the arithmetic of `spline::piece_coefs`).
 #[inline(always)]
-fn piece(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> Piece {
+fn piece(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> [f64; 4] {
     let [al, b1, b2, cr] = terms;
     let df = f1 - f0;
     let s0 = df - d0 * b2 + d1 * cr;
     let s1 = df + d1 * b1 - d0 * al;
     let rise = df + (d1 - d0);
-    Piece([
+    [
         f0 + d0,
         s0,
         3.0 * rise - 2.0 * s0 - s1,
         s0 + s1 - 2.0 * rise,
-    ])
+    ]
+}
+
+/// What the sweeps keep for leg `k`: between the forward and the backward
+/// sweep, row `k`'s `u_k / piv_k`, its `D` swept right-hand sides and the
+/// alpha inverses `(1/alpha_k, 1/(1-alpha_k))`; after the backward sweep, the
+/// leg's `D` pieces (one per coordinate).
+pub(crate) trait Leg<const D: usize>: Copy {
+    /// Stores row `k`'s numbers.
+    fn put_row(&mut self, m: f64, y: [f64; D], inv: (f64, f64));
+    /// Row `k`'s numbers, as [`Leg::put_row`] stored them.
+    fn row(&self) -> (f64, [f64; D], (f64, f64));
+    /// Stores the pieces, overwriting the row.
+    fn put_pieces(&mut self, pieces: [[f64; 4]; D]);
+}
+
+impl Leg<1> for Piece {
+    #[inline(always)]
+    fn put_row(&mut self, m: f64, y: [f64; 1], inv: (f64, f64)) {
+        self.0 = [m, y[0], inv.0, inv.1];
+    }
+
+    #[inline(always)]
+    fn row(&self) -> (f64, [f64; 1], (f64, f64)) {
+        (self.0[0], [self.0[1]], (self.0[2], self.0[3]))
+    }
+
+    #[inline(always)]
+    fn put_pieces(&mut self, pieces: [[f64; 4]; 1]) {
+        self.0 = pieces[0];
+    }
+}
+
+/// The `D` pieces of a curve's segment, one per coordinate: `4 D >= D + 3`
+/// slots hold the row.
+impl<const D: usize> Leg<D> for [[f64; 4]; D] {
+    #[inline(always)]
+    fn put_row(&mut self, m: f64, y: [f64; D], inv: (f64, f64)) {
+        self[0][0] = m;
+        for (c, &v) in y.iter().enumerate() {
+            self[(c + 1) / 4][(c + 1) % 4] = v;
+        }
+        self[(D + 1) / 4][(D + 1) % 4] = inv.0;
+        self[(D + 2) / 4][(D + 2) % 4] = inv.1;
+    }
+
+    #[inline(always)]
+    fn row(&self) -> (f64, [f64; D], (f64, f64)) {
+        (
+            self[0][0],
+            core::array::from_fn(|c| self[(c + 1) / 4][(c + 1) % 4]),
+            (
+                self[(D + 1) / 4][(D + 1) % 4],
+                self[(D + 2) / 4][(D + 2) % 4],
+            ),
+        )
+    }
+
+    #[inline(always)]
+    fn put_pieces(&mut self, pieces: [[f64; 4]; D]) {
+        *self = pieces;
+    }
 }
 
 /// Builds the pieces of a validated spline into `coefs` (resized to one piece
@@ -126,17 +187,59 @@ pub(crate) fn build(
     // clearing them first (no pass over the memory when the size is unchanged).
     coefs.truncate(n - 1);
     coefs.resize(n - 1, Piece::default());
-    match uniform {
-        Some(a) => sweep::<false>(
-            knots,
-            values,
-            alphas,
-            alpha_terms(a),
-            inv_scale,
-            wscale,
-            coefs,
-        ),
-        None => sweep::<true>(knots, values, alphas, [0.0; 4], inv_scale, wscale, coefs),
+    let (values, _) = values.as_chunks::<1>();
+    let input = Sweep {
+        knots,
+        values,
+        inv_scale: [inv_scale],
+        alphas,
+        uniform: uniform.map_or([0.0; 4], alpha_terms),
+        ws: wscale,
+    };
+    if uniform.is_some() {
+        input.run::<false, false, _>(coefs, &mut []);
+    } else {
+        input.run::<true, false, _>(coefs, &mut []);
+    }
+}
+
+/// Builds the segments of a validated open curve in `D` dimensions: `coefs`
+/// gets the curve's layout (`D` pieces per leg, coordinate fastest) and `dev`
+/// the scaled deviations of every point (zero at both ends). Lengths: `f` (the
+/// scaled points) `n D`, `knots` `n >= 2`, `alphas` `n - 1`; `coefs` and `dev`
+/// are resized.
+pub(crate) fn build_open_curve<const D: usize>(
+    knots: &[f64],
+    f: &[f64],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    wscale: f64,
+    coefs: &mut Vec<[f64; 4]>,
+    dev: &mut Vec<f64>,
+) {
+    let n = knots.len();
+    coefs.truncate((n.max(1) - 1) * D);
+    coefs.resize((n.max(1) - 1) * D, [0.0; 4]);
+    dev.truncate(n * D);
+    dev.resize(n * D, 0.0);
+    let (values, _) = f.as_chunks::<D>();
+    if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        return;
+    }
+    let (legs, _) = coefs.as_chunks_mut::<D>();
+    let (dev, _) = dev.as_chunks_mut::<D>();
+    let input = Sweep {
+        knots,
+        values,
+        inv_scale: [1.0; D],
+        alphas,
+        uniform: uniform.map_or([0.0; 4], alpha_terms),
+        ws: wscale,
+    };
+    if uniform.is_some() {
+        input.run::<false, true, _>(legs, dev);
+    } else {
+        input.run::<true, true, _>(legs, dev);
     }
 }
 
@@ -148,158 +251,216 @@ fn inverses(a: f64) -> (f64, f64) {
     (u * iau, a * iau)
 }
 
-/// The sweeps of [`build`]; `PER` says whether the alphas differ (their terms
-/// are then formed per interval, else `uniform` serves every interval).
-/// Lengths: `values` as `knots` (`n >= 2`), `alphas` and `coefs` `n - 1`.
-fn sweep<const PER: bool>(
-    knots: &[f64],
-    values: &[f64],
-    alphas: &[f64],
+/// `a - b` coordinate by coordinate.
+#[inline(always)]
+fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
+    core::array::from_fn(|c| a[c] - b[c])
+}
+
+/// The input of the fused sweeps: `D` right-hand sides (the coordinates of
+/// the points, `values[k][c] * inv_scale[c]`) on one matrix.
+struct Sweep<'a, const D: usize> {
+    knots: &'a [f64],
+    values: &'a [[f64; D]],
+    inv_scale: [f64; D],
+    alphas: &'a [f64],
+    /// The terms of every alpha when they are all one (`PER` false).
     uniform: [f64; 4],
-    inv_scale: f64,
+    /// The power of two the widths are multiplied by.
     ws: f64,
-    coefs: &mut [Piece],
-) {
-    let m = coefs.len();
-    let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
-    let terms = |a: f64, (ia, iu): (f64, f64)| {
-        if PER {
-            terms_from_inverses(a, ia, iu)
-        } else {
-            uniform
-        }
-    };
-    let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
-        knots.first(),
-        knots.get(1),
-        values.first(),
-        values.get(1),
-        alphas.first(),
-    ) else {
-        return;
-    };
+}
 
-    // Forward sweep over rows k = 1 .. n-2 (two at a time), stored in coefs[k]
-    // as [u_k / piv_k, y_k, 1/alpha_k, 1/(1 - alpha_k)].
-    let mut p_prev2 = 1.0; // P_{k-2}
-    let mut p_prev = 1.0; // P_{k-1}
-    let mut y_prev = 0.0;
-    let mut u_prev = 0.0;
-    let mut kc = k1; // knots[k]
-    let mut hl = (k1 - k0) * ws;
-    let mut fc = v1 * inv_scale;
-    let mut df_l = fc - v0 * inv_scale; // F_k - F_{k-1}, scaled
-    let mut terms_l = terms(a0, inv_of(a0));
-    let mut since = 0;
-    let rows = coefs.get_mut(1..).unwrap_or_default();
-    let mut rows_it = rows.chunks_exact_mut(2);
-    let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
-    let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
-    let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
-    for (((slots, kn), vs), al) in rows_it.by_ref().zip(kn).zip(vs).zip(al) {
-        // Rows k and k + 1.
-        let h1 = (kn[0] - kc) * ws;
-        let h2 = (kn[1] - kn[0]) * ws;
-        kc = kn[1];
-        let (f1, f2) = (vs[0] * inv_scale, vs[1] * inv_scale);
-        let (i1, i2) = (inv_of(al[0]), inv_of(al[1]));
-        let (t1, t2) = (terms(al[0], i1), terms(al[1], i2));
-        let l1 = -h1 * terms_l[0];
-        let d1 = h1 * terms_l[1] + hl * t1[2];
-        let u1 = -hl * t1[3];
-        let (df1, df2) = (f1 - fc, f2 - f1);
-        let r1 = hl * df1 - h1 * df_l;
-        let l2 = -h2 * t1[0];
-        let d2 = h2 * t1[1] + h1 * t2[2];
-        let u2 = -h1 * t2[3];
-        let r2 = h1 * df2 - h2 * df1;
-        let e1 = l1 * u_prev;
-        let e2 = l2 * u1;
-        // P_k and P_{k+1} both from P_{k-1}, P_{k-2}: one multiply-subtract on
-        // the chain for two rows.
-        let p1 = d1 * p_prev - e1 * p_prev2;
-        let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
-        // One division for both pivots' reciprocals.
-        let rr = 1.0 / (p1 * p2);
-        let inv1 = p_prev * p2 * rr;
-        let inv2 = p1 * p1 * rr;
-        let (g1, m1) = (r1 * inv1, l1 * inv1);
-        let (g2, m2) = (r2 * inv2, l2 * inv2);
-        let y1 = g1 - m1 * y_prev;
-        let y2 = (g2 - m2 * g1) + (m2 * m1) * y_prev;
-        slots[0] = Piece([u1 * inv1, y1, i1.0, i1.1]);
-        slots[1] = Piece([u2 * inv2, y2, i2.0, i2.1]);
-        p_prev2 = p1;
-        p_prev = p2;
-        since += 2;
-        if since >= RENORM {
-            renormalise(&mut p_prev, &mut p_prev2);
-            since = 0;
-        }
-        y_prev = y2;
-        u_prev = u2;
-        hl = h2;
-        df_l = df2;
-        fc = f2;
-        terms_l = t2;
-    }
-    let done = 1 + 2 * ((m - 1) / 2);
-    if let (Some(slot), Some(&kr), Some(&vr), Some(&ar)) = (
-        rows_it.into_remainder().first_mut(),
-        knots.get(done + 1),
-        values.get(done + 1),
-        alphas.get(done),
-    ) {
-        // The last row when their number is odd.
-        let hr = (kr - kc) * ws;
-        let fr = vr * inv_scale;
-        let ir = inv_of(ar);
-        let terms_r = terms(ar, ir);
-        let l = -hr * terms_l[0];
-        let d = hr * terms_l[1] + hl * terms_r[2];
-        let u = -hl * terms_r[3];
-        let r = hl * (fr - fc) - hr * df_l;
-        let p = d * p_prev - (l * u_prev) * p_prev2;
-        let inv = p_prev / p;
-        let y = r * inv - (l * inv) * y_prev;
-        *slot = Piece([u * inv, y, ir.0, ir.1]);
+impl<const D: usize> Sweep<'_, D> {
+    #[inline(always)]
+    fn scaled(&self, v: [f64; D]) -> [f64; D] {
+        core::array::from_fn(|c| v[c] * self.inv_scale[c])
     }
 
-    // Backward sweep: d_k from d_{k+1} (two at a time), then the pieces.
-    let stored = |c: &Piece, a: f64| terms(a, (c.0[2], c.0[3]));
-    let mut d_next = 0.0;
-    let mut f_next = values.get(m).copied().unwrap_or_default() * inv_scale;
-    let (head, rows) = coefs.split_at_mut(1.min(m));
-    let mut back = rows.rchunks_exact_mut(2);
-    let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
-    let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
-    for ((pair, vs), al) in back.by_ref().zip(vs).zip(al) {
-        // pair = [coefs[k-1], coefs[k]].
-        let (a, b) = (pair[0], pair[1]);
-        let d_k = b.0[1] - b.0[0] * d_next;
-        // d_{k-1} from d_{k+1}: one multiply-add on the chain for two rows.
-        let d_km1 = (a.0[1] - a.0[0] * b.0[1]) + (a.0[0] * b.0[0]) * d_next;
-        let (fkm1, fk) = (vs[0] * inv_scale, vs[1] * inv_scale);
-        pair[1] = piece(fk, f_next, d_k, d_next, stored(&b, al[1]));
-        pair[0] = piece(fkm1, fk, d_km1, d_k, stored(&a, al[0]));
-        d_next = d_km1;
-        f_next = fkm1;
-    }
-    if let (Some(slot), Some(&v), Some(&a)) = (
-        back.into_remainder().first_mut(),
-        values.get(1),
-        alphas.get(1),
+    /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
+    /// alphas differ (their terms are then formed per interval, else
+    /// `uniform` serves every interval), `DEV` whether the deviations are
+    /// written to `dev` (one per point). Lengths: `values` as `knots`
+    /// (`n >= 2`), `alphas` and `legs` `n - 1`, `dev` `n` when `DEV`.
+    #[inline(always)]
+    fn run<const PER: bool, const DEV: bool, L: Leg<D>>(
+        &self,
+        legs: &mut [L],
+        dev: &mut [[f64; D]],
     ) {
-        // coefs[1] when the number of rows is odd.
-        let b = *slot;
-        let d = b.0[1] - b.0[0] * d_next;
-        let f1 = v * inv_scale;
-        *slot = piece(f1, f_next, d, d_next, stored(&b, a));
-        d_next = d;
-        f_next = f1;
-    }
-    if let Some(slot) = head.first_mut() {
-        *slot = piece(v0 * inv_scale, f_next, 0.0, d_next, terms(a0, inv_of(a0)));
+        let (knots, values, alphas) = (self.knots, self.values, self.alphas);
+        let ws = self.ws;
+        let m = legs.len();
+        let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
+        let terms = |a: f64, (ia, iu): (f64, f64)| {
+            if PER {
+                terms_from_inverses(a, ia, iu)
+            } else {
+                self.uniform
+            }
+        };
+        let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
+            knots.first(),
+            knots.get(1),
+            values.first(),
+            values.get(1),
+            alphas.first(),
+        ) else {
+            return;
+        };
+        let v0 = self.scaled(v0);
+
+        // Forward sweep over rows k = 1 .. n-2 (two at a time), kept in legs[k].
+        let mut p_prev2 = 1.0; // P_{k-2}
+        let mut p_prev = 1.0; // P_{k-1}
+        let mut y_prev = [0.0; D];
+        let mut u_prev = 0.0;
+        let mut kc = k1; // knots[k]
+        let mut hl = (k1 - k0) * ws;
+        let mut fc = self.scaled(v1);
+        let mut df_l = sub(fc, v0); // F_k - F_{k-1}, scaled
+        let mut terms_l = terms(a0, inv_of(a0));
+        let mut since = 0;
+        let rows = legs.get_mut(1..).unwrap_or_default();
+        let mut rows_it = rows.chunks_exact_mut(2);
+        let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
+        let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
+        let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
+        for (((slots, kn), vs), al) in rows_it.by_ref().zip(kn).zip(vs).zip(al) {
+            // Rows k and k + 1.
+            let h1 = (kn[0] - kc) * ws;
+            let h2 = (kn[1] - kn[0]) * ws;
+            kc = kn[1];
+            let (f1, f2) = (self.scaled(vs[0]), self.scaled(vs[1]));
+            let (i1, i2) = (inv_of(al[0]), inv_of(al[1]));
+            let (t1, t2) = (terms(al[0], i1), terms(al[1], i2));
+            let l1 = -h1 * terms_l[0];
+            let d1 = h1 * terms_l[1] + hl * t1[2];
+            let u1 = -hl * t1[3];
+            let (df1, df2) = (sub(f1, fc), sub(f2, f1));
+            let l2 = -h2 * t1[0];
+            let d2 = h2 * t1[1] + h1 * t2[2];
+            let u2 = -h1 * t2[3];
+            let e1 = l1 * u_prev;
+            let e2 = l2 * u1;
+            // P_k and P_{k+1} both from P_{k-1}, P_{k-2}: one multiply-subtract
+            // on the chain for two rows.
+            let p1 = d1 * p_prev - e1 * p_prev2;
+            let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
+            // One division for both pivots' reciprocals.
+            let rr = 1.0 / (p1 * p2);
+            let inv1 = p_prev * p2 * rr;
+            let inv2 = p1 * p1 * rr;
+            let (m1, m2) = (l1 * inv1, l2 * inv2);
+            let mut y1 = [0.0; D];
+            let mut y2 = [0.0; D];
+            for c in 0..D {
+                let g1 = (hl * df1[c] - h1 * df_l[c]) * inv1;
+                let g2 = (h1 * df2[c] - h2 * df1[c]) * inv2;
+                y1[c] = g1 - m1 * y_prev[c];
+                y2[c] = (g2 - m2 * g1) + (m2 * m1) * y_prev[c];
+            }
+            slots[0].put_row(u1 * inv1, y1, i1);
+            slots[1].put_row(u2 * inv2, y2, i2);
+            p_prev2 = p1;
+            p_prev = p2;
+            since += 2;
+            if since >= RENORM {
+                renormalise(&mut p_prev, &mut p_prev2);
+                since = 0;
+            }
+            y_prev = y2;
+            u_prev = u2;
+            hl = h2;
+            df_l = df2;
+            fc = f2;
+            terms_l = t2;
+        }
+        let done = 1 + 2 * ((m - 1) / 2);
+        if let (Some(slot), Some(&kr), Some(&vr), Some(&ar)) = (
+            rows_it.into_remainder().first_mut(),
+            knots.get(done + 1),
+            values.get(done + 1),
+            alphas.get(done),
+        ) {
+            // The last row when their number is odd.
+            let hr = (kr - kc) * ws;
+            let fr = self.scaled(vr);
+            let ir = inv_of(ar);
+            let terms_r = terms(ar, ir);
+            let l = -hr * terms_l[0];
+            let d = hr * terms_l[1] + hl * terms_r[2];
+            let u = -hl * terms_r[3];
+            let p = d * p_prev - (l * u_prev) * p_prev2;
+            let inv = p_prev / p;
+            let y = core::array::from_fn(|c| {
+                (hl * (fr[c] - fc[c]) - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
+            });
+            slot.put_row(u * inv, y, ir);
+        }
+
+        // Backward sweep: d_k from d_{k+1} (two at a time), then the pieces.
+        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], t: [f64; 4]| {
+            core::array::from_fn(|c| piece(f0[c], f1[c], d0[c], d1[c], t))
+        };
+        let mut d_next = [0.0; D];
+        let mut f_next = self.scaled(values.get(m).copied().unwrap_or([0.0; D]));
+        if DEV {
+            for i in [0, m] {
+                if let Some(end) = dev.get_mut(i) {
+                    *end = [0.0; D];
+                }
+            }
+        }
+        let mut k = m;
+        let (head, rows) = legs.split_at_mut(1.min(m));
+        let mut back = rows.rchunks_exact_mut(2);
+        let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
+        let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
+        for ((pair, vs), al) in back.by_ref().zip(vs).zip(al) {
+            // pair = [legs[k-2], legs[k-1]].
+            let (ma, ya, ia) = pair[0].row();
+            let (mb, yb, ib) = pair[1].row();
+            let mut d_k = [0.0; D];
+            let mut d_km1 = [0.0; D];
+            for c in 0..D {
+                d_k[c] = yb[c] - mb * d_next[c];
+                // d_{k-1} from d_{k+1}: one multiply-add on the chain for two rows.
+                d_km1[c] = (ya[c] - ma * yb[c]) + (ma * mb) * d_next[c];
+            }
+            let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
+            pair[1].put_pieces(pieces(fk, f_next, d_k, d_next, terms(al[1], ib)));
+            pair[0].put_pieces(pieces(fkm1, fk, d_km1, d_k, terms(al[0], ia)));
+            k -= 2;
+            if DEV {
+                if let Some(pair) = dev.get_mut(k..k + 2) {
+                    pair[0] = d_km1;
+                    pair[1] = d_k;
+                }
+            }
+            d_next = d_km1;
+            f_next = fkm1;
+        }
+        if let (Some(slot), Some(&v), Some(&a)) = (
+            back.into_remainder().first_mut(),
+            values.get(1),
+            alphas.get(1),
+        ) {
+            // legs[1] when the number of rows is odd.
+            let (mb, yb, ib) = slot.row();
+            let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
+            let f1 = self.scaled(v);
+            slot.put_pieces(pieces(f1, f_next, d, d_next, terms(a, ib)));
+            if DEV {
+                if let Some(slot) = dev.get_mut(1) {
+                    *slot = d;
+                }
+            }
+            d_next = d;
+            f_next = f1;
+        }
+        if let Some(slot) = head.first_mut() {
+            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, terms(a0, inv_of(a0))));
+        }
     }
 }
 

@@ -173,6 +173,12 @@ const TINY_SPAN: f64 = 1e-270;
 /// Checks knots: at least two, finite, strictly increasing, a finite span and no
 /// interval narrower than [`MIN_RELATIVE_INTERVAL`] of it. Returns the widths.
 pub(crate) fn validate_knots(knots: &[f64]) -> Result<Vec<f64>, Error> {
+    check_knots(knots)?;
+    Ok(knots.windows(2).map(|w| w[1] - w[0]).collect())
+}
+
+/// The checks of [`validate_knots`], without forming the widths.
+pub(crate) fn check_knots(knots: &[f64]) -> Result<(), Error> {
     if knots.len() < 2 {
         return Err(Error::TooFewPoints {
             found: knots.len(),
@@ -194,8 +200,7 @@ pub(crate) fn validate_knots(knots: &[f64]) -> Result<Vec<f64>, Error> {
     if !span.is_finite() {
         return Err(Error::SpanOverflow { first, last });
     }
-    let widths: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
-    for (k, &w) in widths.iter().enumerate() {
+    for (k, w) in knots.windows(2).map(|w| w[1] - w[0]).enumerate() {
         if w < span * MIN_RELATIVE_INTERVAL {
             return Err(Error::IntervalTooSmall {
                 interval: k,
@@ -204,7 +209,7 @@ pub(crate) fn validate_knots(knots: &[f64]) -> Result<Vec<f64>, Error> {
             });
         }
     }
-    Ok(widths)
+    Ok(())
 }
 
 /// Returns the first non-finite entry as an error.
@@ -221,8 +226,17 @@ pub(crate) fn check_finite(field: Field, xs: &[f64]) -> Result<(), Error> {
 
 /// Expands and checks the shape parameters for `intervals` intervals.
 pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec<f64>, Error> {
-    let v = match alphas {
+    check_alphas(alphas, intervals)?;
+    Ok(match alphas {
         Alphas::Uniform(a) => vec![a; intervals],
+        Alphas::PerInterval(a) => a.to_vec(),
+    })
+}
+
+/// The checks of [`resolve_alphas`], without expanding them.
+pub(crate) fn check_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<(), Error> {
+    let (list, one): (&[f64], f64) = match alphas {
+        Alphas::Uniform(a) => (&[], a),
         Alphas::PerInterval(a) => {
             if a.len() != intervals {
                 return Err(Error::LengthMismatch {
@@ -231,10 +245,12 @@ pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec
                     found: a.len(),
                 });
             }
-            a.to_vec()
+            (a, 0.5)
         }
     };
-    for (k, &a) in v.iter().enumerate() {
+    // One alpha stands for every interval: the first names it.
+    let uniform = (intervals > 0 && list.is_empty()).then_some((0, one));
+    for (k, a) in list.iter().copied().enumerate().chain(uniform) {
         if !a.is_finite() {
             return Err(Error::NonFinite {
                 field: Field::Alpha,
@@ -249,7 +265,7 @@ pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec
             });
         }
     }
-    Ok(v)
+    Ok(())
 }
 
 /// A power of two close to `max |v|` (1 for an all-zero input), so that values

@@ -182,15 +182,15 @@ impl Curve {
         let (n, dim) = (self.n_points(), self.dim);
         let mut points = self.points.clone();
         points[index * dim..(index + 1) * dim].copy_from_slice(new_point);
-        let given = (self.kind == ParamKind::Given).then(|| self.knots.clone());
+        let given = (self.kind == ParamKind::Given).then_some(&self.knots[..]);
         let rebuilt = Self::solve_new(
             dim,
             self.closed,
             self.kind.clone(),
-            points,
+            &points,
             self.dropped.clone(),
             given,
-            self.alphas.clone(),
+            &self.alphas,
         )?;
         let old = self.knot_points();
         *self = rebuilt;
