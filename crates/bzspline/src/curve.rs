@@ -42,7 +42,8 @@ use crate::flatten::Polyline;
 use crate::kernels;
 use crate::spline::{
     alpha_terms, check_alphas, check_finite, check_knots, neighbour_weights, piece_coefs_with,
-    power_of_two_scale, quadratic_roots, resolve_alphas, Alphas, OpenSystem, DEFAULT_ALPHA,
+    power_of_two_scale, quadratic_roots, resolve_alphas, scale_for_max, Alphas, OpenSystem,
+    DEFAULT_ALPHA,
 };
 use crate::tridiag::CyclicThomas;
 
@@ -414,6 +415,82 @@ fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
     check_finite(Field::Query, q)
 }
 
+/// One pass over points of `dim` coordinates: `None` if a coordinate is not
+/// finite, else whether two consecutive points are equal; `maxes` gets the
+/// largest magnitude of each coordinate.
+fn survey(points: &[f64], dim: usize, maxes: &mut Vec<f64>) -> Option<bool> {
+    fn fixed<const D: usize>(points: &[f64], maxes: &mut Vec<f64>) -> Option<bool> {
+        let (pts, _) = points.as_chunks::<D>();
+        let mut mx = [0.0f64; D];
+        let mut finite = true;
+        let mut repeat = false;
+        let mut prev = [f64::NAN; D];
+        for p in pts {
+            for c in 0..D {
+                let a = p[c].abs();
+                // Branch-free: NaN fails `a <= MAX`, infinities too.
+                finite &= a <= f64::MAX;
+                mx[c] = if a > mx[c] { a } else { mx[c] };
+            }
+            repeat |= *p == prev;
+            prev = *p;
+        }
+        maxes.clear();
+        maxes.extend_from_slice(&mx);
+        finite.then_some(repeat)
+    }
+    match dim {
+        1 => fixed::<1>(points, maxes),
+        2 => fixed::<2>(points, maxes),
+        3 => fixed::<3>(points, maxes),
+        _ => {
+            maxes.clear();
+            maxes.resize(dim, 0.0);
+            if points.iter().any(|v| !v.is_finite()) {
+                return None;
+            }
+            let mut repeat = false;
+            let mut prev: Option<&[f64]> = None;
+            for p in points.chunks_exact(dim.max(1)) {
+                for (m, v) in maxes.iter_mut().zip(p) {
+                    *m = m.max(v.abs());
+                }
+                repeat |= prev == Some(p);
+                prev = Some(p);
+            }
+            Some(repeat)
+        }
+    }
+}
+
+/// `f = points / scales`, coordinate by coordinate (exact: powers of two).
+fn scale_points(points: &[f64], scales: &[f64], f: &mut Vec<f64>) {
+    let inv: Vec<f64> = scales.iter().map(|s| 1.0 / s).collect();
+    f.clear();
+    match *inv {
+        [a, b] => f.extend(
+            points
+                .as_chunks::<2>()
+                .0
+                .iter()
+                .flat_map(|p| [p[0] * a, p[1] * b]),
+        ),
+        [a, b, c] => f.extend(
+            points
+                .as_chunks::<3>()
+                .0
+                .iter()
+                .flat_map(|p| [p[0] * a, p[1] * b, p[2] * c]),
+        ),
+        _ => {
+            f.reserve(points.len());
+            for p in points.chunks_exact(inv.len().max(1)) {
+                f.extend(p.iter().zip(&inv).map(|(v, s)| v * s));
+            }
+        }
+    }
+}
+
 /// The parameter step of the leg from `a` to `b` in units of `chord_scale`
 /// (before multiplying by the curve's `knot_unit`): the chord length, or its
 /// square root for centripetal parameters.
@@ -557,13 +634,16 @@ impl Curve {
                 found: b.points.len(),
             });
         }
-        if let Some(i) = b.points.iter().position(|v| !v.is_finite()) {
+        // One pass: finite coordinates, repeated neighbours, largest magnitudes.
+        let mut maxes = Vec::new();
+        let Some(repeats) = survey(&b.points, dim, &mut maxes) else {
+            let i = b.points.iter().position(|v| !v.is_finite()).unwrap_or(0);
             return Err(Error::NonFinite {
                 field: Field::Coordinate,
                 index: i / dim,
                 value: b.points[i],
             });
-        }
+        };
         let n = b.points.len() / dim;
         let min = if b.closed { 3 } else { 2 };
         if n < min {
@@ -593,20 +673,12 @@ impl Curve {
             }
         };
         let pt = |i: usize| &b.points[i * dim..(i + 1) * dim];
-        let repeats = (1..n).any(|i| pt(i) == pt(i - 1)) || (b.closed && pt(n - 1) == pt(0));
+        let repeats = repeats || (b.closed && pt(n - 1) == pt(0));
         if !repeats {
             // Nothing to drop: the builder's points and alphas are the curve's.
             let given = given.as_deref();
-            return Self::solve_into(
-                target,
-                dim,
-                b.closed,
-                kind,
-                &b.points,
-                Vec::new(),
-                given,
-                choice,
-            );
+            let pts = (&b.points[..], &maxes[..]);
+            return Self::solve_into(target, dim, b.closed, kind, pts, Vec::new(), given, choice);
         }
         // Keep-list: drop or refuse repeats.
         let mut keep: Vec<usize> = Vec::with_capacity(n);
@@ -671,18 +743,21 @@ impl Curve {
             v
         });
         let (given, alphas) = (given.as_deref(), Alphas::PerInterval(&alphas));
-        Self::solve_into(target, dim, b.closed, kind, &points, dropped, given, alphas)
+        // Dropped points repeat kept ones: the largest magnitudes stay.
+        let pts = (&points[..], &maxes[..]);
+        Self::solve_into(target, dim, b.closed, kind, pts, dropped, given, alphas)
     }
 
     /// Parameters for the kind, validates them, and solves into `c`, reusing
-    /// its allocations; `c` changes only on success. `alphas` are checked.
+    /// its allocations; `c` changes only on success. `alphas` are checked;
+    /// `points` come with the largest magnitude of each coordinate.
     #[allow(clippy::too_many_arguments)] // the parts of a builder, validated
     fn solve_into(
         c: &mut Curve,
         dim: usize,
         closed: bool,
         kind: ParamKind,
-        points: &[f64],
+        (points, maxes): (&[f64], &[f64]),
         dropped: Vec<usize>,
         given: Option<&[f64]>,
         alphas: Alphas<'_>,
@@ -745,16 +820,11 @@ impl Curve {
             Alphas::PerInterval(a) => c.alphas.extend_from_slice(a),
         }
         c.scales.clear();
-        c.scales
-            .extend((0..dim).map(|j| power_of_two_scale(points.iter().skip(j).step_by(dim))));
+        c.scales.extend(maxes.iter().map(|&m| scale_for_max(m)));
         c.gscale = c.scales.iter().fold(0.0f64, |m, s| m.max(*s));
-        c.f.clear();
-        c.f.reserve(points.len());
-        for p in points.chunks_exact(dim) {
-            c.f.extend(p.iter().zip(&c.scales).map(|(v, s)| v * (1.0 / s)));
-        }
         c.points.clear();
         c.points.extend_from_slice(points);
+        scale_points(points, &c.scales, &mut c.f);
         c.dim = dim;
         c.closed = closed;
         c.kind = kind;
@@ -778,7 +848,10 @@ impl Curve {
     ) -> Result<Self, Error> {
         let mut c = Curve::empty();
         let alphas = Alphas::PerInterval(alphas);
-        Self::solve_into(&mut c, dim, closed, kind, points, dropped, given, alphas)?;
+        let mut maxes = Vec::new();
+        survey(points, dim, &mut maxes);
+        let pts = (points, &maxes[..]);
+        Self::solve_into(&mut c, dim, closed, kind, pts, dropped, given, alphas)?;
         Ok(c)
     }
 

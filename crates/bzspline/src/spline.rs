@@ -276,7 +276,7 @@ pub(crate) fn power_of_two_scale<'a>(values: impl IntoIterator<Item = &'a f64>) 
 }
 
 /// [`power_of_two_scale`] of values whose largest magnitude is `m`.
-fn scale_for_max(m: f64) -> f64 {
+pub(crate) fn scale_for_max(m: f64) -> f64 {
     if m == 0.0 || !m.is_finite() {
         return 1.0;
     }
