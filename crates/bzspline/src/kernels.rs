@@ -83,20 +83,33 @@ fn alpha_terms_one_division(a: f64) -> [f64; 4] {
     terms_from_inverses(a, u * iau, a * iau)
 }
 
-/// Coefficients of a piece from its scaled values, deviations and alpha terms
-/// (the arithmetic of `spline::piece_coefs`).
+/// The alpha terms a piece needs: `B2'` and `C'` for its first slope, and the
+/// weights of `d0`, `d1` in its `t^2` and `t^3` coefficients.
 #[inline(always)]
-fn piece(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> [f64; 4] {
+fn piece_terms(terms: [f64; 4]) -> [f64; 6] {
     let [al, b1, b2, cr] = terms;
-    let df = f1 - f0;
-    let s0 = df - d0 * b2 + d1 * cr;
-    let s1 = df + d1 * b1 - d0 * al;
-    let rise = df + (d1 - d0);
+    [
+        b2,
+        cr,
+        2.0 * b2 + al - 3.0,
+        3.0 - 2.0 * cr - b1,
+        2.0 - b2 - al,
+        cr + b1 - 2.0,
+    ]
+}
+
+/// Coefficients of a piece from its scaled values, deviations and
+/// [`piece_terms`]: the coefficients of `spline::piece_coefs`,
+/// `c2 = 3 rise - 2 s0 - s1` and `c3 = s0 + s1 - 2 rise` with the value step
+/// cancelled out beforehand (it drops out of both exactly).
+#[inline(always)]
+fn piece(f0: f64, f1: f64, d0: f64, d1: f64, pt: [f64; 6]) -> [f64; 4] {
+    let [b2, cr, c2d0, c2d1, c3d0, c3d1] = pt;
     [
         f0 + d0,
-        s0,
-        3.0 * rise - 2.0 * s0 - s1,
-        s0 + s1 - 2.0 * rise,
+        (f1 - f0) + (d1 * cr - d0 * b2),
+        d0 * c2d0 + d1 * c2d1,
+        d0 * c3d0 + d1 * c3d1,
     ]
 }
 
@@ -194,6 +207,7 @@ pub(crate) fn build(
         inv_scale: [inv_scale],
         alphas,
         uniform: uniform.map_or([0.0; 4], alpha_terms),
+        uniform_piece: piece_terms(uniform.map_or([0.0; 4], alpha_terms)),
         ws: wscale,
     };
     if uniform.is_some() {
@@ -234,6 +248,7 @@ pub(crate) fn build_open_curve<const D: usize>(
         inv_scale: [1.0; D],
         alphas,
         uniform: uniform.map_or([0.0; 4], alpha_terms),
+        uniform_piece: piece_terms(uniform.map_or([0.0; 4], alpha_terms)),
         ws: wscale,
     };
     if uniform.is_some() {
@@ -266,6 +281,8 @@ struct Sweep<'a, const D: usize> {
     alphas: &'a [f64],
     /// The terms of every alpha when they are all one (`PER` false).
     uniform: [f64; 4],
+    /// Their [`piece_terms`].
+    uniform_piece: [f64; 6],
     /// The power of two the widths are multiplied by.
     ws: f64,
 }
@@ -399,8 +416,13 @@ impl<const D: usize> Sweep<'_, D> {
         }
 
         // Backward sweep: d_k from d_{k+1} (two at a time), then the pieces.
-        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], t: [f64; 4]| {
-            core::array::from_fn(|c| piece(f0[c], f1[c], d0[c], d1[c], t))
+        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64, inv| {
+            let pt = if PER {
+                piece_terms(terms(a, inv))
+            } else {
+                self.uniform_piece
+            };
+            core::array::from_fn(|c| piece(f0[c], f1[c], d0[c], d1[c], pt))
         };
         let mut d_next = [0.0; D];
         let mut f_next = self.scaled(values.get(m).copied().unwrap_or([0.0; D]));
@@ -428,8 +450,8 @@ impl<const D: usize> Sweep<'_, D> {
                 d_km1[c] = (ya[c] - ma * yb[c]) + (ma * mb) * d_next[c];
             }
             let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
-            pair[1].put_pieces(pieces(fk, f_next, d_k, d_next, terms(al[1], ib)));
-            pair[0].put_pieces(pieces(fkm1, fk, d_km1, d_k, terms(al[0], ia)));
+            pair[1].put_pieces(pieces(fk, f_next, d_k, d_next, al[1], ib));
+            pair[0].put_pieces(pieces(fkm1, fk, d_km1, d_k, al[0], ia));
             k -= 2;
             if DEV {
                 if let Some(pair) = dev.get_mut(k..k + 2) {
@@ -449,7 +471,7 @@ impl<const D: usize> Sweep<'_, D> {
             let (mb, yb, ib) = slot.row();
             let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
             let f1 = self.scaled(v);
-            slot.put_pieces(pieces(f1, f_next, d, d_next, terms(a, ib)));
+            slot.put_pieces(pieces(f1, f_next, d, d_next, a, ib));
             if DEV {
                 if let Some(slot) = dev.get_mut(1) {
                     *slot = d;
@@ -459,7 +481,7 @@ impl<const D: usize> Sweep<'_, D> {
             f_next = f1;
         }
         if let Some(slot) = head.first_mut() {
-            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, terms(a0, inv_of(a0))));
+            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, a0, inv_of(a0)));
         }
     }
 }
