@@ -189,11 +189,21 @@ pub(crate) fn build(
     uniform: Option<f64>,
     inv_scale: f64,
     wscale: f64,
-    coefs: &mut Vec<Piece>,
+    (coefs, knots_out, values_out): (&mut Vec<Piece>, &mut Vec<f64>, &mut Vec<f64>),
 ) {
     let n = knots.len();
+    // The copies of the knots and values are written by the forward sweep,
+    // which reads them anyway.
+    for out in [&mut *knots_out, &mut *values_out] {
+        out.truncate(n);
+        out.resize(n, 0.0);
+    }
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
         coefs.clear();
+        knots_out.copy_from_slice(knots);
+        values_out.truncate(values.len());
+        values_out.resize(values.len(), 0.0);
+        values_out.copy_from_slice(values);
         return;
     }
     // Every piece is overwritten below: keep the old contents rather than
@@ -210,10 +220,11 @@ pub(crate) fn build(
         uniform_piece: piece_terms(uniform.map_or([0.0; 4], alpha_terms)),
         ws: wscale,
     };
+    let out = (&mut knots_out[..], values_out.as_chunks_mut::<1>().0);
     if uniform.is_some() {
-        input.run::<false, false, _>(coefs, &mut []);
+        input.run::<false, false, true, _>(coefs, &mut [], out);
     } else {
-        input.run::<true, false, _>(coefs, &mut []);
+        input.run::<true, false, true, _>(coefs, &mut [], out);
     }
 }
 
@@ -252,9 +263,9 @@ pub(crate) fn build_open_curve<const D: usize>(
         ws: wscale,
     };
     if uniform.is_some() {
-        input.run::<false, true, _>(legs, dev);
+        input.run::<false, true, false, _>(legs, dev, (&mut [], &mut []));
     } else {
-        input.run::<true, true, _>(legs, dev);
+        input.run::<true, true, false, _>(legs, dev, (&mut [], &mut []));
     }
 }
 
@@ -296,14 +307,30 @@ impl<const D: usize> Sweep<'_, D> {
     /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
     /// alphas differ (their terms are then formed per interval, else
     /// `uniform` serves every interval), `DEV` whether the deviations are
-    /// written to `dev` (one per point). Lengths: `values` as `knots`
-    /// (`n >= 2`), `alphas` and `legs` `n - 1`, `dev` `n` when `DEV`.
+    /// written to `dev` (one per point), `COPY` whether the knots and the
+    /// values (unscaled) are copied to `out`. Lengths: `values` as `knots`
+    /// (`n >= 2`), `alphas` and `legs` `n - 1`, `dev` `n` when `DEV`, `out`
+    /// `n` each when `COPY`.
     #[inline(always)]
-    fn run<const PER: bool, const DEV: bool, L: Leg<D>>(
+    fn run<const PER: bool, const DEV: bool, const COPY: bool, L: Leg<D>>(
         &self,
         legs: &mut [L],
         dev: &mut [[f64; D]],
+        out: (&mut [f64], &mut [[f64; D]]),
     ) {
+        let (knots_out, values_out) = out;
+        // Knots and values `j..j + w` to the copies.
+        let mut copy = |j: usize, k: &[f64], v: &[[f64; D]]| {
+            if COPY {
+                let w = k.len();
+                if let (Some(ko), Some(vo)) =
+                    (knots_out.get_mut(j..j + w), values_out.get_mut(j..j + w))
+                {
+                    ko.copy_from_slice(k);
+                    vo.copy_from_slice(v);
+                }
+            }
+        };
         let (knots, values, alphas) = (self.knots, self.values, self.alphas);
         let ws = self.ws;
         let m = legs.len();
@@ -324,6 +351,7 @@ impl<const D: usize> Sweep<'_, D> {
         ) else {
             return;
         };
+        copy(0, &knots[..2], &values[..2]);
         let v0 = self.scaled(v0);
 
         // Forward sweep over rows k = 1 .. n-2 (two at a time), kept in legs[k].
@@ -342,8 +370,11 @@ impl<const D: usize> Sweep<'_, D> {
         let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
         let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
         let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
+        let mut j = 2;
         for (((slots, kn), vs), al) in rows_it.by_ref().zip(kn).zip(vs).zip(al) {
             // Rows k and k + 1.
+            copy(j, kn, vs);
+            j += 2;
             let h1 = (kn[0] - kc) * ws;
             let h2 = (kn[1] - kn[0]) * ws;
             kc = kn[1];
@@ -400,6 +431,7 @@ impl<const D: usize> Sweep<'_, D> {
             alphas.get(done),
         ) {
             // The last row when their number is odd.
+            copy(done + 1, &[kr], &[vr]);
             let hr = (kr - kc) * ws;
             let fr = self.scaled(vr);
             let ir = inv_of(ar);

@@ -571,10 +571,6 @@ impl Spline {
         let n = knots.len();
         let scale = scale_for_max(max_abs);
         let span = knots[n - 1] - knots[0];
-        self.knots.clear();
-        self.knots.extend_from_slice(knots);
-        self.values.clear();
-        self.values.extend_from_slice(values);
         self.alphas.clear();
         let uniform = match alphas {
             Alphas::Uniform(a) => {
@@ -593,7 +589,7 @@ impl Spline {
             uniform,
             1.0 / scale,
             kernels::inverse_power_of_two(span),
-            &mut self.coefs,
+            (&mut self.coefs, &mut self.knots, &mut self.values),
         );
         kernels::summarise(knots, &mut self.summary);
         self.scale = scale;
@@ -1505,6 +1501,8 @@ mod tests {
                     let fast = Spline::build(&x, &f, alphas).unwrap();
                     let slow = Spline::build_reference(&x, &f, alphas).unwrap();
                     assert_eq!(fast.alphas(), slow.alphas());
+                    assert_eq!(fast.knots(), slow.knots());
+                    assert_eq!(fast.values(), slow.values());
                     assert_eq!(fast.scale, slow.scale);
                     let tol = 1e-13 * fmax;
                     for (k, (p, q)) in fast
