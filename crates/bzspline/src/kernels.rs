@@ -614,6 +614,9 @@ impl Batch<'_> {
         for (xb, ob) in xs.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
             if !search {
                 let mut jumps = 0;
+                // Finite results are checked for the block at once: a branch
+                // per query is dearer than a second look at a rare block.
+                let mut finite = true;
                 for (j, (&x, o)) in xb.iter().zip(ob.iter_mut()).enumerate() {
                     // Inside the current piece implies inside the domain.
                     if !(x >= k0 && x < k1) {
@@ -631,10 +634,15 @@ impl Batch<'_> {
                     }
                     let t = (x - k0) * inv;
                     let v = per_h::<O>(poly::<O>(&c, t) * scale, inv);
-                    if v.is_finite() {
-                        *o = v;
-                    } else {
-                        slow(base + j, x, o)?;
+                    // NaN and infinities fail the comparison.
+                    finite &= v.abs() <= f64::MAX;
+                    *o = v;
+                }
+                if !finite {
+                    for (j, (&x, o)) in xb.iter().zip(ob.iter_mut()).enumerate() {
+                        if !o.is_finite() {
+                            slow(base + j, x, o)?;
+                        }
                     }
                 }
                 search = jumps > 2;

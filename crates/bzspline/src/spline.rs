@@ -1655,6 +1655,40 @@ mod tests {
     }
 
     #[test]
+    fn batch_overflow_is_the_pointwise_error() {
+        // The higher derivatives overflow on the narrow first piece only: the
+        // batch must stop at the same query with the same error, and agree with
+        // the pointwise values where they are finite.
+        let s = Spline::new(&[0.0, 1e-12, 1.0], &[0.0, 1e300, 0.0]).unwrap();
+        let xs: Vec<f64> = [0.5, 0.25]
+            .into_iter()
+            .chain((0..100).map(|i| f64::from(i) * 1e-14))
+            .collect();
+        let mut failed = Vec::new();
+        for order in 0..=3 {
+            let mut out = vec![0.0; xs.len()];
+            let batch = s.deriv_many(&xs, order, &mut out);
+            match xs.iter().find_map(|&x| s.deriv(x, order).err()) {
+                Some(e) => {
+                    assert_eq!(batch, Err(e), "order {order}");
+                    failed.push(order);
+                }
+                None => {
+                    assert_eq!(batch, Ok(()), "order {order}");
+                    for (&x, &o) in xs.iter().zip(&out) {
+                        assert_eq!(Ok(o), s.deriv(x, order), "order {order} at {x}");
+                    }
+                }
+            }
+        }
+        assert!(
+            failed.contains(&3),
+            "the third derivative overflows: {failed:?}"
+        );
+        assert!(!failed.contains(&0), "values do not: {failed:?}");
+    }
+
+    #[test]
     fn extrema_near_f64_max_are_finite() {
         // A maximum between two knots valued f64::MAX: at the top of the range
         // (where rounding may carry it above, and it is clamped).
