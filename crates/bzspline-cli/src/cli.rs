@@ -74,17 +74,6 @@ pub struct InputArgs {
     pub max_bytes: u64,
 }
 
-impl InputArgs {
-    /// The reading limits these arguments set.
-    #[must_use]
-    pub fn limits(&self) -> crate::input::Limits {
-        crate::input::Limits {
-            max_points: usize::try_from(self.max_points).unwrap_or(usize::MAX),
-            max_bytes: self.max_bytes,
-        }
-    }
-}
-
 /// Formats the readers understand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum InputFormat {

@@ -238,7 +238,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
             (xs.clone(), pos)
         }
         (None, Some(path)) => {
-            let limits = a.input.limits();
+            let limits = input::Limits::of(&a.input);
             let (name, bytes) = input::read_source(Some(path), limits.max_bytes)?;
             let t = input::parse_table(&name, &bytes, None, limits.max_points)?;
             input::check_columns(&t, &[1], "1 (one abscissa per line)")?;

@@ -225,6 +225,15 @@ impl Limits {
         max_points: 20_000_000,
         max_bytes: 1 << 30,
     };
+
+    /// The limits the input arguments set.
+    #[must_use]
+    pub fn of(args: &InputArgs) -> Limits {
+        Limits {
+            max_points: usize::try_from(args.max_points).unwrap_or(usize::MAX),
+            max_bytes: args.max_bytes,
+        }
+    }
 }
 
 /// Reads all of a file (or standard input for `None` or `-`), refusing more
@@ -300,7 +309,7 @@ pub fn load(args: &InputArgs) -> Result<Points> {
         return Ok(example(n));
     }
     let file = args.file.as_deref();
-    let limits = args.limits();
+    let limits = Limits::of(args);
     let (name, bytes) = read_source(file, limits.max_bytes)?;
     let max = limits.max_points;
     match format_of(file, args.input_format) {

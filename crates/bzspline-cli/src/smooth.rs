@@ -53,7 +53,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             ParamArg::Centripetal => Param::Centripetal,
         },
         tolerance: a.tolerance,
-        limits: a.input.limits(),
+        limits: input::Limits::of(&a.input),
     };
     let file = a.input.file.as_deref();
     let format = match (a.input.example, a.input.input_format) {

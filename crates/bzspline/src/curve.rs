@@ -1547,22 +1547,11 @@ impl Curve {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spline::tests::Rng;
     use crate::spline::{Spline, ALPHA_MAX, ALPHA_MIN};
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)
-    }
-
-    /// xorshift64*: doubles in `[0, 1)`.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-        }
     }
 
     #[test]

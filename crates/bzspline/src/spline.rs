@@ -1225,7 +1225,7 @@ fn refine_pair(a: f64, b: f64, c: f64) -> Vec<f64> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     const EX1_X: [f64; 11] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0];
@@ -1443,11 +1443,12 @@ mod tests {
         ));
     }
 
-    /// A small deterministic generator (xorshift64*), uniform in `[0, 1)`.
-    struct Rng(u64);
+    /// A small deterministic generator (xorshift64*), uniform in `[0, 1)`;
+    /// the curve tests use it too.
+    pub(crate) struct Rng(pub(crate) u64);
 
     impl Rng {
-        fn next(&mut self) -> f64 {
+        pub(crate) fn next(&mut self) -> f64 {
             self.0 ^= self.0 >> 12;
             self.0 ^= self.0 << 25;
             self.0 ^= self.0 >> 27;
