@@ -80,7 +80,7 @@ def run_bzspline(n, m, mr, repeats):
 
 def smaller(a, b):
     """The smaller of two figures of the throughput JSON (counts stay)."""
-    if isinstance(a, (int, float)) and isinstance(b, (int, float)) and a is not None:
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
         return min(a, b)
     return b
 

@@ -192,34 +192,33 @@ pub(crate) fn build(
     (coefs, knots_out, values_out): (&mut Vec<Piece>, &mut Vec<f64>, &mut Vec<f64>),
 ) {
     let n = knots.len();
-    // The copies of the knots and values are written by the forward sweep,
-    // which reads them anyway.
+    if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        // Not reached: the caller has validated the lengths.
+        coefs.clear();
+        for (out, v) in [(&mut *knots_out, knots), (&mut *values_out, values)] {
+            out.clear();
+            out.extend_from_slice(v);
+        }
+        return;
+    }
+    // Every piece and copy is overwritten below (the copies of the knots and
+    // values by the forward sweep, which reads them anyway): keep the old
+    // contents rather than clearing them first (no pass over the memory when
+    // the size is unchanged).
+    coefs.truncate(n - 1);
+    coefs.resize(n - 1, Piece::default());
     for out in [&mut *knots_out, &mut *values_out] {
         out.truncate(n);
         out.resize(n, 0.0);
     }
-    if n < 2 || values.len() != n || alphas.len() != n - 1 {
-        coefs.clear();
-        knots_out.copy_from_slice(knots);
-        values_out.truncate(values.len());
-        values_out.resize(values.len(), 0.0);
-        values_out.copy_from_slice(values);
-        return;
-    }
-    // Every piece is overwritten below: keep the old contents rather than
-    // clearing them first (no pass over the memory when the size is unchanged).
-    coefs.truncate(n - 1);
-    coefs.resize(n - 1, Piece::default());
-    let (values, _) = values.as_chunks::<1>();
-    let input = Sweep {
+    let input = Sweep::new(
         knots,
-        values,
-        inv_scale: [inv_scale],
+        values.as_chunks().0,
+        [inv_scale],
         alphas,
-        uniform: uniform.map_or([0.0; 4], alpha_terms),
-        uniform_piece: piece_terms(uniform.map_or([0.0; 4], alpha_terms)),
-        ws: wscale,
-    };
+        uniform,
+        wscale,
+    );
     let out = (&mut knots_out[..], values_out.as_chunks_mut::<1>().0);
     if uniform.is_some() {
         input.run::<false, false, true, _>(coefs, &mut [], out);
@@ -253,15 +252,7 @@ pub(crate) fn build_open_curve<const D: usize>(
     }
     let (legs, _) = coefs.as_chunks_mut::<D>();
     let (dev, _) = dev.as_chunks_mut::<D>();
-    let input = Sweep {
-        knots,
-        values,
-        inv_scale: [1.0; D],
-        alphas,
-        uniform: uniform.map_or([0.0; 4], alpha_terms),
-        uniform_piece: piece_terms(uniform.map_or([0.0; 4], alpha_terms)),
-        ws: wscale,
-    };
+    let input = Sweep::new(knots, values, [1.0; D], alphas, uniform, wscale);
     if uniform.is_some() {
         input.run::<false, true, false, _>(legs, dev, (&mut [], &mut []));
     } else {
@@ -298,7 +289,29 @@ struct Sweep<'a, const D: usize> {
     ws: f64,
 }
 
-impl<const D: usize> Sweep<'_, D> {
+impl<'a, const D: usize> Sweep<'a, D> {
+    /// The input, with the alpha terms of `uniform` (the one alpha of every
+    /// interval, when there is one) formed once.
+    fn new(
+        knots: &'a [f64],
+        values: &'a [[f64; D]],
+        inv_scale: [f64; D],
+        alphas: &'a [f64],
+        uniform: Option<f64>,
+        ws: f64,
+    ) -> Self {
+        let terms = uniform.map_or([0.0; 4], alpha_terms);
+        Sweep {
+            knots,
+            values,
+            inv_scale,
+            alphas,
+            uniform: terms,
+            uniform_piece: piece_terms(terms),
+            ws,
+        }
+    }
+
     #[inline(always)]
     fn scaled(&self, v: [f64; D]) -> [f64; D] {
         core::array::from_fn(|c| v[c] * self.inv_scale[c])
