@@ -562,6 +562,59 @@ pub(crate) fn per_h<const O: u32>(v: f64, inv: f64) -> f64 {
     v
 }
 
+/// Whether `per_h::<O>(poly::<O>(c, t) * scale, inv)` is finite for every
+/// `t` in `[0, 1]` (and a little past it, where rounding puts the end of a
+/// piece): the sum of the magnitudes of the terms bounds every partial sum
+/// of the Horner scheme, and the margin of a factor 4 covers its rounding.
+#[inline(always)]
+fn bounded<const O: u32>(c: &[f64; 4], scale: f64, inv: f64) -> bool {
+    let b = match O {
+        0 => c[0].abs() + c[1].abs() + c[2].abs() + c[3].abs(),
+        1 => c[1].abs() + 2.0 * c[2].abs() + 3.0 * c[3].abs(),
+        2 => 2.0 * c[2].abs() + 6.0 * c[3].abs(),
+        _ => 6.0 * c[3].abs(),
+    };
+    // NaN and infinities fail the comparison.
+    per_h::<O>(b * scale, inv) <= 0.25 * f64::MAX
+}
+
+/// Evaluates the queries from `xb[j]` on while they lie in the piece
+/// `[k0, k1)` with coefficients `c`; returns the index of the first that does
+/// not (or the block's length).
+#[inline(always)]
+fn walk_piece<const O: u32>(
+    xb: &[f64],
+    ob: &mut [f64],
+    mut j: usize,
+    c: &[f64; 4],
+    (k0, k1, inv): (f64, f64, f64),
+    scale: f64,
+) -> usize {
+    let c = *c;
+    while let (Some(&x), Some(o)) = (xb.get(j), ob.get_mut(j)) {
+        if !(x >= k0 && x < k1) {
+            break;
+        }
+        let t = (x - k0) * inv;
+        *o = per_h::<O>(poly::<O>(&c, t) * scale, inv);
+        j += 1;
+    }
+    j
+}
+
+/// The batch evaluators' way to the one-by-one path: kept out of line, so
+/// that the rare call does not crowd the registers of the hot loops.
+#[cold]
+#[inline(never)]
+fn call_slow<E>(
+    slow: &mut impl FnMut(usize, f64, &mut f64) -> Result<(), E>,
+    i: usize,
+    x: f64,
+    o: &mut f64,
+) -> Result<(), E> {
+    slow(i, x, o)
+}
+
 /// Queries handed to the batch evaluators at once by the block search.
 pub(crate) const BLOCK: usize = 32;
 
@@ -616,40 +669,54 @@ impl Batch<'_> {
         }
         let (lo, hi) = (knots[0], knots[m]);
         let scale = self.scale;
-        // The current piece of the walk.
+        // The current piece of the walk, and whether every result on it is
+        // sure to be finite.
         let mut k = 0;
         let mut k0 = knots[0];
         let mut k1 = knots[1];
         let mut inv = 1.0 / (k1 - k0);
         let mut c = coefs[0].0;
+        let mut safe = bounded::<O>(&c, scale, inv);
         let mut base = 0;
         let mut search = false;
         for (xb, ob) in xs.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
             if !search {
                 let mut jumps = 0;
-                // Finite results are checked for the block at once: a branch
-                // per query is dearer than a second look at a rare block.
-                let mut finite = true;
-                for (j, (&x, o)) in xb.iter().zip(ob.iter_mut()).enumerate() {
-                    // Inside the current piece implies inside the domain.
-                    if !(x >= k0 && x < k1) {
-                        if !(x >= lo && x < hi) {
-                            slow(base + j, x, o)?;
-                            continue;
-                        }
-                        let (next, far) = locate_from(knots, self.summary, k, x);
-                        jumps += usize::from(far);
-                        k = next;
-                        k0 = knots[k];
-                        k1 = knots[k + 1];
-                        inv = 1.0 / (k1 - k0);
-                        c = coefs[k].0;
+                // Finiteness is known per piece (see [`bounded`]); a block that
+                // met a piece without that assurance has its results checked
+                // afterwards, which is dearer than a test per query only for
+                // such rare blocks.
+                let mut finite = safe;
+                let n = xb.len();
+                let ob = &mut ob[..n];
+                let mut j = 0;
+                loop {
+                    j = walk_piece::<O>(xb, ob, j, &c, (k0, k1, inv), scale);
+                    let Some(&x) = xb.get(j) else { break };
+                    if !(x >= lo && x < hi) {
+                        call_slow(&mut slow, base + j, x, &mut ob[j])?;
+                        j += 1;
+                        continue;
                     }
-                    let t = (x - k0) * inv;
-                    let v = per_h::<O>(poly::<O>(&c, t) * scale, inv);
-                    // NaN and infinities fail the comparison.
-                    finite &= v.abs() <= f64::MAX;
-                    *o = v;
+                    // Sorted queries mostly move on to the next piece.
+                    match knots.get(k + 2) {
+                        Some(&k2) if x >= k1 && x < k2 => {
+                            k += 1;
+                            k0 = k1;
+                            k1 = k2;
+                        }
+                        _ => {
+                            let (next, far) = locate_from(knots, self.summary, k, x);
+                            jumps += usize::from(far);
+                            k = next;
+                            k0 = knots[k];
+                            k1 = knots[k + 1];
+                        }
+                    }
+                    inv = 1.0 / (k1 - k0);
+                    c = coefs[k].0;
+                    safe = bounded::<O>(&c, scale, inv);
+                    finite &= safe;
                 }
                 if !finite {
                     for (j, (&x, o)) in xb.iter().zip(ob.iter_mut()).enumerate() {
@@ -689,7 +756,7 @@ impl Batch<'_> {
 /// The piece of `x` (inside the domain) starting the search at piece `k`: a few
 /// linear steps forward, then the summary's search (see [`search_one`]). The
 /// flag says whether it took the search.
-#[inline]
+#[inline(never)]
 fn locate_from(knots: &[f64], summary: &[f64], k: usize, x: f64) -> (usize, bool) {
     let last = knots.len() - 2;
     let mut k = k;

@@ -928,7 +928,7 @@ impl Spline {
 
     /// Evaluates the derivative of order `order` (0 for values) at every `xs[i]`
     /// into `out[i]`, with the same result as [`Spline::deriv`] at each point.
-    /// The queries are taken in blocks of 16: a sorted block walks from the
+    /// The queries are taken in blocks of 32: a sorted block walks from the
     /// previous piece (one pass over sorted queries), an unsorted one is located
     /// by a branchless binary search over the knots.
     ///
@@ -1653,6 +1653,76 @@ pub(crate) mod tests {
         let (p, q) = neighbour_weights(f64::MAX, f64::MAX);
         assert_eq!((p, q), (0.5, 0.5));
         assert_eq!(neighbour_weights(1.0, 3.0), (0.75, 0.25));
+    }
+
+    #[test]
+    fn walked_blocks_with_outside_queries_and_huge_pieces_match_pointwise() {
+        // Sorted blocks that leave the domain and come back, meet NaN, cross
+        // pieces whose values near f64::MAX leave no margin for the batch's
+        // finiteness bound, and end on the last knot: each result as the
+        // pointwise evaluator gives it, under every extrapolation policy.
+        let x: Vec<f64> = (0..40).map(|i| f64::from(i) * 0.5).collect();
+        let f: Vec<f64> = (0..40)
+            .map(|i| match i % 7 {
+                3 => f64::MAX,
+                4 => -0.9 * f64::MAX,
+                _ => f64::from(i).sin(),
+            })
+            .collect();
+        let (lo, hi) = (x[0], x[39]);
+        let mut qs: Vec<f64> = (0..400).map(|i| -1.0 + f64::from(i) * 0.0537).collect();
+        qs[100] = f64::NAN;
+        qs.extend([hi, hi, lo, hi + 1.0, lo - 1.0]);
+        qs.extend((0..80).map(|i| lo + f64::from(i) * 0.2461));
+        let clean: Vec<f64> = qs.iter().copied().filter(|q| !q.is_nan()).collect();
+        let mut answered = 0;
+        for policy in [Extrapolate::Clamp, Extrapolate::Extend, Extrapolate::Error] {
+            let s = Spline::new(&x, &f).unwrap().with_extrapolation(policy);
+            for order in 0..4 {
+                for q in [&qs, &clean] {
+                    answered += usize::from(batch_is_pointwise(&s, q, order));
+                }
+            }
+        }
+        // Clamped values answer every query but the NaN; derivatives and
+        // extended values overflow beside the huge pieces.
+        assert_eq!(answered, 1);
+    }
+
+    /// `deriv_many` against `deriv` query by query: the same values, or the
+    /// error of the first query that fails. True when every query was answered.
+    fn batch_is_pointwise(s: &Spline, qs: &[f64], order: u32) -> bool {
+        let mut out = vec![0.0; qs.len()];
+        let got = s.deriv_many(qs, order, &mut out);
+        let first_err = qs.iter().enumerate().find_map(|(i, &q)| {
+            s.deriv(q, order).err().map(|e| match e {
+                Error::NonFinite { field, value, .. } => Error::NonFinite {
+                    field,
+                    index: i,
+                    value,
+                },
+                e => e,
+            })
+        });
+        let label = format!("{:?} order {order}", s.extrapolate);
+        match first_err {
+            // (Compared as text: the error may hold a NaN.)
+            Some(e) => {
+                assert_eq!(
+                    format!("{got:?}"),
+                    format!("{:?}", Err::<(), _>(e)),
+                    "{label}"
+                );
+                false
+            }
+            None => {
+                assert_eq!(got, Ok(()), "{label}");
+                for (&q, &y) in qs.iter().zip(&out) {
+                    assert_eq!(Ok(y), s.deriv(q, order), "{label} at {q}");
+                }
+                true
+            }
+        }
     }
 
     #[test]
