@@ -991,45 +991,40 @@ impl Curve {
     }
 
     /// The Bezier control points of planar segment `k` in units of
-    /// [`Self::unit`], for the flattening's chord test (the arithmetic of
-    /// [`Self::segment_points`] with a multiplication by 1/3 for the division,
-    /// so they may differ from those in the last place). `terms` are the
-    /// [`alpha_terms`] of the segment's alpha, `rel` [`Self::unit_rel`] of both
-    /// coordinates.
+    /// [`Self::unit`], for the flattening's chord test: formed from the
+    /// segment's power-basis coefficients (`b0 = c0`, `b1 = c0 + c1 / 3`,
+    /// `b2 = b1 + (c1 + c2) / 3`, `b3 = c0 + c1 + c2 + c3`), so they may differ
+    /// from those of [`Self::segment_points`] in the last place. `rel` holds
+    /// [`Self::unit_rel`] of both coordinates.
     #[inline]
-    pub(crate) fn unit_bezier_2d(&self, k: usize, terms: [f64; 4], rel: [f64; 2]) -> [[f64; 2]; 4] {
-        // The next knot point; the closing segment of a closed curve ends at
-        // the first (no division by the dimension to count the points).
-        let j = if self.closed && k + 1 == self.len() {
-            0
-        } else {
-            k + 1
-        };
-        let [al, b1, b2, cr] = terms;
-        let (f0, f1) = (&self.f[2 * k..2 * k + 2], &self.f[2 * j..2 * j + 2]);
-        let (d0, d1) = (&self.d[2 * k..2 * k + 2], &self.d[2 * j..2 * j + 2]);
+    pub(crate) fn unit_bezier_2d(&self, k: usize, rel: [f64; 2]) -> [[f64; 2]; 4] {
         let third = 1.0 / 3.0;
         let mut ctrl = [[0.0; 2]; 4];
-        for (c, &rel) in rel.iter().enumerate() {
-            let df = f1[c] - f0[c];
-            let s0 = df - d0[c] * b2 + d1[c] * cr;
-            let s1 = df + d1[c] * b1 - d0[c] * al;
-            let (p0, p3) = (f0[c] + d0[c], f1[c] + d1[c]);
-            let col = [p0, p0 + s0 * third, p3 - s1 * third, p3];
+        for (c, q) in self.coefs[2 * k..2 * k + 2].iter().enumerate() {
+            let b1 = q[0] + q[1] * third;
+            let col = [
+                q[0],
+                b1,
+                b1 + (q[1] + q[2]) * third,
+                (q[0] + q[1]) + (q[2] + q[3]),
+            ];
             for (row, v) in ctrl.iter_mut().zip(col) {
-                row[c] = v * rel;
+                row[c] = v * rel[c];
             }
         }
         ctrl
     }
 
-    /// The point of segment `k` at local `t`, in the curve's units.
-    pub(crate) fn segment_point(&self, k: usize, t: f64) -> Vec<f64> {
-        let mut p = vec![0.0; self.dim];
-        self.local(k, t, 0, &mut p);
-        p.iter()
-            .map(|v| (v * self.gscale).clamp(-f64::MAX, f64::MAX))
-            .collect()
+    /// Appends the point of segment `k` at local `t`, in the curve's units,
+    /// to `out`.
+    pub(crate) fn push_segment_point(&self, k: usize, t: f64, out: &mut Vec<f64>) {
+        let start = out.len();
+        out.resize(start + self.dim, 0.0);
+        let p = &mut out[start..];
+        self.local(k, t, 0, p);
+        for v in p {
+            *v = (*v * self.gscale).clamp(-f64::MAX, f64::MAX);
+        }
     }
 
     /// The dimension `d` of the space.

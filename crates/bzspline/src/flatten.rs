@@ -23,7 +23,7 @@
 
 use crate::curve::Curve;
 use crate::error::{Error, Field};
-use crate::spline::{alpha_terms, Spline};
+use crate::spline::Spline;
 
 /// The most vertices one flattening may produce; a tolerance that would need
 /// more is refused.
@@ -181,14 +181,8 @@ impl Curve {
         let knots = self.knots();
         let mut coords = Vec::with_capacity((self.len() + 1) * dim);
         let mut params = Vec::with_capacity(self.len() + 1);
-        coords.extend(self.segment_point(0, 0.0));
+        self.push_segment_point(0, 0.0, &mut coords);
         params.push(knots[0]);
-        // The alpha terms once for all segments when the alphas are all one.
-        let alphas = self.alphas();
-        let uniform = alphas
-            .first()
-            .filter(|&&a| alphas.iter().all(|&b| b == a))
-            .map(|&a| alpha_terms(a));
         let mut k = 0;
         while k < self.len() {
             let m = steps(self.accel_bound(k), scaled_tol)?;
@@ -197,8 +191,8 @@ impl Curve {
             }
             if m == 1 && dim == 2 {
                 // One chord from knot k to the farthest knot it can reach.
-                let end = self.chord_run(k, uniform, 0.999 * scaled_tol);
-                coords.extend(self.segment_point(end - 1, 1.0));
+                let end = self.chord_run(k, 0.999 * scaled_tol);
+                self.push_segment_point(end - 1, 1.0, &mut coords);
                 params.push(knots[end]);
                 k = end;
                 continue;
@@ -206,7 +200,7 @@ impl Curve {
             let h = knots[k + 1] - knots[k];
             for j in 1..=m {
                 let t = j as f64 / m as f64;
-                coords.extend(self.segment_point(k, t));
+                self.push_segment_point(k, t, &mut coords);
                 params.push(if j == m {
                     knots[k + 1]
                 } else {
@@ -221,8 +215,7 @@ impl Curve {
     /// For a planar curve, the last knot `e > k` such that the chord from
     /// knot point `k` to knot point `e` stays within `tol` (in units of
     /// [`Curve::unit`]) of the curve between them. Segment `k` alone always
-    /// qualifies (the caller has found that it needs one step). `uniform`
-    /// holds the alpha terms when every segment has the same alpha.
+    /// qualifies (the caller has found that it needs one step).
     ///
     /// Each segment lies in the convex hull of its Bezier control points, and
     /// the distance to a line segment is convex, so the chord `A B` is close
@@ -231,55 +224,75 @@ impl Curve {
     /// `p - A` (the cone of directions whose ray from `A` passes within `tol` of
     /// `p`) and `|B - A| >= |p - A|` (so `p` projects inside the chord). The
     /// cones are intersected as the run grows: one pass, no square loop.
-    fn chord_run(&self, k: usize, uniform: Option<[f64; 4]>, tol: f64) -> usize {
-        let alphas = self.alphas();
-        let terms = |e: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[e]));
+    ///
+    /// A nearly straight segment, whose inner control points lie within `w <=
+    /// tol / 2` of its own chord (and project inside it), is held by its end
+    /// points alone, with the tolerance `tol - w`: its inner control points are
+    /// then within `tol` of `A B` by the triangle inequality. One cone a
+    /// segment instead of three; a knot takes the smaller tolerance of the two
+    /// segments it joins.
+    fn chord_run(&self, k: usize, tol: f64) -> usize {
         let rel = [self.unit_rel(0), self.unit_rel(1)];
-        let a = self.unit_bezier_2d(k, terms(k), rel)[0];
-        let tol2 = tol * tol;
-        let mut cone: Option<([f64; 2], [f64; 2])> = None;
-        // The largest squared distance from `a` of a control point that
-        // constrains the direction.
-        let mut reach2 = 0.0f64;
+        let n = self.len();
+        let first = self.unit_bezier_2d(k, rel);
+        let mut run = Run::new(first[0]);
         let mut best = k + 1;
-        let mut e = k;
-        'run: while e < self.len() {
-            let ctrl = self.unit_bezier_2d(e, terms(e), rel);
-            for p in &ctrl[1..] {
-                let c = [p[0] - a[0], p[1] - a[1]];
-                let r2 = c[0] * c[0] + c[1] * c[1];
-                if !r2.is_finite() {
-                    break 'run;
-                }
-                if r2 <= tol2 {
-                    continue;
-                }
-                reach2 = reach2.max(r2);
-                // `c` turned by -/+ asin(tol / |c|), both scaled by |c|:
-                // c sqrt(|c|^2 - tol^2) -/+ perp(c) tol.
-                let q = (r2 - tol2).sqrt();
-                let right = [c[0] * q + c[1] * tol, c[1] * q - c[0] * tol];
-                let left = [c[0] * q - c[1] * tol, c[1] * q + c[0] * tol];
-                cone = match cone {
-                    None => Some((right, left)),
-                    Some(arc) => match intersect_arcs(arc, (right, left)) {
-                        Some(x) => Some(x),
-                        None => break 'run,
-                    },
-                };
-            }
-            let b = ctrl[3];
-            let v = [b[0] - a[0], b[1] - a[1]];
-            let ok = match cone {
-                None => true,
-                Some(arc) => v[0] * v[0] + v[1] * v[1] >= reach2 && in_arc(arc, v),
+        // Segment e - 1's straightness; the knot it ends at is held once the
+        // straightness of segment e is known too.
+        let mut w_prev = -1.0;
+        for e in k..n {
+            let ctrl = if e == k {
+                first
+            } else {
+                self.unit_bezier_2d(e, rel)
             };
-            if ok {
-                best = e + 1;
+            let w = straightness(&ctrl, tol);
+            if e > k {
+                // The knot between segments e - 1 and e (the first point of
+                // e: the knot's value exactly).
+                let wk = if w_prev > w { w_prev } else { w };
+                let knot_tol = if wk > 0.0 { tol - wk } else { tol };
+                if !run.hold(ctrl[0], knot_tol) {
+                    return best;
+                }
+                if run.reaches(ctrl[0]) {
+                    best = e;
+                }
             }
-            e += 1;
+            if w < 0.0 && !(run.hold(ctrl[1], tol) && run.hold(ctrl[2], tol)) {
+                return best;
+            }
+            if e + 1 == n {
+                let knot_tol = if w > 0.0 { tol - w } else { tol };
+                if run.hold(ctrl[3], knot_tol) && run.reaches(ctrl[3]) {
+                    best = n;
+                }
+            }
+            w_prev = w;
         }
         best
+    }
+}
+
+/// How far the inner control points of a segment lie from its chord, when
+/// both project inside the chord and the distance is at most `tol / 2`; -1
+/// otherwise.
+#[inline(always)]
+fn straightness(p: &[[f64; 2]; 4], tol: f64) -> f64 {
+    let d = [p[3][0] - p[0][0], p[3][1] - p[0][1]];
+    let u = [p[1][0] - p[0][0], p[1][1] - p[0][1]];
+    let v = [p[2][0] - p[0][0], p[2][1] - p[0][1]];
+    let dd = d[0] * d[0] + d[1] * d[1];
+    let (su, sv) = (d[0] * u[0] + d[1] * u[1], d[0] * v[0] + d[1] * v[1]);
+    let inside = su >= 0.0 && su <= dd && sv >= 0.0 && sv <= dd;
+    // |cross| / |d| is the distance from the chord's line.
+    let (cu, cv) = (cross(d, u).abs(), cross(d, v).abs());
+    let c = if cu > cv { cu } else { cv };
+    // Also false for a chord of length 0 and for NaN.
+    if inside && dd > 0.0 && c * c <= 0.25 * tol * tol * dd {
+        c / dd.sqrt()
+    } else {
+        -1.0
     }
 }
 
@@ -287,23 +300,99 @@ fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
-/// Whether the direction `v` lies in the arc from `right` counter-clockwise to
-/// `left` (an arc of less than half a turn).
-fn in_arc((right, left): ([f64; 2], [f64; 2]), v: [f64; 2]) -> bool {
-    cross(right, v) >= 0.0 && cross(v, left) >= 0.0
+/// The cone of chord directions from `a` allowed by the points seen so far.
+///
+/// Directions are kept as slopes `y / x` in the frame of `axis`, the offset
+/// from `a` of the first point that constrained them (`x` along it, `y` a
+/// quarter turn counter-clockwise): that point's cone lies within a quarter
+/// turn of it, so every allowed direction has `x > 0` and the slope orders
+/// them. Narrowing the cone is then a max and a min, without the branches on
+/// the order of arc ends that an intersection of arcs takes.
+struct Run {
+    a: [f64; 2],
+    /// Zero until a point constrains the direction.
+    axis: [f64; 2],
+    /// The allowed slopes, `lo <= hi`.
+    lo: f64,
+    hi: f64,
+    /// The largest squared distance from `a` of a point that constrains the
+    /// direction.
+    reach2: f64,
 }
 
-/// The intersection of two arcs of directions, each less than half a turn
-/// (so the intersection is one arc or empty).
-fn intersect_arcs(
-    a: ([f64; 2], [f64; 2]),
-    b: ([f64; 2], [f64; 2]),
-) -> Option<([f64; 2], [f64; 2])> {
-    match (in_arc(a, b.0), in_arc(a, b.1)) {
-        (true, true) => Some(b),
-        (true, false) => Some((b.0, a.1)),
-        (false, true) => Some((a.0, b.1)),
-        (false, false) => in_arc(b, a.0).then_some(a),
+impl Run {
+    fn new(a: [f64; 2]) -> Self {
+        Run {
+            a,
+            axis: [0.0; 2],
+            lo: f64::NEG_INFINITY,
+            hi: f64::INFINITY,
+            reach2: 0.0,
+        }
+    }
+
+    /// `v` in the frame of the axis (scaled by the axis' length).
+    #[inline(always)]
+    fn frame(&self, v: [f64; 2]) -> (f64, f64) {
+        let ax = self.axis;
+        (ax[0] * v[0] + ax[1] * v[1], cross(ax, v))
+    }
+
+    /// Narrows the cone to the directions whose ray from `a` passes within
+    /// `tol` of `p`: those within `asin(tol / |p - a|)` of `p - a`. False when
+    /// none is left (or `p` is not finite).
+    #[inline(always)]
+    fn hold(&mut self, p: [f64; 2], tol: f64) -> bool {
+        let c = [p[0] - self.a[0], p[1] - self.a[1]];
+        let r2 = c[0] * c[0] + c[1] * c[1];
+        let tol2 = tol * tol;
+        if !r2.is_finite() {
+            return false;
+        }
+        if r2 <= tol2 {
+            return true;
+        }
+        if r2 > self.reach2 {
+            if self.reach2 == 0.0 {
+                self.axis = c;
+            }
+            self.reach2 = r2;
+        }
+        let (x, y) = self.frame(c);
+        // The cone's edges: (x, y) turned by -/+ asin(tol / |c|), both scaled
+        // by |c|: (x, y) sqrt(|c|^2 - tol^2) -/+ (-y, x) tol.
+        let q = (r2 - tol2).sqrt();
+        let (rx, ry) = (q * x + tol * y, q * y - tol * x);
+        let (lx, ly) = (q * x - tol * y, q * y + tol * x);
+        // An edge past a quarter turn from the axis leaves that side open; a
+        // cone with both edges past it misses the axis' cone altogether.
+        let lo = if rx > 0.0 {
+            ry / rx
+        } else if lx > 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            return false;
+        };
+        let hi = if lx > 0.0 { ly / lx } else { f64::INFINITY };
+        if lo > self.lo {
+            self.lo = lo;
+        }
+        if hi < self.hi {
+            self.hi = hi;
+        }
+        self.lo <= self.hi
+    }
+
+    /// Whether the chord from `a` to `b` satisfies every constraint so far:
+    /// its direction in the cone, and no constraining point beyond its end.
+    #[inline(always)]
+    fn reaches(&self, b: [f64; 2]) -> bool {
+        if self.reach2 == 0.0 {
+            return true;
+        }
+        let v = [b[0] - self.a[0], b[1] - self.a[1]];
+        let (x, y) = self.frame(v);
+        x > 0.0 && y >= self.lo * x && y <= self.hi * x && v[0] * v[0] + v[1] * v[1] >= self.reach2
     }
 }
 
@@ -376,6 +465,121 @@ mod tests {
             .map(|(v, u)| (v - t * u) * (v - t * u))
             .sum::<f64>()
             .sqrt()
+    }
+
+    /// Whether the chord from `a` to `b` meets the constraint of point `p` at
+    /// tolerance `t` (see [`Run`]), by angles, with the distance of the
+    /// nearest boundary relative to its scale.
+    fn allowed(a: [f64; 2], p: [f64; 2], t: f64, b: [f64; 2]) -> (bool, f64) {
+        let c = [p[0] - a[0], p[1] - a[1]];
+        let v = [b[0] - a[0], b[1] - a[1]];
+        let (r2, v2) = (c[0] * c[0] + c[1] * c[1], v[0] * v[0] + v[1] * v[1]);
+        if r2 <= t * t {
+            return (true, (r2 - t * t).abs() / r2);
+        }
+        // Within asin(t / |c|) of c: |c x v| <= t |v| on c's side.
+        let side = (cross(c, v).abs() - t * v2.sqrt()) / (t * v2.sqrt());
+        let dot = c[0] * v[0] + c[1] * v[1];
+        let ok = dot > 0.0 && side <= 0.0 && v2 >= r2;
+        (ok, side.abs().min((v2 - r2).abs() / r2))
+    }
+
+    #[test]
+    fn slope_cone_matches_the_angle_test() {
+        let mut rng = crate::spline::tests::Rng(0x5eed);
+        let mut checked = [0usize; 2];
+        for _ in 0..3000 {
+            let a = [4.0 * rng.next() - 2.0, 4.0 * rng.next() - 2.0];
+            let tol = 10f64.powf(-3.0 + 2.0 * rng.next());
+            let th = 7.0 * rng.next();
+            let bend = 0.2 * (rng.next() - 0.5);
+            let step = tol * 10f64.powf(-0.5 + 2.0 * rng.next());
+            let mut run = Run::new(a);
+            let mut held = Vec::new();
+            for i in 1..30 {
+                let ang = th + bend * f64::from(i) + 0.05 * (rng.next() - 0.5);
+                let r = step * f64::from(i);
+                let p = [a[0] + r * ang.cos(), a[1] + r * ang.sin()];
+                let t = tol * (0.5 + 0.5 * rng.next());
+                if !run.hold(p, t) {
+                    break;
+                }
+                held.push((p, t));
+                let b = [
+                    p[0] + step * (rng.next() - 0.3),
+                    p[1] + step * (rng.next() - 0.5),
+                ];
+                let (mut want, mut near) = (true, f64::INFINITY);
+                for &(p, t) in &held {
+                    let (ok, m) = allowed(a, p, t, b);
+                    want &= ok;
+                    near = near.min(m);
+                }
+                if near > 1e-9 {
+                    assert_eq!(run.reaches(b), want, "a {a:?} b {b:?} held {held:?}");
+                    checked[usize::from(want)] += 1;
+                }
+            }
+        }
+        // Both answers are exercised.
+        assert!(checked[0] > 1000 && checked[1] > 1000, "{checked:?}");
+    }
+
+    #[test]
+    fn chords_are_about_as_long_as_the_control_points_allow() {
+        // A greedy chord search that checks every control point of every
+        // segment against every candidate chord (quadratic): the fast search
+        // uses the same hull criterion, with the cone kept as slopes and nearly
+        // straight segments held by their ends, and should need at most a few
+        // percent more vertices.
+        let mut rng = crate::spline::tests::Rng(3);
+        let mut ran = 0;
+        for case in 0..12 {
+            let n = 200 + 40 * case;
+            let turns = 0.2 + 2.0 * rng.next();
+            let noise = [0.0, 1e-4, 1e-3][case % 3];
+            let pts: Vec<[f64; 2]> = (0..n)
+                .map(|i| {
+                    let th = turns * std::f64::consts::TAU * i as f64 / n as f64;
+                    let r = 100.0 * (1.0 + 0.3 * th) * (1.0 + noise * (rng.next() - 0.5));
+                    [r * th.cos(), r * th.sin()]
+                })
+                .collect();
+            let c = Curve::open(&pts).unwrap();
+            let b = c.bbox();
+            let tol = 1e-3 * (b.max[0] - b.min[0]).hypot(b.max[1] - b.min[1]);
+            let u = 0.999 * tol / c.unit();
+            if (0..c.len()).any(|k| steps(c.accel_bound(k), tol / c.unit()).unwrap() > 1) {
+                continue;
+            }
+            let rel = [c.unit_rel(0), c.unit_rel(1)];
+            let ctrl: Vec<[[f64; 2]; 4]> = (0..c.len()).map(|k| c.unit_bezier_2d(k, rel)).collect();
+            let mut brute = 1;
+            let mut k = 0;
+            while k < c.len() {
+                let a = ctrl[k][0];
+                let mut best = k + 1;
+                for j in k + 1..=c.len() {
+                    let b = ctrl[j - 1][3];
+                    let fits = ctrl[k..j]
+                        .iter()
+                        .flat_map(|s| s.iter())
+                        .all(|p| seg_dist(p, &a, &b) <= u);
+                    if fits {
+                        best = j;
+                    }
+                }
+                brute += 1;
+                k = best;
+            }
+            let fast = c.flatten(tol).unwrap().len();
+            ran += 1;
+            assert!(
+                fast <= brute + brute / 20 + 1,
+                "case {case}: {fast} vertices, {brute} by the exhaustive search"
+            );
+        }
+        assert!(ran >= 8, "{ran} curves were flat enough");
     }
 
     #[test]
