@@ -990,29 +990,20 @@ impl Curve {
         self.scales[c] / self.gscale
     }
 
-    /// The Bezier control points of planar segment `k` in units of
-    /// [`Self::unit`], for the flattening's chord test: formed from the
-    /// segment's power-basis coefficients (`b0 = c0`, `b1 = c0 + c1 / 3`,
-    /// `b2 = b1 + (c1 + c2) / 3`, `b3 = c0 + c1 + c2 + c3`), so they may differ
-    /// from those of [`Self::segment_points`] in the last place. `rel` holds
-    /// [`Self::unit_rel`] of both coordinates.
-    #[inline]
-    pub(crate) fn unit_bezier_2d(&self, k: usize, rel: [f64; 2]) -> [[f64; 2]; 4] {
-        let third = 1.0 / 3.0;
-        let mut ctrl = [[0.0; 2]; 4];
-        for (c, q) in self.coefs[2 * k..2 * k + 2].iter().enumerate() {
-            let b1 = q[0] + q[1] * third;
-            let col = [
-                q[0],
-                b1,
-                b1 + (q[1] + q[2]) * third,
-                (q[0] + q[1]) + (q[2] + q[3]),
-            ];
-            for (row, v) in ctrl.iter_mut().zip(col) {
-                row[c] = v * rel[c];
-            }
-        }
-        ctrl
+    /// Knot point `e` (0 to [`Self::len`]; the last of a closed curve is the
+    /// first) of a planar curve in units of [`Self::unit`]: the value the
+    /// flattening's vertices take, before the multiplication by the unit.
+    #[inline(always)]
+    pub(crate) fn unit_knot_2d(&self, e: usize, rel: [f64; 2]) -> [f64; 2] {
+        let j = if e == self.len() && self.closed { 0 } else { e };
+        let (f, d) = (&self.f[2 * j..2 * j + 2], &self.d[2 * j..2 * j + 2]);
+        [(f[0] + d[0]) * rel[0], (f[1] + d[1]) * rel[1]]
+    }
+
+    /// The power-basis coefficients of every segment, `dim` per segment (one
+    /// per coordinate), in scaled units.
+    pub(crate) fn coefficients(&self) -> &[[f64; 4]] {
+        &self.coefs
     }
 
     /// Appends the point of segment `k` at local `t`, in the curve's units,

@@ -19,11 +19,18 @@
 //! control point `p` when `|p - A| <= tol`, or when `B - A` lies within
 //! `asin(tol / |p - A|)` of the direction of `p - A` and `|B - A| >= |p - A|`.
 //! The cones of allowed directions are intersected as the run grows, so the
-//! search is one pass.
+//! search is one pass. A nearly straight segment, whose inner control points
+//! lie within `w <= tol / 2` of its own chord (`w` bounded by `max |r''| / 6`),
+//! is held by its end points alone with the tolerance `tol - w`; a run gives
+//! up a few knots after its last good end.
 
 use crate::curve::Curve;
 use crate::error::{Error, Field};
 use crate::spline::Spline;
+
+/// Knots past the last good end of a chord that the chord search tries
+/// before it settles for that end.
+const PATIENCE: usize = 4;
 
 /// The most vertices one flattening may produce; a tolerance that would need
 /// more is refused.
@@ -226,45 +233,53 @@ impl Curve {
     /// cones are intersected as the run grows: one pass, no square loop.
     ///
     /// A nearly straight segment, whose inner control points lie within `w <=
-    /// tol / 2` of its own chord (and project inside it), is held by its end
-    /// points alone, with the tolerance `tol - w`: its inner control points are
-    /// then within `tol` of `A B` by the triangle inequality. One cone a
-    /// segment instead of three; a knot takes the smaller tolerance of the two
-    /// segments it joins.
+    /// tol / 2` of its own chord ([`Segment::chord_gap`], or [`Segment::bow`]
+    /// by the second derivative), is held by its end points alone, with the
+    /// tolerance `tol - w`: its inner control points are then within `tol` of
+    /// `A B` by the triangle inequality. One cone a segment instead of three,
+    /// and no Bezier points formed; a knot takes the smaller tolerance of the
+    /// two segments it joins.
     fn chord_run(&self, k: usize, tol: f64) -> usize {
         let rel = [self.unit_rel(0), self.unit_rel(1)];
         let n = self.len();
-        let first = self.unit_bezier_2d(k, rel);
-        let mut run = Run::new(first[0]);
+        let mut run = Run::new(self.unit_knot_2d(k, rel));
         let mut best = k + 1;
-        // Segment e - 1's straightness; the knot it ends at is held once the
-        // straightness of segment e is known too.
-        let mut w_prev = -1.0;
-        for e in k..n {
-            let ctrl = if e == k {
-                first
-            } else {
-                self.unit_bezier_2d(e, rel)
-            };
-            let w = straightness(&ctrl, tol);
+        // The bow of segment e - 1 (0 when its inner points are held
+        // themselves); the knot it ends at is held once the bow of segment e
+        // is known too.
+        let mut w_prev = 0.0;
+        let segs = self.coefficients()[2 * k..].chunks_exact(2);
+        for (e, q) in (k..n).zip(segs) {
+            let seg = Segment::new(q[0], q[1], rel);
+            // The inner points' distance from the chord; the bow's bound when
+            // they do not project inside it.
+            let gap = seg.chord_gap();
+            let bow = if gap.is_nan() { seg.bow() } else { gap };
+            // NaN fails too.
+            let straight = bow <= 0.5 * tol;
+            let w = if straight { bow } else { 0.0 };
             if e > k {
-                // The knot between segments e - 1 and e (the first point of
-                // e: the knot's value exactly).
-                let wk = if w_prev > w { w_prev } else { w };
-                let knot_tol = if wk > 0.0 { tol - wk } else { tol };
-                if !run.hold(ctrl[0], knot_tol) {
+                // The knot between segments e - 1 and e: its value exactly.
+                let p = seg.start();
+                match run.hold_end(p, tol - if w_prev > w { w_prev } else { w }) {
+                    None => return best,
+                    Some(true) => best = e,
+                    // Knots whose chords fail one after another: the run is
+                    // bending away, and a chord that passes again much
+                    // further on is rare.
+                    Some(false) if e - best >= PATIENCE => return best,
+                    Some(false) => {}
+                }
+            }
+            if !straight {
+                let ctrl = seg.bezier();
+                if !(run.hold(ctrl[1], tol) && run.hold(ctrl[2], tol)) {
                     return best;
                 }
-                if run.reaches(ctrl[0]) {
-                    best = e;
-                }
-            }
-            if w < 0.0 && !(run.hold(ctrl[1], tol) && run.hold(ctrl[2], tol)) {
-                return best;
             }
             if e + 1 == n {
-                let knot_tol = if w > 0.0 { tol - w } else { tol };
-                if run.hold(ctrl[3], knot_tol) && run.reaches(ctrl[3]) {
+                let p = self.unit_knot_2d(n, rel);
+                if run.hold_end(p, tol - w) == Some(true) {
                     best = n;
                 }
             }
@@ -274,25 +289,101 @@ impl Curve {
     }
 }
 
-/// How far the inner control points of a segment lie from its chord, when
-/// both project inside the chord and the distance is at most `tol / 2`; -1
-/// otherwise.
-#[inline(always)]
-fn straightness(p: &[[f64; 2]; 4], tol: f64) -> f64 {
-    let d = [p[3][0] - p[0][0], p[3][1] - p[0][1]];
-    let u = [p[1][0] - p[0][0], p[1][1] - p[0][1]];
-    let v = [p[2][0] - p[0][0], p[2][1] - p[0][1]];
-    let dd = d[0] * d[0] + d[1] * d[1];
-    let (su, sv) = (d[0] * u[0] + d[1] * u[1], d[0] * v[0] + d[1] * v[1]);
-    let inside = su >= 0.0 && su <= dd && sv >= 0.0 && sv <= dd;
-    // |cross| / |d| is the distance from the chord's line.
-    let (cu, cv) = (cross(d, u).abs(), cross(d, v).abs());
-    let c = if cu > cv { cu } else { cv };
-    // Also false for a chord of length 0 and for NaN.
-    if inside && dd > 0.0 && c * c <= 0.25 * tol * tol * dd {
-        c / dd.sqrt()
-    } else {
-        -1.0
+/// A planar segment's power-basis coefficients in units of [`Curve::unit`].
+struct Segment {
+    x: [f64; 4],
+    y: [f64; 4],
+}
+
+impl Segment {
+    #[inline(always)]
+    fn new(qx: [f64; 4], qy: [f64; 4], rel: [f64; 2]) -> Self {
+        Segment {
+            x: qx.map(|v| v * rel[0]),
+            y: qy.map(|v| v * rel[1]),
+        }
+    }
+
+    /// The first point, `c0`.
+    #[inline(always)]
+    fn start(&self) -> [f64; 2] {
+        [self.x[0], self.y[0]]
+    }
+
+    /// The Bezier control points: `b0 = c0`, `b1 = c0 + c1 / 3`, `b2 = b1 +
+    /// (c1 + c2) / 3`, `b3 = c0 + c1 + c2 + c3` (the last place may differ
+    /// from [`Curve::segment_points`]).
+    #[inline(always)]
+    fn bezier(&self) -> [[f64; 2]; 4] {
+        let third = 1.0 / 3.0;
+        let col = |q: &[f64; 4]| {
+            let b1 = q[0] + q[1] * third;
+            [
+                q[0],
+                b1,
+                b1 + (q[1] + q[2]) * third,
+                (q[0] + q[1]) + (q[2] + q[3]),
+            ]
+        };
+        let (bx, by) = (col(&self.x), col(&self.y));
+        [
+            [bx[0], by[0]],
+            [bx[1], by[1]],
+            [bx[2], by[2]],
+            [bx[3], by[3]],
+        ]
+    }
+
+    /// A bound on the distance of the inner Bezier control points from the
+    /// chord: `max |r''| / 6` over the ends. With `D1 = b0 - 2 b1 + b2` and `D2
+    /// = b1 - 2 b2 + b3` (so `r''(0) = 6 D1`, `r''(1) = 6 D2`), `b1 - (2 b0 +
+    /// b3) / 3 = -(2 D1 + D2) / 3` and `b2 - (b0 + 2 b3) / 3 = -(D1 + 2 D2) /
+    /// 3`, and both points subtracted lie on the chord. NaN when the squares
+    /// overflow.
+    #[inline(always)]
+    fn bow(&self) -> f64 {
+        let (x, y) = (&self.x, &self.y);
+        let (ax, ay) = (2.0 * x[2], 2.0 * y[2]);
+        let (bx, by) = (2.0 * x[2] + 6.0 * x[3], 2.0 * y[2] + 6.0 * y[3]);
+        let (a2, b2) = (ax * ax + ay * ay, bx * bx + by * by);
+        let m2 = if a2 > b2 { a2 } else { b2 };
+        if m2.is_finite() {
+            m2.sqrt() * (1.0 / 6.0)
+        } else {
+            f64::NAN
+        }
+    }
+
+    /// A bound on the distance of the inner Bezier control points from the
+    /// chord when both project inside it (NaN otherwise), at most 8.3 % above
+    /// the distance. With `d = b3 - b0 = c1 + c2 + c3`, `b1 - b0 = c1 / 3` and
+    /// `b2 - b0 = (2 c1 + c2) / 3`; the distance from the chord's line is `|d x
+    /// (b - b0)| / |d|`. Sharper than [`Segment::bow`], which also counts the
+    /// acceleration along the chord.
+    #[inline(always)]
+    fn chord_gap(&self) -> f64 {
+        let (x, y) = (&self.x, &self.y);
+        let u = [x[1], y[1]];
+        let v = [2.0 * x[1] + x[2], 2.0 * y[1] + y[2]];
+        let d = [x[1] + x[2] + x[3], y[1] + y[2] + y[3]];
+        let dd = d[0] * d[0] + d[1] * d[1];
+        // Projections 3 (b - b0) . d / |d|^2 inside [0, 3]. (A chord of
+        // length 0 passes, and gives 0 / 0.)
+        let (su, sv) = (d[0] * u[0] + d[1] * u[1], d[0] * v[0] + d[1] * v[1]);
+        let (lo, hi) = if su < sv { (su, sv) } else { (sv, su) };
+        let (cu, cv) = (cross(d, u).abs(), cross(d, v).abs());
+        let c = if cu > cv { cu } else { cv };
+        if lo >= 0.0 && hi <= 3.0 * dd {
+            // |d| from below without a square root: at least the larger
+            // component and at least their sum over sqrt 2 (at most 8 %
+            // short, when d is 22.5 degrees off an axis).
+            let (ax, ay) = (d[0].abs(), d[1].abs());
+            let m = if ax > ay { ax } else { ay };
+            let s = (ax + ay) * core::f64::consts::FRAC_1_SQRT_2;
+            c / (3.0 * if m > s { m } else { s })
+        } else {
+            f64::NAN
+        }
     }
 }
 
@@ -320,6 +411,15 @@ struct Run {
     reach2: f64,
 }
 
+/// A point that [`Run::narrow`] took in.
+enum Held {
+    /// Within the tolerance of the chord's start: no constraint.
+    Near,
+    /// A constraint: the point's offset in the axis frame, and its squared
+    /// distance from the start.
+    Far { x: f64, y: f64, r2: f64 },
+}
+
 impl Run {
     fn new(a: [f64; 2]) -> Self {
         Run {
@@ -339,18 +439,18 @@ impl Run {
     }
 
     /// Narrows the cone to the directions whose ray from `a` passes within
-    /// `tol` of `p`: those within `asin(tol / |p - a|)` of `p - a`. False when
+    /// `tol` of `p`: those within `asin(tol / |p - a|)` of `p - a`. `None` when
     /// none is left (or `p` is not finite).
     #[inline(always)]
-    fn hold(&mut self, p: [f64; 2], tol: f64) -> bool {
+    fn narrow(&mut self, p: [f64; 2], tol: f64) -> Option<Held> {
         let c = [p[0] - self.a[0], p[1] - self.a[1]];
         let r2 = c[0] * c[0] + c[1] * c[1];
         let tol2 = tol * tol;
         if !r2.is_finite() {
-            return false;
+            return None;
         }
         if r2 <= tol2 {
-            return true;
+            return Some(Held::Near);
         }
         if r2 > self.reach2 {
             if self.reach2 == 0.0 {
@@ -371,16 +471,32 @@ impl Run {
         } else if lx > 0.0 {
             f64::NEG_INFINITY
         } else {
-            return false;
+            return None;
         };
         let hi = if lx > 0.0 { ly / lx } else { f64::INFINITY };
-        if lo > self.lo {
-            self.lo = lo;
-        }
-        if hi < self.hi {
-            self.hi = hi;
-        }
-        self.lo <= self.hi
+        // Selections rather than branches: which side narrows is as good as
+        // random.
+        self.lo = if lo > self.lo { lo } else { self.lo };
+        self.hi = if hi < self.hi { hi } else { self.hi };
+        (self.lo <= self.hi).then_some(Held::Far { x, y, r2 })
+    }
+
+    /// [`Run::narrow`]; false when the cone is empty.
+    #[inline(always)]
+    fn hold(&mut self, p: [f64; 2], tol: f64) -> bool {
+        self.narrow(p, tol).is_some()
+    }
+
+    /// [`Run::hold`] of `p`, then [`Run::reaches`] of the same point: `None`
+    /// when the cone is empty, else whether the chord may end at `p`.
+    #[inline(always)]
+    fn hold_end(&mut self, p: [f64; 2], tol: f64) -> Option<bool> {
+        Some(match self.narrow(p, tol)? {
+            Held::Near => self.reaches(p),
+            Held::Far { x, y, r2 } => {
+                r2 >= self.reach2 && x > 0.0 && y >= self.lo * x && y <= self.hi * x
+            }
+        })
     }
 
     /// Whether the chord from `a` to `b` satisfies every constraint so far:
@@ -467,6 +583,11 @@ mod tests {
             .sqrt()
     }
 
+    fn segment(c: &Curve, k: usize, rel: [f64; 2]) -> Segment {
+        let q = c.coefficients();
+        Segment::new(q[2 * k], q[2 * k + 1], rel)
+    }
+
     /// Whether the chord from `a` to `b` meets the constraint of point `p` at
     /// tolerance `t` (see [`Run`]), by angles, with the distance of the
     /// nearest boundary relative to its scale.
@@ -526,6 +647,50 @@ mod tests {
     }
 
     #[test]
+    fn bow_and_chord_gap_bound_the_inner_control_points() {
+        // Random planar curves: the inner Bezier points of every segment lie
+        // within the bow (max |r''| / 6) of the chord, and the chord gap is
+        // their distance from it whenever both project inside.
+        let mut rng = crate::spline::tests::Rng(17);
+        let mut sharp = 0;
+        for case in 0..60 {
+            let n = 3 + case % 9;
+            let pts: Vec<[f64; 2]> = (0..n)
+                .map(|_| [10.0 * rng.next(), 10.0 * rng.next() - 5.0])
+                .collect();
+            let Ok(c) = Curve::builder_from(&pts).closed(case % 2 == 0).build() else {
+                continue;
+            };
+            let rel = [c.unit_rel(0), c.unit_rel(1)];
+            for k in 0..c.len() {
+                let seg = segment(&c, k, rel);
+                let b = seg.bezier();
+                let gap = seg_dist(&b[1], &b[0], &b[3]).max(seg_dist(&b[2], &b[0], &b[3]));
+                let scale = 1e-12 * (1.0 + b.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())));
+                let bow = seg.bow();
+                assert!(
+                    gap <= bow + scale,
+                    "case {case} segment {k}: {gap} > bow {bow}"
+                );
+                let sharp_gap = seg.chord_gap();
+                if sharp_gap.is_finite() {
+                    // The chord's length is taken from below, at most 8.3 %
+                    // short (1 / cos 22.5 degrees).
+                    assert!(
+                        sharp_gap >= gap - scale && sharp_gap <= 1.0824 * gap + scale,
+                        "case {case} segment {k}: {sharp_gap} vs {gap}"
+                    );
+                    sharp += usize::from(sharp_gap < 0.8 * bow);
+                }
+            }
+        }
+        assert!(
+            sharp > 20,
+            "{sharp} segments where the gap is sharper than the bow"
+        );
+    }
+
+    #[test]
     fn chords_are_about_as_long_as_the_control_points_allow() {
         // A greedy chord search that checks every control point of every
         // segment against every candidate chord (quadratic): the fast search
@@ -553,7 +718,8 @@ mod tests {
                 continue;
             }
             let rel = [c.unit_rel(0), c.unit_rel(1)];
-            let ctrl: Vec<[[f64; 2]; 4]> = (0..c.len()).map(|k| c.unit_bezier_2d(k, rel)).collect();
+            let ctrl: Vec<[[f64; 2]; 4]> =
+                (0..c.len()).map(|k| segment(&c, k, rel).bezier()).collect();
             let mut brute = 1;
             let mut k = 0;
             while k < c.len() {
