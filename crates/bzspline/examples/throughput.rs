@@ -159,16 +159,7 @@ fn main() {
     };
     // The same curve built again into its own allocations, as `rebuild` does
     // for the spline.
-    let curve_rebuild = match Curve::open(&pts) {
-        Ok(mut c) => {
-            let flat = pts.as_flattened();
-            median_ns(r, || {
-                let res = CurveBuilder::new(black_box(flat), 2).build_into(&mut c);
-                black_box(res.is_ok());
-            })
-        }
-        Err(_) => f64::NAN,
-    };
+    let curve_rebuild = rebuild_ns(r, &pts);
     // Flattening as the target states it: a 1e5-point planar curve (a jittered
     // spiral of 100 turns) to a tolerance of 1e-3 of its size (the diagonal of
     // its bounding box), against building the same curve.
@@ -185,16 +176,7 @@ fn main() {
     };
     // Built again into its own allocations: the build without page faults,
     // the stricter measure to hold the flattening against.
-    let spiral_rebuild = match Curve::open(&spiral) {
-        Ok(mut c) => {
-            let flat = spiral.as_flattened();
-            median_ns(r, || {
-                let res = CurveBuilder::new(black_box(flat), 2).build_into(&mut c);
-                black_box(res.is_ok());
-            })
-        }
-        Err(_) => f64::NAN,
-    };
+    let spiral_rebuild = rebuild_ns(r, &spiral);
     let (spiral_flatten, spiral_vertices) = match Curve::open(&spiral) {
         Ok(c) => {
             let b = c.bbox();
@@ -289,6 +271,21 @@ fn main() {
         num(spiral_flatten / SPIRAL as f64),
         spiral_vertices,
     );
+}
+
+/// Median time of building the planar curve through `pts` again into its own
+/// allocations (`CurveBuilder::build_into`); NaN when it cannot be built.
+fn rebuild_ns(repeats: usize, pts: &[[f64; 2]]) -> f64 {
+    match Curve::open(pts) {
+        Ok(mut c) => {
+            let flat = pts.as_flattened();
+            median_ns(repeats, || {
+                let res = CurveBuilder::new(black_box(flat), 2).build_into(&mut c);
+                black_box(res.is_ok());
+            })
+        }
+        Err(_) => f64::NAN,
+    }
 }
 
 /// Median time of `build`, keeping each result alive until after its timing so
