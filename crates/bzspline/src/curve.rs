@@ -285,9 +285,11 @@ pub struct Curve {
     /// What the parameter steps in `chord_scale` units were multiplied by
     /// (1 when that would overflow the span).
     knot_unit: f64,
-    /// Scaled control points `P / scale`, flat.
-    f: Vec<f64>,
-    /// Scaled deviations, flat: knot point `i` is `(f + d)[i] * scale`.
+    /// `1 / scales[c]`: the scaled control points are `points[i dim + c] *
+    /// inv_scales[c]` ([`Curve::fv`]), formed where they are used rather than
+    /// held.
+    inv_scales: Vec<f64>,
+    /// Scaled deviations, flat: knot point `i` is `(fv + d)[i] * scale`.
     d: Vec<f64>,
     /// Power-basis coefficients in `t` of segment `k`, coordinate `c`, at
     /// `k * dim + c`, scaled.
@@ -463,34 +465,6 @@ fn survey(points: &[f64], dim: usize, maxes: &mut Vec<f64>) -> Option<bool> {
     }
 }
 
-/// `f = points / scales`, coordinate by coordinate (exact: powers of two).
-fn scale_points(points: &[f64], scales: &[f64], f: &mut Vec<f64>) {
-    let inv: Vec<f64> = scales.iter().map(|s| 1.0 / s).collect();
-    f.clear();
-    match *inv {
-        [a, b] => f.extend(
-            points
-                .as_chunks::<2>()
-                .0
-                .iter()
-                .flat_map(|p| [p[0] * a, p[1] * b]),
-        ),
-        [a, b, c] => f.extend(
-            points
-                .as_chunks::<3>()
-                .0
-                .iter()
-                .flat_map(|p| [p[0] * a, p[1] * b, p[2] * c]),
-        ),
-        _ => {
-            f.reserve(points.len());
-            for p in points.chunks_exact(inv.len().max(1)) {
-                f.extend(p.iter().zip(&inv).map(|(v, s)| v * s));
-            }
-        }
-    }
-}
-
 /// The parameter step of the leg from `a` to `b` in units of `chord_scale`
 /// (before multiplying by the curve's `knot_unit`): the chord length, or its
 /// square root for centripetal parameters.
@@ -611,7 +585,7 @@ impl Curve {
             gscale: 1.0,
             chord_scale: 1.0,
             knot_unit: 1.0,
-            f: Vec::new(),
+            inv_scales: Vec::new(),
             d: Vec::new(),
             coefs: Vec::new(),
         }
@@ -824,7 +798,8 @@ impl Curve {
         c.gscale = c.scales.iter().fold(0.0f64, |m, s| m.max(*s));
         c.points.clear();
         c.points.extend_from_slice(points);
-        scale_points(points, &c.scales, &mut c.f);
+        c.inv_scales.clear();
+        c.inv_scales.extend(c.scales.iter().map(|s| 1.0 / s));
         c.dim = dim;
         c.closed = closed;
         c.kind = kind;
@@ -869,12 +844,22 @@ impl Curve {
             let span = self.knots.last().copied().unwrap_or(0.0)
                 - self.knots.first().copied().unwrap_or(0.0);
             let ws = kernels::inverse_power_of_two(span);
-            let (knots, f, alphas) = (&self.knots, &self.f, &self.alphas);
+            let (knots, p, alphas) = (&self.knots, &self.points, &self.alphas);
+            let inv = |c: usize| self.inv_scales.get(c).copied().unwrap_or(1.0);
             let (coefs, d) = (&mut self.coefs, &mut self.d);
             match dim {
-                1 => kernels::build_open_curve::<1>(knots, f, alphas, uniform, ws, coefs, d),
-                2 => kernels::build_open_curve::<2>(knots, f, alphas, uniform, ws, coefs, d),
-                _ => kernels::build_open_curve::<3>(knots, f, alphas, uniform, ws, coefs, d),
+                1 => {
+                    let inv = [inv(0)];
+                    kernels::build_open_curve::<1>(knots, p, inv, alphas, uniform, ws, coefs, d);
+                }
+                2 => {
+                    let inv = [inv(0), inv(1)];
+                    kernels::build_open_curve::<2>(knots, p, inv, alphas, uniform, ws, coefs, d);
+                }
+                _ => {
+                    let inv = [inv(0), inv(1), inv(2)];
+                    kernels::build_open_curve::<3>(knots, p, inv, alphas, uniform, ws, coefs, d);
+                }
             }
             return;
         }
@@ -895,7 +880,7 @@ impl Curve {
             dev.resize(n, 0.0);
             for c in 0..dim {
                 for (i, v) in col.iter_mut().enumerate() {
-                    *v = self.f[i * dim + c];
+                    *v = self.fv(i, c);
                 }
                 sys.solve(&col, &mut dev);
                 for (i, v) in dev.iter().enumerate() {
@@ -906,7 +891,7 @@ impl Curve {
             let sys = OpenSystem::new(widths, &self.alphas);
             for c in 0..dim {
                 for (i, v) in col.iter_mut().enumerate() {
-                    *v = self.f[i * dim + c];
+                    *v = self.fv(i, c);
                 }
                 sys.solve(&col, &mut dev);
                 for (i, v) in dev.iter().enumerate() {
@@ -926,10 +911,10 @@ impl Curve {
         for k in 0..legs {
             let j = if k + 1 == n { 0 } else { k + 1 };
             let terms = uniform.unwrap_or_else(|| alpha_terms(self.alphas[k]));
-            let (f0, f1) = (&self.f[k * dim..][..dim], &self.f[j * dim..][..dim]);
             let (d0, d1) = (&self.d[k * dim..][..dim], &self.d[j * dim..][..dim]);
             for c in 0..dim {
-                coefs.push(piece_coefs_with(f0[c], f1[c], d0[c], d1[c], terms));
+                let (f0, f1) = (self.fv(k, c), self.fv(j, c));
+                coefs.push(piece_coefs_with(f0, f1, d0[c], d1[c], terms));
             }
         }
         self.coefs = coefs;
@@ -941,8 +926,8 @@ impl Curve {
         let terms = alpha_terms(self.alphas[k]);
         for c in 0..dim {
             self.coefs[k * dim + c] = piece_coefs_with(
-                self.f[k * dim + c],
-                self.f[j * dim + c],
+                self.fv(k, c),
+                self.fv(j, c),
                 self.d[k * dim + c],
                 self.d[j * dim + c],
                 terms,
@@ -952,6 +937,12 @@ impl Curve {
 
     fn n_points(&self) -> usize {
         self.points.len() / self.dim
+    }
+
+    /// Coordinate `c` of control point `i`, scaled: `P / scale`.
+    #[inline]
+    pub(crate) fn fv(&self, i: usize, c: usize) -> f64 {
+        self.points[i * self.dim + c] * self.inv_scales[c]
     }
 
     /// The unit of mixed-coordinate geometry (a power of two).
@@ -996,8 +987,11 @@ impl Curve {
     #[inline(always)]
     pub(crate) fn unit_knot_2d(&self, e: usize, rel: [f64; 2]) -> [f64; 2] {
         let j = if e == self.len() && self.closed { 0 } else { e };
-        let (f, d) = (&self.f[2 * j..2 * j + 2], &self.d[2 * j..2 * j + 2]);
-        [(f[0] + d[0]) * rel[0], (f[1] + d[1]) * rel[1]]
+        let d = &self.d[2 * j..2 * j + 2];
+        [
+            (self.fv(j, 0) + d[0]) * rel[0],
+            (self.fv(j, 1) + d[1]) * rel[1],
+        ]
     }
 
     /// The power-basis coefficients of every segment, `dim` per segment (one
@@ -1124,7 +1118,7 @@ impl Curve {
         for (c, o) in out.iter_mut().enumerate() {
             let rel = self.scales[c] / self.gscale;
             let v = if order == 0 && t == 1.0 {
-                self.f[j * dim + c] + self.d[j * dim + c]
+                self.fv(j, c) + self.d[j * dim + c]
             } else {
                 poly_deriv(&self.coefs[k * dim + c], t, order)
             };
@@ -1152,7 +1146,7 @@ impl Curve {
         Ok((0..dim)
             .map(|c| {
                 let v = if t == 1.0 {
-                    self.f[j * dim + c] + self.d[j * dim + c]
+                    self.fv(j, c) + self.d[j * dim + c]
                 } else {
                     horner(&self.coefs[k * dim + c], t)
                 };
@@ -1360,8 +1354,8 @@ impl Curve {
             for c in 0..dim {
                 let co = &self.coefs[k * dim + c];
                 let mut vals = vec![
-                    self.f[k * dim + c] + self.d[k * dim + c],
-                    self.f[j * dim + c] + self.d[j * dim + c],
+                    self.fv(k, c) + self.d[k * dim + c],
+                    self.fv(j, c) + self.d[j * dim + c],
                 ];
                 for t in quadratic_roots(3.0 * co[3], 2.0 * co[2], co[1]) {
                     if t > 0.0 && t < 1.0 {
@@ -1389,9 +1383,7 @@ impl Curve {
                 let h = self.knots[k + 1] - self.knots[k];
                 let j = (k + 1) % n;
                 let p = (0..dim)
-                    .map(|c| {
-                        (a * self.f[k * dim + c] + (1.0 - a) * self.f[j * dim + c]) * self.scales[c]
-                    })
+                    .map(|c| (a * self.fv(k, c) + (1.0 - a) * self.fv(j, c)) * self.scales[c])
                     .collect();
                 (self.knots[k + 1] - a * h, p)
             })
@@ -1407,7 +1399,7 @@ impl Curve {
             .map(|i| {
                 (0..dim)
                     .map(|c| {
-                        ((self.f[i * dim + c] + self.d[i * dim + c]) * self.scales[c])
+                        ((self.fv(i, c) + self.d[i * dim + c]) * self.scales[c])
                             .clamp(-f64::MAX, f64::MAX)
                     })
                     .collect()
@@ -1432,7 +1424,7 @@ impl Curve {
         let [al, b1, b2, cr] = alpha_terms(a);
         let mut ctrl = vec![0.0; 4 * dim];
         for c in 0..dim {
-            let (f0, f1) = (self.f[k * dim + c], self.f[j * dim + c]);
+            let (f0, f1) = (self.fv(k, c), self.fv(j, c));
             let (d0, d1) = (self.d[k * dim + c], self.d[j * dim + c]);
             let df = f1 - f0;
             let s0 = df - d0 * b2 + d1 * cr;

@@ -229,12 +229,14 @@ pub(crate) fn build(
 
 /// Builds the segments of a validated open curve in `D` dimensions: `coefs`
 /// gets the curve's layout (`D` pieces per leg, coordinate fastest) and `dev`
-/// the scaled deviations of every point (zero at both ends). Lengths: `f` (the
-/// scaled points) `n D`, `knots` `n >= 2`, `alphas` `n - 1`; `coefs` and `dev`
-/// are resized.
+/// the scaled deviations of every point (zero at both ends). Lengths: `points`
+/// `n D` (scaled by `inv_scale`, coordinate by coordinate, as they are read),
+/// `knots` `n >= 2`, `alphas` `n - 1`; `coefs` and `dev` are resized.
+#[allow(clippy::too_many_arguments)] // the parts of a curve, validated
 pub(crate) fn build_open_curve<const D: usize>(
     knots: &[f64],
-    f: &[f64],
+    points: &[f64],
+    inv_scale: [f64; D],
     alphas: &[f64],
     uniform: Option<f64>,
     wscale: f64,
@@ -246,13 +248,13 @@ pub(crate) fn build_open_curve<const D: usize>(
     coefs.resize((n.max(1) - 1) * D, [0.0; 4]);
     dev.truncate(n * D);
     dev.resize(n * D, 0.0);
-    let (values, _) = f.as_chunks::<D>();
+    let (values, _) = points.as_chunks::<D>();
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
         return;
     }
     let (legs, _) = coefs.as_chunks_mut::<D>();
     let (dev, _) = dev.as_chunks_mut::<D>();
-    let input = Sweep::new(knots, values, [1.0; D], alphas, uniform, wscale);
+    let input = Sweep::new(knots, values, inv_scale, alphas, uniform, wscale);
     if uniform.is_some() {
         input.run::<false, true, false, _>(legs, dev, (&mut [], &mut []));
     } else {

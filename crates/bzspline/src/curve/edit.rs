@@ -99,14 +99,11 @@ impl Curve {
             validate_knots(k)?;
         }
         // From here on nothing fails.
-        let old_f: Vec<f64> = self.f[index * dim..(index + 1) * dim].to_vec();
+        let old_f: Vec<f64> = (0..dim).map(|c| self.fv(index, c)).collect();
         if let Some(k) = new_knots {
             self.knots = k;
         }
         self.points[index * dim..(index + 1) * dim].copy_from_slice(new_point);
-        for (c, &v) in new_point.iter().enumerate() {
-            self.f[index * dim + c] = v * (1.0 / self.scales[c]);
-        }
         let rows = self.rows_at(index);
         let mut changes: Vec<(usize, usize, f64)> = Vec::new();
         for c in 0..dim {
@@ -121,19 +118,12 @@ impl Curve {
         touched.push(index);
         touched.sort_unstable();
         touched.dedup();
-        let knot_point = |f: &[f64], d: &[f64], i: usize, c: usize, s: f64| {
-            ((f[i * dim + c] + d[i * dim + c]) * s).clamp(-f64::MAX, f64::MAX)
-        };
         let old: Vec<Vec<f64>> = touched
             .iter()
             .map(|&i| {
                 (0..dim)
                     .map(|c| {
-                        let f = if i == index {
-                            old_f[c]
-                        } else {
-                            self.f[i * dim + c]
-                        };
+                        let f = if i == index { old_f[c] } else { self.fv(i, c) };
                         ((f + self.d[i * dim + c]) * self.scales[c]).clamp(-f64::MAX, f64::MAX)
                     })
                     .collect()
@@ -163,7 +153,8 @@ impl Curve {
             .zip(&old)
             .filter(|(&i, old)| {
                 (0..dim).any(|c| {
-                    let now = knot_point(&self.f, &self.d, i, c, self.scales[c]);
+                    let now = ((self.fv(i, c) + self.d[i * dim + c]) * self.scales[c])
+                        .clamp(-f64::MAX, f64::MAX);
                     (now - old[c]).abs() > tol
                 })
             })
@@ -265,7 +256,7 @@ impl Curve {
         let (prev, next) = ((i + n - 1) % n, (i + 1) % n);
         let (lo, di, up, p) = self.system_row(i);
         let q = 1.0 - p;
-        let f = |k: usize| self.f[k * dim + c];
+        let f = |k: usize| self.fv(k, c);
         let d = |k: usize| self.d[k * dim + c];
         // An open curve's end deviations are zero, so its end rows need no
         // special case.
