@@ -493,10 +493,15 @@ impl Run {
     fn hold_end(&mut self, p: [f64; 2], tol: f64) -> Option<bool> {
         Some(match self.narrow(p, tol)? {
             Held::Near => self.reaches(p),
-            Held::Far { x, y, r2 } => {
-                r2 >= self.reach2 && x > 0.0 && y >= self.lo * x && y <= self.hi * x
-            }
+            Held::Far { x, y, r2 } => self.admits(x, y, r2),
         })
+    }
+
+    /// Whether a chord end at `(x, y)` in the axis frame, `r2` from `a`,
+    /// lies in the cone and no nearer than any constraining point.
+    #[inline(always)]
+    fn admits(&self, x: f64, y: f64, r2: f64) -> bool {
+        x > 0.0 && y >= self.lo * x && y <= self.hi * x && r2 >= self.reach2
     }
 
     /// Whether the chord from `a` to `b` satisfies every constraint so far:
@@ -508,7 +513,7 @@ impl Run {
         }
         let v = [b[0] - self.a[0], b[1] - self.a[1]];
         let (x, y) = self.frame(v);
-        x > 0.0 && y >= self.lo * x && y <= self.hi * x && v[0] * v[0] + v[1] * v[1] >= self.reach2
+        self.admits(x, y, v[0] * v[0] + v[1] * v[1])
     }
 }
 
