@@ -190,6 +190,8 @@ impl Curve {
         let mut params = Vec::with_capacity(self.len() + 1);
         self.push_segment_point(0, 0.0, &mut coords);
         params.push(knots[0]);
+        let rel = [self.unit_rel(0), self.unit_rel(1.min(dim - 1))];
+        let mut window = Window::new(0.999 * scaled_tol, rel);
         let mut k = 0;
         while k < self.len() {
             let m = steps(self.accel_bound(k), scaled_tol)?;
@@ -198,8 +200,11 @@ impl Curve {
             }
             if m == 1 && dim == 2 {
                 // One chord from knot k to the farthest knot it can reach.
-                let end = self.chord_run(k, 0.999 * scaled_tol);
-                self.push_segment_point(end - 1, 1.0, &mut coords);
+                let end = self.chord_run(k, &mut window);
+                // The point of segment end - 1 at t = 1 (`push_segment_point`),
+                // without its general evaluation.
+                let p = self.unit_knot_2d(end, rel);
+                coords.extend(p.map(|v| (v * self.unit()).clamp(-f64::MAX, f64::MAX)));
                 params.push(knots[end]);
                 k = end;
                 continue;
@@ -220,8 +225,8 @@ impl Curve {
     }
 
     /// For a planar curve, the last knot `e > k` such that the chord from
-    /// knot point `k` to knot point `e` stays within `tol` (in units of
-    /// [`Curve::unit`]) of the curve between them. Segment `k` alone always
+    /// knot point `k` to knot point `e` stays within the window's `tol` (in
+    /// units of [`Curve::unit`]) of the curve between them. Segment `k` alone always
     /// qualifies (the caller has found that it needs one step).
     ///
     /// Each segment lies in the convex hull of its Bezier control points, and
@@ -233,59 +238,153 @@ impl Curve {
     /// cones are intersected as the run grows: one pass, no square loop.
     ///
     /// A nearly straight segment, whose inner control points lie within `w <=
-    /// tol / 2` of its own chord ([`Segment::chord_gap`], or [`Segment::bow`]
-    /// by the second derivative), is held by its end points alone, with the
-    /// tolerance `tol - w`: its inner control points are then within `tol` of
-    /// `A B` by the triangle inequality. One cone a segment instead of three,
-    /// and no Bezier points formed; a knot takes the smaller tolerance of the
-    /// two segments it joins.
-    fn chord_run(&self, k: usize, tol: f64) -> usize {
-        let rel = [self.unit_rel(0), self.unit_rel(1)];
+    /// tol / 2` of its own chord ([`Segment::straight_bow`]), is held by its
+    /// end points alone, with the tolerance `tol - w`: its inner control
+    /// points are then within `tol` of `A B` by the triangle inequality. One
+    /// cone a segment instead of three, and no Bezier points formed; a knot
+    /// takes the smaller tolerance of the two segments it joins. The
+    /// [`Window`] has each segment's `w` and each knot's tolerance.
+    fn chord_run(&self, k: usize, window: &mut Window) -> usize {
+        let (rel, tol) = (window.rel, window.tol);
         let n = self.len();
         let mut run = Run::new(self.unit_knot_2d(k, rel));
+        let (base, _) = window.fill(self, k);
+        // Segment k's inner points, unless it is nearly straight.
+        if !window.straight(k - base) && !self.hold_inner(&mut run, k, rel, tol) {
+            return k + 1;
+        }
         let mut best = k + 1;
-        // The bow of segment e - 1 (0 when its inner points are held
-        // themselves); the knot it ends at is held once the bow of segment e
-        // is known too.
-        let mut w_prev = 0.0;
-        let segs = self.coefficients()[2 * k..].chunks_exact(2);
-        for (e, q) in (k..n).zip(segs) {
-            let seg = Segment::new(q[0], q[1], rel);
-            // The inner points' distance from the chord; the bow's bound when
-            // they do not project inside it.
-            let gap = seg.chord_gap();
-            let bow = if gap.is_nan() { seg.bow() } else { gap };
-            // NaN fails too.
-            let straight = bow <= 0.5 * tol;
-            let w = if straight { bow } else { 0.0 };
-            if e > k {
-                // The knot between segments e - 1 and e: its value exactly.
-                let p = seg.start();
-                match run.hold_end(p, tol - if w_prev > w { w_prev } else { w }) {
+        let mut e = k + 1;
+        while e < n {
+            let (base, len) = window.fill(self, e);
+            for i in e - base..len {
+                // The knot between segments e - 1 and e, its value exactly.
+                let p = [window.x[i], window.y[i]];
+                match run.hold_end(p, window.knot_tol[i]) {
                     None => return best,
                     Some(true) => best = e,
-                    // Knots whose chords fail one after another: the run is
-                    // bending away, and a chord that passes again much
+                    // Knots whose chords fail one after another: the run
+                    // is bending away, and a chord that passes again much
                     // further on is rare.
                     Some(false) if e - best >= PATIENCE => return best,
                     Some(false) => {}
                 }
-            }
-            if !straight {
-                let ctrl = seg.bezier();
-                if !(run.hold(ctrl[1], tol) && run.hold(ctrl[2], tol)) {
+                if !window.straight(i) && !self.hold_inner(&mut run, e, rel, tol) {
                     return best;
                 }
+                e += 1;
             }
-            if e + 1 == n {
-                let p = self.unit_knot_2d(n, rel);
-                if run.hold_end(p, tol - w) == Some(true) {
-                    best = n;
-                }
-            }
-            w_prev = w;
+        }
+        // The curve's last knot, held by segment n - 1.
+        let (base, _) = window.fill(self, n - 1);
+        let w = window.bow[n - base];
+        let p = self.unit_knot_2d(n, rel);
+        if run.hold_end(p, tol - if w > 0.0 { w } else { 0.0 }) == Some(true) {
+            best = n;
         }
         best
+    }
+
+    /// [`Run::hold`] of the inner Bezier points of segment `e`.
+    fn hold_inner(&self, run: &mut Run, e: usize, rel: [f64; 2], tol: f64) -> bool {
+        let q = self.coefficients();
+        let ctrl = Segment::new(q[2 * e], q[2 * e + 1], rel).bezier();
+        run.hold(ctrl[1], tol) && run.hold(ctrl[2], tol)
+    }
+}
+
+/// Segments a chord search looks at, formed a block at a time in a loop of
+/// their own (which the compiler runs two segments at a time), once per
+/// segment rather than once per visit: a run that ends goes back at most
+/// [`PATIENCE`] knots, and a new block keeps those.
+struct Window {
+    /// The first segment held.
+    base: usize,
+    /// Segments held.
+    len: usize,
+    /// The tolerance of the chord search, in units of [`Curve::unit`].
+    tol: f64,
+    /// [`Curve::unit_rel`] of both coordinates.
+    rel: [f64; 2],
+    /// The knot point at the start of each segment, in units of
+    /// [`Curve::unit`].
+    x: [f64; WINDOW],
+    y: [f64; WINDOW],
+    /// For the segment before the first and each held, the bound on the
+    /// distance of its inner points from its chord when that is at most half
+    /// the tolerance (the segment is nearly straight), else -1.
+    bow: [f64; WINDOW + 1],
+    /// The tolerance at the knot at the start of the segment: the search's,
+    /// less the larger `w` of the two segments it joins.
+    knot_tol: [f64; WINDOW],
+}
+
+/// Segments in a [`Window`].
+const WINDOW: usize = 128;
+
+impl Window {
+    fn new(tol: f64, rel: [f64; 2]) -> Self {
+        Window {
+            base: 0,
+            len: 0,
+            tol,
+            rel,
+            x: [0.0; WINDOW],
+            y: [0.0; WINDOW],
+            bow: [0.0; WINDOW + 1],
+            knot_tol: [0.0; WINDOW],
+        }
+    }
+
+    /// Whether held segment `i` is nearly straight.
+    #[inline(always)]
+    fn straight(&self, i: usize) -> bool {
+        self.bow[i + 1] >= 0.0
+    }
+
+    /// Makes segment `e` (less than the curve's length) held; the first
+    /// segment held and the count held.
+    #[inline]
+    fn fill(&mut self, curve: &Curve, e: usize) -> (usize, usize) {
+        if e < self.base || e >= self.base + self.len {
+            self.refill(curve, e);
+        }
+        (self.base, self.len)
+    }
+
+    #[inline(never)]
+    fn refill(&mut self, curve: &Curve, e: usize) {
+        let (rel, tol) = (self.rel, self.tol);
+        // Past the end: keep the knots a run that ends there goes back to.
+        let base = if e == self.base + self.len {
+            e.saturating_sub(PATIENCE + 1).max(self.base)
+        } else {
+            e
+        };
+        let len = (curve.len() - base).min(WINDOW);
+        let q = curve.coefficients();
+        let half = 0.5 * tol;
+        let (before, bows) = self.bow.split_at_mut(1);
+        for (((s, x), y), bow) in q[2 * base..2 * (base + len)]
+            .chunks_exact(2)
+            .zip(&mut self.x)
+            .zip(&mut self.y)
+            .zip(bows)
+        {
+            let seg = Segment::new(s[0], s[1], rel);
+            [*x, *y] = seg.start();
+            *bow = seg.straight_bow(half);
+        }
+        before[0] = match base.checked_sub(1) {
+            Some(b) => Segment::new(q[2 * b], q[2 * b + 1], rel).straight_bow(half),
+            None => 0.0,
+        };
+        for (t, w) in self.knot_tol.iter_mut().zip(self.bow[..=len].windows(2)) {
+            let m = if w[0] > w[1] { w[0] } else { w[1] };
+            *t = tol - if m > 0.0 { m } else { 0.0 };
+        }
+        self.base = base;
+        self.len = len;
     }
 }
 
@@ -338,19 +437,37 @@ impl Segment {
     /// chord: `max |r''| / 6` over the ends. With `D1 = b0 - 2 b1 + b2` and `D2
     /// = b1 - 2 b2 + b3` (so `r''(0) = 6 D1`, `r''(1) = 6 D2`), `b1 - (2 b0 +
     /// b3) / 3 = -(2 D1 + D2) / 3` and `b2 - (b0 + 2 b3) / 3 = -(D1 + 2 D2) /
-    /// 3`, and both points subtracted lie on the chord. NaN when the squares
-    /// overflow.
+    /// 3`, and both points subtracted lie on the chord. Given squared (no
+    /// square root), times 36: `max |r''|^2`; infinite or NaN when the
+    /// squares overflow.
     #[inline(always)]
-    fn bow(&self) -> f64 {
+    fn bow_squared_36(&self) -> f64 {
         let (x, y) = (&self.x, &self.y);
         let (ax, ay) = (2.0 * x[2], 2.0 * y[2]);
         let (bx, by) = (2.0 * x[2] + 6.0 * x[3], 2.0 * y[2] + 6.0 * y[3]);
         let (a2, b2) = (ax * ax + ay * ay, bx * bx + by * by);
-        let m2 = if a2 > b2 { a2 } else { b2 };
-        if m2.is_finite() {
-            m2.sqrt() * (1.0 / 6.0)
+        if a2 > b2 {
+            a2
         } else {
-            f64::NAN
+            b2
+        }
+    }
+
+    /// The distance of the inner control points from the chord when it is at
+    /// most `half`, else -1: [`Segment::chord_gap`], or where they do not
+    /// project inside the chord [`Segment::bow_squared_36`], then taken as
+    /// `half` (such segments are rare, and this needs no square root).
+    #[inline(always)]
+    fn straight_bow(&self, half: f64) -> f64 {
+        let gap = self.chord_gap();
+        let bow_within = self.bow_squared_36() <= 36.0 * half * half;
+        // NaN fails.
+        if gap <= half {
+            gap
+        } else if gap.is_nan() && bow_within {
+            half
+        } else {
+            -1.0
         }
     }
 
@@ -358,7 +475,7 @@ impl Segment {
     /// chord when both project inside it (NaN otherwise), at most 8.3 % above
     /// the distance. With `d = b3 - b0 = c1 + c2 + c3`, `b1 - b0 = c1 / 3` and
     /// `b2 - b0 = (2 c1 + c2) / 3`; the distance from the chord's line is `|d x
-    /// (b - b0)| / |d|`. Sharper than [`Segment::bow`], which also counts the
+    /// (b - b0)| / |d|`. Sharper than [`Segment::bow_squared_36`], which also counts the
     /// acceleration along the chord.
     #[inline(always)]
     fn chord_gap(&self) -> f64 {
@@ -415,9 +532,8 @@ struct Run {
 enum Held {
     /// Within the tolerance of the chord's start: no constraint.
     Near,
-    /// A constraint: the point's offset in the axis frame, and its squared
-    /// distance from the start.
-    Far { x: f64, y: f64, r2: f64 },
+    /// A constraint; whether a chord may end at the point.
+    Far { ends: bool },
 }
 
 impl Run {
@@ -452,6 +568,7 @@ impl Run {
         if r2 <= tol2 {
             return Some(Held::Near);
         }
+        let beyond = r2 >= self.reach2;
         if r2 > self.reach2 {
             if self.reach2 == 0.0 {
                 self.axis = c;
@@ -459,6 +576,11 @@ impl Run {
             self.reach2 = r2;
         }
         let (x, y) = self.frame(c);
+        // Whether a chord may end at p, from the cone before p narrows it:
+        // the direction of p lies in p's own cone, so only the earlier
+        // constraints can exclude it. (Known before the square root and the
+        // divisions below, so a mispredicted branch on it costs less.)
+        let ends = beyond && self.admits(x, y);
         // The cone's edges: (x, y) turned by -/+ asin(tol / |c|), both scaled
         // by |c|: (x, y) sqrt(|c|^2 - tol^2) -/+ (-y, x) tol.
         let q = (r2 - tol2).sqrt();
@@ -478,7 +600,7 @@ impl Run {
         // random.
         self.lo = if lo > self.lo { lo } else { self.lo };
         self.hi = if hi < self.hi { hi } else { self.hi };
-        (self.lo <= self.hi).then_some(Held::Far { x, y, r2 })
+        (self.lo <= self.hi).then_some(Held::Far { ends })
     }
 
     /// [`Run::narrow`]; false when the cone is empty.
@@ -487,21 +609,20 @@ impl Run {
         self.narrow(p, tol).is_some()
     }
 
-    /// [`Run::hold`] of `p`, then [`Run::reaches`] of the same point: `None`
-    /// when the cone is empty, else whether the chord may end at `p`.
+    /// [`Run::hold`] of `p`, and whether the chord may end at `p` then
+    /// ([`Run::reaches`] of it): `None` when the cone is empty.
     #[inline(always)]
     fn hold_end(&mut self, p: [f64; 2], tol: f64) -> Option<bool> {
         Some(match self.narrow(p, tol)? {
             Held::Near => self.reaches(p),
-            Held::Far { x, y, r2 } => self.admits(x, y, r2),
+            Held::Far { ends } => ends,
         })
     }
 
-    /// Whether a chord end at `(x, y)` in the axis frame, `r2` from `a`,
-    /// lies in the cone and no nearer than any constraining point.
+    /// Whether the direction `(x, y)` in the axis frame lies in the cone.
     #[inline(always)]
-    fn admits(&self, x: f64, y: f64, r2: f64) -> bool {
-        x > 0.0 && y >= self.lo * x && y <= self.hi * x && r2 >= self.reach2
+    fn admits(&self, x: f64, y: f64) -> bool {
+        x > 0.0 && y >= self.lo * x && y <= self.hi * x
     }
 
     /// Whether the chord from `a` to `b` satisfies every constraint so far:
@@ -513,7 +634,7 @@ impl Run {
         }
         let v = [b[0] - self.a[0], b[1] - self.a[1]];
         let (x, y) = self.frame(v);
-        self.admits(x, y, v[0] * v[0] + v[1] * v[1])
+        self.admits(x, y) && v[0] * v[0] + v[1] * v[1] >= self.reach2
     }
 }
 
@@ -614,6 +735,7 @@ mod tests {
     fn slope_cone_matches_the_angle_test() {
         let mut rng = crate::spline::tests::Rng(0x5eed);
         let mut checked = [0usize; 2];
+        let mut checked_end = [0usize; 2];
         for _ in 0..3000 {
             let a = [4.0 * rng.next() - 2.0, 4.0 * rng.next() - 2.0];
             let tol = 10f64.powf(-3.0 + 2.0 * rng.next());
@@ -627,8 +749,20 @@ mod tests {
                 let r = step * f64::from(i);
                 let p = [a[0] + r * ang.cos(), a[1] + r * ang.sin()];
                 let t = tol * (0.5 + 0.5 * rng.next());
-                if !run.hold(p, t) {
+                // A chord may end at p itself when every earlier point allows
+                // it (p's own constraint holds: its direction, at its distance).
+                let (mut want_end, mut near_end) = (true, f64::INFINITY);
+                for &(q, tq) in &held {
+                    let (ok, m) = allowed(a, q, tq, p);
+                    want_end &= ok;
+                    near_end = near_end.min(m);
+                }
+                let Some(ends) = run.hold_end(p, t) else {
                     break;
+                };
+                if near_end > 1e-9 {
+                    assert_eq!(ends, want_end, "a {a:?} end {p:?} held {held:?}");
+                    checked_end[usize::from(want_end)] += 1;
                 }
                 held.push((p, t));
                 let b = [
@@ -649,6 +783,10 @@ mod tests {
         }
         // Both answers are exercised.
         assert!(checked[0] > 1000 && checked[1] > 1000, "{checked:?}");
+        assert!(
+            checked_end[0] > 100 && checked_end[1] > 1000,
+            "{checked_end:?}"
+        );
     }
 
     #[test]
@@ -672,7 +810,7 @@ mod tests {
                 let b = seg.bezier();
                 let gap = seg_dist(&b[1], &b[0], &b[3]).max(seg_dist(&b[2], &b[0], &b[3]));
                 let scale = 1e-12 * (1.0 + b.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())));
-                let bow = seg.bow();
+                let bow = seg.bow_squared_36().sqrt() / 6.0;
                 assert!(
                     gap <= bow + scale,
                     "case {case} segment {k}: {gap} > bow {bow}"
