@@ -796,8 +796,6 @@ impl Curve {
         c.scales.clear();
         c.scales.extend(maxes.iter().map(|&m| scale_for_max(m)));
         c.gscale = c.scales.iter().fold(0.0f64, |m, s| m.max(*s));
-        c.points.clear();
-        c.points.extend_from_slice(points);
         c.inv_scales.clear();
         c.inv_scales.extend(c.scales.iter().map(|s| 1.0 / s));
         c.dim = dim;
@@ -806,7 +804,7 @@ impl Curve {
         c.dropped = dropped;
         c.chord_scale = chord_scale;
         c.knot_unit = knot_unit;
-        c.solve_all();
+        c.solve_all(points);
         Ok(())
     }
 
@@ -830,8 +828,9 @@ impl Curve {
         Ok(c)
     }
 
-    /// Solves every coordinate and rebuilds every segment.
-    fn solve_all(&mut self) {
+    /// Makes `points` the curve's points, solves every coordinate and
+    /// rebuilds every segment.
+    fn solve_all(&mut self, points: &[f64]) {
         let dim = self.dim;
         if !self.closed && (1..=3).contains(&dim) {
             // One fused sweep for all coordinates (the arithmetic of
@@ -844,25 +843,34 @@ impl Curve {
             let span = self.knots.last().copied().unwrap_or(0.0)
                 - self.knots.first().copied().unwrap_or(0.0);
             let ws = kernels::inverse_power_of_two(span);
-            let (knots, p, alphas) = (&self.knots, &self.points, &self.alphas);
+            let (knots, p, alphas) = (&self.knots, points, &self.alphas);
             let inv = |c: usize| self.inv_scales.get(c).copied().unwrap_or(1.0);
-            let (coefs, d) = (&mut self.coefs, &mut self.d);
+            // The sweep writes the copy of the points as it goes.
+            let (coefs, d, out) = (&mut self.coefs, &mut self.d, &mut self.points);
             match dim {
                 1 => {
                     let inv = [inv(0)];
-                    kernels::build_open_curve::<1>(knots, p, inv, alphas, uniform, ws, coefs, d);
+                    kernels::build_open_curve::<1>(
+                        knots, p, inv, alphas, uniform, ws, coefs, d, out,
+                    );
                 }
                 2 => {
                     let inv = [inv(0), inv(1)];
-                    kernels::build_open_curve::<2>(knots, p, inv, alphas, uniform, ws, coefs, d);
+                    kernels::build_open_curve::<2>(
+                        knots, p, inv, alphas, uniform, ws, coefs, d, out,
+                    );
                 }
                 _ => {
                     let inv = [inv(0), inv(1), inv(2)];
-                    kernels::build_open_curve::<3>(knots, p, inv, alphas, uniform, ws, coefs, d);
+                    kernels::build_open_curve::<3>(
+                        knots, p, inv, alphas, uniform, ws, coefs, d, out,
+                    );
                 }
             }
             return;
         }
+        self.points.clear();
+        self.points.extend_from_slice(points);
         let widths: Vec<f64> = self.knots.windows(2).map(|w| w[1] - w[0]).collect();
         self.solve_general(&widths);
     }

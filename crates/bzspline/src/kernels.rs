@@ -27,9 +27,13 @@
 //! `[1/3, 2/3]`, `piv_k >= 3 min(h_{k-1} + h_k)` and `<= 8 max(...)`), so the
 //! continuants stay far from overflow and underflow between renormalisations.
 //!
-//! The forward sweep keeps its two numbers per row (`u_k / piv_k` and the swept
-//! right-hand side) in the storage of piece `k`, which the backward sweep then
-//! overwrites with the piece's coefficients: no scratch vector.
+//! The forward sweep of a spline keeps its numbers per row (`u_k / piv_k`, the
+//! swept right-hand side and the alpha inverses) in the storage of piece `k`,
+//! which the backward sweep then overwrites with the piece's coefficients: no
+//! scratch vector. A curve's sweep keeps them in the slots of point `k`'s
+//! deviation and of its copy of point `k`, which the backward sweep then writes
+//! (the copy from the input, read there anyway): the pieces, `D` times larger,
+//! are then written once rather than twice.
 
 use crate::spline::alpha_terms;
 
@@ -221,17 +225,23 @@ pub(crate) fn build(
     );
     let out = (&mut knots_out[..], values_out.as_chunks_mut::<1>().0);
     if uniform.is_some() {
-        input.run::<false, false, true, _>(coefs, &mut [], out);
+        input.run::<false, true, _>(coefs, None, out);
     } else {
-        input.run::<true, false, true, _>(coefs, &mut [], out);
+        input.run::<true, true, _>(coefs, None, out);
     }
 }
 
 /// Builds the segments of a validated open curve in `D` dimensions: `coefs`
-/// gets the curve's layout (`D` pieces per leg, coordinate fastest) and `dev`
-/// the scaled deviations of every point (zero at both ends). Lengths: `points`
-/// `n D` (scaled by `inv_scale`, coordinate by coordinate, as they are read),
-/// `knots` `n >= 2`, `alphas` `n - 1`; `coefs` and `dev` are resized.
+/// gets the curve's layout (`D` pieces per leg, coordinate fastest), `dev`
+/// the scaled deviations of every point (zero at both ends) and `points_out`
+/// a copy of `points`. Lengths: `points` `n D` (scaled by `inv_scale`,
+/// coordinate by coordinate, as they are read), `knots` `n >= 2`, `alphas`
+/// `n - 1`; `coefs`, `dev` and `points_out` are resized.
+///
+/// The forward sweep keeps row `k` in `points_out[k]` and `dev[k]` (`2 D` slots
+/// for `D + 1` numbers), which the backward sweep then overwrites with the copy
+/// of point `k` and its deviation: the legs' memory is written once, by the
+/// backward sweep, rather than once with the rows and again with the pieces.
 #[allow(clippy::too_many_arguments)] // the parts of a curve, validated
 pub(crate) fn build_open_curve<const D: usize>(
     knots: &[f64],
@@ -242,23 +252,33 @@ pub(crate) fn build_open_curve<const D: usize>(
     wscale: f64,
     coefs: &mut Vec<[f64; 4]>,
     dev: &mut Vec<f64>,
+    points_out: &mut Vec<f64>,
 ) {
     let n = knots.len();
     coefs.truncate((n.max(1) - 1) * D);
     coefs.resize((n.max(1) - 1) * D, [0.0; 4]);
-    dev.truncate(n * D);
-    dev.resize(n * D, 0.0);
+    // Every slot is overwritten below: no pass to clear them first.
+    for v in [&mut *dev, &mut *points_out] {
+        v.truncate(n * D);
+        v.resize(n * D, 0.0);
+    }
     let (values, _) = points.as_chunks::<D>();
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        // Not reached: the caller has validated the lengths.
+        points_out.clear();
+        points_out.extend_from_slice(points);
         return;
     }
     let (legs, _) = coefs.as_chunks_mut::<D>();
-    let (dev, _) = dev.as_chunks_mut::<D>();
+    let aside = (
+        dev.as_chunks_mut::<D>().0,
+        points_out.as_chunks_mut::<D>().0,
+    );
     let input = Sweep::new(knots, values, inv_scale, alphas, uniform, wscale);
     if uniform.is_some() {
-        input.run::<false, true, false, _>(legs, dev, (&mut [], &mut []));
+        input.run::<false, false, _>(legs, Some(aside), (&mut [], &mut []));
     } else {
-        input.run::<true, true, false, _>(legs, dev, (&mut [], &mut []));
+        input.run::<true, false, _>(legs, Some(aside), (&mut [], &mut []));
     }
 }
 
@@ -321,16 +341,98 @@ impl<'a, const D: usize> Sweep<'a, D> {
 
     /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
     /// alphas differ (their terms are then formed per interval, else
-    /// `uniform` serves every interval), `DEV` whether the deviations are
-    /// written to `dev` (one per point), `COPY` whether the knots and the
-    /// values (unscaled) are copied to `out`. Lengths: `values` as `knots`
-    /// (`n >= 2`), `alphas` and `legs` `n - 1`, `dev` `n` when `DEV`, `out`
-    /// `n` each when `COPY`.
+    /// `uniform` serves every interval), `COPY` whether the knots and the
+    /// values (unscaled) are copied to `out`. With `aside` (a curve's
+    /// deviations and copy of its points, `n` each) the rows are kept there
+    /// and the backward sweep writes both; without it, in `legs`. Lengths:
+    /// `values` as `knots` (`n >= 2`), `alphas` and `legs` `n - 1`, `out` `n`
+    /// each when `COPY`.
     #[inline(always)]
-    fn run<const PER: bool, const DEV: bool, const COPY: bool, L: Leg<D>>(
+    fn run<const PER: bool, const COPY: bool, L: Leg<D>>(
         &self,
         legs: &mut [L],
-        dev: &mut [[f64; D]],
+        aside: Option<CurveOut<'_, D>>,
+        out: (&mut [f64], &mut [[f64; D]]),
+    ) {
+        let m = legs.len();
+        if m == 0 || self.knots.len() != m + 1 {
+            return;
+        }
+        let (head, rows) = legs.split_at_mut(1);
+        match aside {
+            None => {
+                let (pairs, last) = rows.as_chunks_mut::<2>();
+                let pairs = pairs.iter_mut().map(|[a, b]| [a, b]);
+                self.forward::<PER, COPY, _>(pairs, last.first_mut(), out);
+                let (first, pairs) = rows.as_rchunks_mut::<2>();
+                let pairs = pairs.iter_mut().rev().map(|[a, b]| [a, b]);
+                self.backward::<PER, _>(pairs, first.first_mut(), head);
+            }
+            Some((dev, points_out)) => {
+                let (Some(dev), Some(pts)) = (dev.get_mut(..=m), points_out.get_mut(..=m)) else {
+                    return;
+                };
+                let (values, rows_d, rows_p) = (self.values, &mut dev[1..m], &mut pts[1..m]);
+                {
+                    let (pd, ld) = rows_d.as_chunks_mut::<2>();
+                    let (pp, lp) = rows_p.as_chunks_mut::<2>();
+                    let pairs = pd.iter_mut().zip(pp).map(|([d0, d1], [p0, p1])| {
+                        [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]
+                    });
+                    let last = ld
+                        .first_mut()
+                        .zip(lp.first_mut())
+                        .map(|(d, p)| Aside { p, d });
+                    self.forward::<PER, COPY, _>(pairs, last, out);
+                }
+                let (fd, pd) = rows_d.as_rchunks_mut::<2>();
+                let (fp, pp) = rows_p.as_rchunks_mut::<2>();
+                let (fl, pl) = rows.as_rchunks_mut::<2>();
+                let pairs =
+                    pl.iter_mut()
+                        .zip(pd)
+                        .zip(pp)
+                        .rev()
+                        .map(|(([l0, l1], [d0, d1]), [p0, p1])| {
+                            [
+                                AsideBack {
+                                    leg: l0,
+                                    at: Aside { p: p0, d: d0 },
+                                },
+                                AsideBack {
+                                    leg: l1,
+                                    at: Aside { p: p1, d: d1 },
+                                },
+                            ]
+                        });
+                let first = match (fl.first_mut(), fd.first_mut(), fp.first_mut()) {
+                    (Some(leg), Some(d), Some(p)) => Some(AsideBack {
+                        leg,
+                        at: Aside { p, d },
+                    }),
+                    _ => None,
+                };
+                self.backward::<PER, _>(pairs, first, head);
+                // The end points: their copies, and deviation zero.
+                for i in [0, m] {
+                    if let (Some(d), Some(p), Some(v)) =
+                        (dev.get_mut(i), pts.get_mut(i), values.get(i))
+                    {
+                        *d = [0.0; D];
+                        *p = *v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The forward sweep over rows `k = 1 .. n - 2`, two at a time (`pairs`,
+    /// then `last` when their number is odd), kept in their slots.
+    #[inline(always)]
+    fn forward<const PER: bool, const COPY: bool, S: RowSlot<D>>(
+        &self,
+        pairs: impl Iterator<Item = [S; 2]>,
+        last: Option<S>,
         out: (&mut [f64], &mut [[f64; D]]),
     ) {
         let (knots_out, values_out) = out;
@@ -348,7 +450,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
         };
         let (knots, values, alphas) = (self.knots, self.values, self.alphas);
         let ws = self.ws;
-        let m = legs.len();
+        let m = knots.len().saturating_sub(1);
         let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
         let terms = |a: f64, (ia, iu): (f64, f64)| {
             if PER {
@@ -369,7 +471,6 @@ impl<'a, const D: usize> Sweep<'a, D> {
         copy(0, &knots[..2], &values[..2]);
         let v0 = self.scaled(v0);
 
-        // Forward sweep over rows k = 1 .. n-2 (two at a time), kept in legs[k].
         let mut p_prev2 = 1.0; // P_{k-2}
         let mut p_prev = 1.0; // P_{k-1}
         let mut y_prev = [0.0; D];
@@ -380,13 +481,11 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let mut df_l = sub(fc, v0); // F_k - F_{k-1}, scaled
         let mut terms_l = terms(a0, inv_of(a0));
         let mut since = 0;
-        let rows = legs.get_mut(1..).unwrap_or_default();
-        let mut rows_it = rows.chunks_exact_mut(2);
         let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
         let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
         let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
         let mut j = 2;
-        for (((slots, kn), vs), al) in rows_it.by_ref().zip(kn).zip(vs).zip(al) {
+        for (((slots, kn), vs), al) in pairs.zip(kn).zip(vs).zip(al) {
             // Rows k and k + 1.
             copy(j, kn, vs);
             j += 2;
@@ -422,8 +521,9 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 y1[c] = g1 - m1 * y_prev[c];
                 y2[c] = (g2 - m2 * g1) + (m2 * m1) * y_prev[c];
             }
-            slots[0].put_row(u1 * inv1, y1, i1);
-            slots[1].put_row(u2 * inv2, y2, i2);
+            let [mut s1, mut s2] = slots;
+            s1.put(u1 * inv1, y1, i1);
+            s2.put(u2 * inv2, y2, i2);
             p_prev2 = p1;
             p_prev = p2;
             since += 2;
@@ -439,8 +539,8 @@ impl<'a, const D: usize> Sweep<'a, D> {
             terms_l = t2;
         }
         let done = 1 + 2 * ((m - 1) / 2);
-        if let (Some(slot), Some(&kr), Some(&vr), Some(&ar)) = (
-            rows_it.into_remainder().first_mut(),
+        if let (Some(mut slot), Some(&kr), Some(&vr), Some(&ar)) = (
+            last,
             knots.get(done + 1),
             values.get(done + 1),
             alphas.get(done),
@@ -459,36 +559,46 @@ impl<'a, const D: usize> Sweep<'a, D> {
             let y = core::array::from_fn(|c| {
                 (hl * (fr[c] - fc[c]) - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
             });
-            slot.put_row(u * inv, y, ir);
+            slot.put(u * inv, y, ir);
         }
+    }
 
-        // Backward sweep: d_k from d_{k+1} (two at a time), then the pieces.
+    /// The backward sweep: `d_k` from `d_{k+1}`, two rows at a time from the
+    /// end (`pairs`: rows `k - 2, k - 1`; then `first`, row 1, when their
+    /// number is odd), then the pieces; `head` is leg 0.
+    #[inline(always)]
+    fn backward<const PER: bool, B: BackSlot<D>>(
+        &self,
+        pairs: impl Iterator<Item = [B; 2]>,
+        first: Option<B>,
+        head: &mut [impl Leg<D>],
+    ) {
+        let (values, alphas) = (self.values, self.alphas);
+        let m = self.knots.len().saturating_sub(1);
+        let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
+        // The alpha inverses of row k: kept with it, or formed again.
+        let inv_at = |kept: (f64, f64), a: f64| if B::KEEPS_INVERSES { kept } else { inv_of(a) };
         let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64, inv| {
             let pt = if PER {
-                piece_terms(terms(a, inv))
+                let (ia, iu) = inv;
+                piece_terms(terms_from_inverses(a, ia, iu))
             } else {
                 self.uniform_piece
             };
             core::array::from_fn(|c| piece(f0[c], f1[c], d0[c], d1[c], pt))
         };
+        let (Some(&v0), Some(&a0)) = (values.first(), alphas.first()) else {
+            return;
+        };
         let mut d_next = [0.0; D];
         let mut f_next = self.scaled(values.get(m).copied().unwrap_or([0.0; D]));
-        if DEV {
-            for i in [0, m] {
-                if let Some(end) = dev.get_mut(i) {
-                    *end = [0.0; D];
-                }
-            }
-        }
-        let mut k = m;
-        let (head, rows) = legs.split_at_mut(1.min(m));
-        let mut back = rows.rchunks_exact_mut(2);
         let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
         let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
-        for ((pair, vs), al) in back.by_ref().zip(vs).zip(al) {
-            // pair = [legs[k-2], legs[k-1]].
-            let (ma, ya, ia) = pair[0].row();
-            let (mb, yb, ib) = pair[1].row();
+        for ((pair, vs), al) in pairs.zip(vs).zip(al) {
+            // Rows k - 2 and k - 1.
+            let [mut a, mut b] = pair;
+            let (ma, ya, ia) = a.row();
+            let (mb, yb, ib) = b.row();
             let mut d_k = [0.0; D];
             let mut d_km1 = [0.0; D];
             for c in 0..D {
@@ -497,39 +607,128 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 d_km1[c] = (ya[c] - ma * yb[c]) + (ma * mb) * d_next[c];
             }
             let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
-            pair[1].put_pieces(pieces(fk, f_next, d_k, d_next, al[1], ib));
-            pair[0].put_pieces(pieces(fkm1, fk, d_km1, d_k, al[0], ia));
-            k -= 2;
-            if DEV {
-                if let Some(pair) = dev.get_mut(k..k + 2) {
-                    pair[0] = d_km1;
-                    pair[1] = d_k;
-                }
-            }
+            let (ia, ib) = (inv_at(ia, al[0]), inv_at(ib, al[1]));
+            b.finish(pieces(fk, f_next, d_k, d_next, al[1], ib), vs[1], d_k);
+            a.finish(pieces(fkm1, fk, d_km1, d_k, al[0], ia), vs[0], d_km1);
             d_next = d_km1;
             f_next = fkm1;
         }
-        if let (Some(slot), Some(&v), Some(&a)) = (
-            back.into_remainder().first_mut(),
-            values.get(1),
-            alphas.get(1),
-        ) {
-            // legs[1] when the number of rows is odd.
+        if let (Some(mut slot), Some(&v), Some(&a)) = (first, values.get(1), alphas.get(1)) {
+            // Row 1 when the number of rows is odd.
             let (mb, yb, ib) = slot.row();
             let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
             let f1 = self.scaled(v);
-            slot.put_pieces(pieces(f1, f_next, d, d_next, a, ib));
-            if DEV {
-                if let Some(slot) = dev.get_mut(1) {
-                    *slot = d;
-                }
-            }
+            slot.finish(pieces(f1, f_next, d, d_next, a, inv_at(ib, a)), v, d);
             d_next = d;
             f_next = f1;
         }
         if let Some(slot) = head.first_mut() {
+            let v0 = self.scaled(v0);
             slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, a0, inv_of(a0)));
         }
+    }
+}
+
+/// A curve's deviations and copy of its points, `n` each, which its sweep
+/// writes (and keeps its rows in meanwhile).
+type CurveOut<'a, const D: usize> = (&'a mut [[f64; D]], &'a mut [[f64; D]]);
+
+/// Where the forward sweep keeps row `k` for the backward sweep.
+trait RowSlot<const D: usize> {
+    /// Stores `u_k / piv_k`, the swept right-hand sides and the alpha inverses
+    /// (where they are kept).
+    fn put(&mut self, m: f64, y: [f64; D], inv: (f64, f64));
+}
+
+impl<const D: usize, L: Leg<D>> RowSlot<D> for &mut L {
+    #[inline(always)]
+    fn put(&mut self, m: f64, y: [f64; D], inv: (f64, f64)) {
+        self.put_row(m, y, inv);
+    }
+}
+
+/// What the backward sweep reads of row `k` and writes for leg `k`.
+trait BackSlot<const D: usize> {
+    /// Whether [`BackSlot::row`] gives the alpha inverses (else they are
+    /// formed again).
+    const KEEPS_INVERSES: bool;
+    /// The row as [`RowSlot::put`] stored it.
+    fn row(&self) -> (f64, [f64; D], (f64, f64));
+    /// Stores leg `k`'s pieces, and where they go point `k`'s copy (`value`,
+    /// unscaled) and deviation `d`.
+    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D]);
+}
+
+impl<const D: usize, L: Leg<D>> BackSlot<D> for &mut L {
+    const KEEPS_INVERSES: bool = true;
+
+    #[inline(always)]
+    fn row(&self) -> (f64, [f64; D], (f64, f64)) {
+        (**self).row()
+    }
+
+    #[inline(always)]
+    fn finish(&mut self, pieces: [[f64; 4]; D], _: [f64; D], _: [f64; D]) {
+        self.put_pieces(pieces);
+    }
+}
+
+/// Row `k` of a curve's sweep in the `2 D` slots of point `k`'s copy `p` and
+/// deviation `d`: `u_k / piv_k`, then the `D` swept right-hand sides (the
+/// alpha inverses are formed again).
+struct Aside<'a, const D: usize> {
+    p: &'a mut [f64; D],
+    d: &'a mut [f64; D],
+}
+
+impl<const D: usize> Aside<'_, D> {
+    #[inline(always)]
+    fn get(&self, i: usize) -> f64 {
+        if i < D {
+            self.p[i]
+        } else {
+            self.d[i - D]
+        }
+    }
+}
+
+impl<const D: usize> RowSlot<D> for Aside<'_, D> {
+    #[inline(always)]
+    fn put(&mut self, m: f64, y: [f64; D], _: (f64, f64)) {
+        self.p[0] = m;
+        for (c, &v) in y.iter().enumerate() {
+            if c + 1 < D {
+                self.p[c + 1] = v;
+            } else {
+                self.d[c + 1 - D] = v;
+            }
+        }
+    }
+}
+
+/// Leg `k` with the slots of row `k` ([`Aside`]).
+struct AsideBack<'a, L, const D: usize> {
+    leg: &'a mut L,
+    at: Aside<'a, D>,
+}
+
+impl<const D: usize, L: Leg<D>> BackSlot<D> for AsideBack<'_, L, D> {
+    const KEEPS_INVERSES: bool = false;
+
+    #[inline(always)]
+    fn row(&self) -> (f64, [f64; D], (f64, f64)) {
+        (
+            self.at.get(0),
+            core::array::from_fn(|c| self.at.get(c + 1)),
+            (0.0, 0.0),
+        )
+    }
+
+    #[inline(always)]
+    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D]) {
+        self.leg.put_pieces(pieces);
+        *self.at.p = value;
+        *self.at.d = d;
     }
 }
 
