@@ -804,7 +804,12 @@ impl Curve {
         c.dropped = dropped;
         c.chord_scale = chord_scale;
         c.knot_unit = knot_unit;
-        c.solve_all(points);
+        // One alpha for every leg: known here, no pass over them to find it.
+        let uniform = match alphas {
+            Alphas::Uniform(a) => Some(a),
+            Alphas::PerInterval(_) => None,
+        };
+        c.solve_all(points, uniform);
         Ok(())
     }
 
@@ -829,17 +834,19 @@ impl Curve {
     }
 
     /// Makes `points` the curve's points, solves every coordinate and
-    /// rebuilds every segment.
-    fn solve_all(&mut self, points: &[f64]) {
+    /// rebuilds every segment; `uniform` is the one alpha of every leg when
+    /// the caller knows it.
+    fn solve_all(&mut self, points: &[f64], uniform: Option<f64>) {
         let dim = self.dim;
         if !self.closed && (1..=3).contains(&dim) {
             // One fused sweep for all coordinates (the arithmetic of
             // `Spline`'s construction).
-            let uniform = self
-                .alphas
-                .first()
-                .copied()
-                .filter(|&a| self.alphas.iter().all(|&b| b == a));
+            let uniform = uniform.or_else(|| {
+                self.alphas
+                    .first()
+                    .copied()
+                    .filter(|&a| self.alphas.iter().all(|&b| b == a))
+            });
             let span = self.knots.last().copied().unwrap_or(0.0)
                 - self.knots.first().copied().unwrap_or(0.0);
             let ws = kernels::inverse_power_of_two(span);

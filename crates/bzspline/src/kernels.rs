@@ -27,13 +27,14 @@
 //! `[1/3, 2/3]`, `piv_k >= 3 min(h_{k-1} + h_k)` and `<= 8 max(...)`), so the
 //! continuants stay far from overflow and underflow between renormalisations.
 //!
-//! The forward sweep of a spline keeps its numbers per row (`u_k / piv_k`, the
-//! swept right-hand side and the alpha inverses) in the storage of piece `k`,
-//! which the backward sweep then overwrites with the piece's coefficients: no
-//! scratch vector. A curve's sweep keeps them in the slots of point `k`'s
-//! deviation and of its copy of point `k`, which the backward sweep then writes
-//! (the copy from the input, read there anyway): the pieces, `D` times larger,
-//! are then written once rather than twice.
+//! The forward sweep keeps its two numbers per row (`u_k / piv_k` and the
+//! swept right-hand side, `D + 1` numbers for `D` coordinates) in the slots of
+//! two outputs of length `n` that the backward sweep writes anyway after it
+//! has read them: a spline's copies of knot `k` and value `k`, a curve's copy of
+//! point `k` and its deviation (the copies from the input, which the backward
+//! sweep reads). The pieces are then written once, by the backward sweep, and
+//! nothing else holds the rows: no scratch vector. The alpha inverses of
+//! per-interval alphas are formed again in the backward sweep.
 
 use crate::spline::alpha_terms;
 
@@ -117,61 +118,21 @@ fn piece(f0: f64, f1: f64, d0: f64, d1: f64, pt: [f64; 6]) -> [f64; 4] {
     ]
 }
 
-/// What the sweeps keep for leg `k`: between the forward and the backward
-/// sweep, row `k`'s `u_k / piv_k`, its `D` swept right-hand sides and the
-/// alpha inverses `(1/alpha_k, 1/(1-alpha_k))`; after the backward sweep, the
-/// leg's `D` pieces (one per coordinate).
+/// Leg `k` of a sweep's output: the `D` pieces (one per coordinate).
 pub(crate) trait Leg<const D: usize>: Copy {
-    /// Stores row `k`'s numbers.
-    fn put_row(&mut self, m: f64, y: [f64; D], inv: (f64, f64));
-    /// Row `k`'s numbers, as [`Leg::put_row`] stored them.
-    fn row(&self) -> (f64, [f64; D], (f64, f64));
-    /// Stores the pieces, overwriting the row.
+    /// Stores the pieces.
     fn put_pieces(&mut self, pieces: [[f64; 4]; D]);
 }
 
 impl Leg<1> for Piece {
-    #[inline(always)]
-    fn put_row(&mut self, m: f64, y: [f64; 1], inv: (f64, f64)) {
-        self.0 = [m, y[0], inv.0, inv.1];
-    }
-
-    #[inline(always)]
-    fn row(&self) -> (f64, [f64; 1], (f64, f64)) {
-        (self.0[0], [self.0[1]], (self.0[2], self.0[3]))
-    }
-
     #[inline(always)]
     fn put_pieces(&mut self, pieces: [[f64; 4]; 1]) {
         self.0 = pieces[0];
     }
 }
 
-/// The `D` pieces of a curve's segment, one per coordinate: `4 D >= D + 3`
-/// slots hold the row.
+/// The `D` pieces of a curve's segment, one per coordinate.
 impl<const D: usize> Leg<D> for [[f64; 4]; D] {
-    #[inline(always)]
-    fn put_row(&mut self, m: f64, y: [f64; D], inv: (f64, f64)) {
-        self[0][0] = m;
-        for (c, &v) in y.iter().enumerate() {
-            self[(c + 1) / 4][(c + 1) % 4] = v;
-        }
-        self[(D + 1) / 4][(D + 1) % 4] = inv.0;
-        self[(D + 2) / 4][(D + 2) % 4] = inv.1;
-    }
-
-    #[inline(always)]
-    fn row(&self) -> (f64, [f64; D], (f64, f64)) {
-        (
-            self[0][0],
-            core::array::from_fn(|c| self[(c + 1) / 4][(c + 1) % 4]),
-            (
-                self[(D + 1) / 4][(D + 1) % 4],
-                self[(D + 2) / 4][(D + 2) % 4],
-            ),
-        )
-    }
-
     #[inline(always)]
     fn put_pieces(&mut self, pieces: [[f64; 4]; D]) {
         *self = pieces;
@@ -206,9 +167,9 @@ pub(crate) fn build(
         return;
     }
     // Every piece and copy is overwritten below (the copies of the knots and
-    // values by the forward sweep, which reads them anyway): keep the old
-    // contents rather than clearing them first (no pass over the memory when
-    // the size is unchanged).
+    // values by the backward sweep, after the forward one kept its rows in
+    // them): keep the old contents rather than clearing them first (no pass
+    // over the memory when the size is unchanged).
     coefs.truncate(n - 1);
     coefs.resize(n - 1, Piece::default());
     for out in [&mut *knots_out, &mut *values_out] {
@@ -223,11 +184,18 @@ pub(crate) fn build(
         uniform,
         wscale,
     );
-    let out = (&mut knots_out[..], values_out.as_chunks_mut::<1>().0);
+    let (kn, vs) = (
+        knots_out.as_chunks_mut::<1>().0,
+        values_out.as_chunks_mut::<1>().0,
+    );
+    let Some((head, rows)) = coefs.split_first_mut() else {
+        return;
+    };
+    let head = core::slice::from_mut(head);
     if uniform.is_some() {
-        input.run::<false, true, _>(coefs, None, out);
+        input.run::<false, true, _>(head, rows, kn, vs);
     } else {
-        input.run::<true, true, _>(coefs, None, out);
+        input.run::<true, true, _>(head, rows, kn, vs);
     }
 }
 
@@ -270,15 +238,19 @@ pub(crate) fn build_open_curve<const D: usize>(
         return;
     }
     let (legs, _) = coefs.as_chunks_mut::<D>();
-    let aside = (
+    let Some((head, rows)) = legs.split_first_mut() else {
+        return;
+    };
+    let head = core::slice::from_mut(head);
+    let (dev, pts) = (
         dev.as_chunks_mut::<D>().0,
         points_out.as_chunks_mut::<D>().0,
     );
     let input = Sweep::new(knots, values, inv_scale, alphas, uniform, wscale);
     if uniform.is_some() {
-        input.run::<false, false, _>(legs, Some(aside), (&mut [], &mut []));
+        input.run::<false, false, _>(head, rows, dev, pts);
     } else {
-        input.run::<true, false, _>(legs, Some(aside), (&mut [], &mut []));
+        input.run::<true, false, _>(head, rows, dev, pts);
     }
 }
 
@@ -341,86 +313,81 @@ impl<'a, const D: usize> Sweep<'a, D> {
 
     /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
     /// alphas differ (their terms are then formed per interval, else
-    /// `uniform` serves every interval), `COPY` whether the knots and the
-    /// values (unscaled) are copied to `out`. With `aside` (a curve's
-    /// deviations and copy of its points, `n` each) the rows are kept there
-    /// and the backward sweep writes both; without it, in `legs`. Lengths:
-    /// `values` as `knots` (`n >= 2`), `alphas` and `legs` `n - 1`, `out` `n`
-    /// each when `COPY`.
+    /// `uniform` serves every interval). `head` and `rows` are leg 0 and the
+    /// rest (`n - 1` legs in all). The forward sweep keeps row `k` in
+    /// `second[k]` and `first[k]` (`2 D` slots for `D + 1` numbers; `n` of
+    /// each), which the backward sweep then overwrites with `values[k]` (in
+    /// `first`) and the deviation (in `second`), or with `KNOT` the knot (in
+    /// `second[k][0]`, for `D = 1`): a spline's copies of its knots and
+    /// values, a curve's deviations and copy of its points. The pieces are
+    /// written once, by the backward sweep.
     #[inline(always)]
-    fn run<const PER: bool, const COPY: bool, L: Leg<D>>(
+    fn run<const PER: bool, const KNOT: bool, L: Leg<D>>(
         &self,
-        legs: &mut [L],
-        aside: Option<CurveOut<'_, D>>,
-        out: (&mut [f64], &mut [[f64; D]]),
+        head: &mut [L],
+        rows: &mut [L],
+        second: &mut [[f64; D]],
+        first: &mut [[f64; D]],
     ) {
-        let m = legs.len();
-        if m == 0 || self.knots.len() != m + 1 {
+        let m = rows.len() + 1;
+        let (Some(dev), Some(pts)) = (second.get_mut(..=m), first.get_mut(..=m)) else {
             return;
+        };
+        let (values, rows_d, rows_p) = (self.values, &mut dev[1..m], &mut pts[1..m]);
+        {
+            let (pd, ld) = rows_d.as_chunks_mut::<2>();
+            let (pp, lp) = rows_p.as_chunks_mut::<2>();
+            let pairs = pd
+                .iter_mut()
+                .zip(pp)
+                .map(|([d0, d1], [p0, p1])| [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]);
+            let last = ld
+                .first_mut()
+                .zip(lp.first_mut())
+                .map(|(d, p)| Aside { p, d });
+            self.forward::<PER>(pairs, last);
         }
-        let (head, rows) = legs.split_at_mut(1);
-        match aside {
-            None => {
-                let (pairs, last) = rows.as_chunks_mut::<2>();
-                let pairs = pairs.iter_mut().map(|[a, b]| [a, b]);
-                self.forward::<PER, COPY, _>(pairs, last.first_mut(), out);
-                let (first, pairs) = rows.as_rchunks_mut::<2>();
-                let pairs = pairs.iter_mut().rev().map(|[a, b]| [a, b]);
-                self.backward::<PER, _>(pairs, first.first_mut(), head);
-            }
-            Some((dev, points_out)) => {
-                let (Some(dev), Some(pts)) = (dev.get_mut(..=m), points_out.get_mut(..=m)) else {
-                    return;
-                };
-                let (values, rows_d, rows_p) = (self.values, &mut dev[1..m], &mut pts[1..m]);
-                {
-                    let (pd, ld) = rows_d.as_chunks_mut::<2>();
-                    let (pp, lp) = rows_p.as_chunks_mut::<2>();
-                    let pairs = pd.iter_mut().zip(pp).map(|([d0, d1], [p0, p1])| {
-                        [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]
-                    });
-                    let last = ld
-                        .first_mut()
-                        .zip(lp.first_mut())
-                        .map(|(d, p)| Aside { p, d });
-                    self.forward::<PER, COPY, _>(pairs, last, out);
-                }
-                let (fd, pd) = rows_d.as_rchunks_mut::<2>();
-                let (fp, pp) = rows_p.as_rchunks_mut::<2>();
-                let (fl, pl) = rows.as_rchunks_mut::<2>();
-                let pairs =
-                    pl.iter_mut()
-                        .zip(pd)
-                        .zip(pp)
-                        .rev()
-                        .map(|(([l0, l1], [d0, d1]), [p0, p1])| {
-                            [
-                                AsideBack {
-                                    leg: l0,
-                                    at: Aside { p: p0, d: d0 },
-                                },
-                                AsideBack {
-                                    leg: l1,
-                                    at: Aside { p: p1, d: d1 },
-                                },
-                            ]
-                        });
-                let first = match (fl.first_mut(), fd.first_mut(), fp.first_mut()) {
-                    (Some(leg), Some(d), Some(p)) => Some(AsideBack {
-                        leg,
-                        at: Aside { p, d },
-                    }),
-                    _ => None,
-                };
-                self.backward::<PER, _>(pairs, first, head);
-                // The end points: their copies, and deviation zero.
-                for i in [0, m] {
-                    if let (Some(d), Some(p), Some(v)) =
-                        (dev.get_mut(i), pts.get_mut(i), values.get(i))
-                    {
-                        *d = [0.0; D];
-                        *p = *v;
-                    }
+        let (fd, pd) = rows_d.as_rchunks_mut::<2>();
+        let (fp, pp) = rows_p.as_rchunks_mut::<2>();
+        let (fl, pl) = rows.as_rchunks_mut::<2>();
+        let pairs = pl
+            .iter_mut()
+            .zip(pd)
+            .zip(pp)
+            .rev()
+            .map(|(([l0, l1], [d0, d1]), [p0, p1])| {
+                [
+                    AsideBack::<L, D, KNOT> {
+                        leg: l0,
+                        at: Aside { p: p0, d: d0 },
+                    },
+                    AsideBack {
+                        leg: l1,
+                        at: Aside { p: p1, d: d1 },
+                    },
+                ]
+            });
+        let first = match (fl.first_mut(), fd.first_mut(), fp.first_mut()) {
+            (Some(leg), Some(d), Some(p)) => Some(AsideBack {
+                leg,
+                at: Aside { p, d },
+            }),
+            _ => None,
+        };
+        self.backward::<PER, L, KNOT>(pairs, first, head);
+        // The end points: their copies, and deviation zero (or the knot).
+        for i in [0, m] {
+            if let (Some(d), Some(p), Some(v), Some(&k)) = (
+                dev.get_mut(i),
+                pts.get_mut(i),
+                values.get(i),
+                self.knots.get(i),
+            ) {
+                *p = *v;
+                if KNOT {
+                    d[0] = k;
+                } else {
+                    *d = [0.0; D];
                 }
             }
         }
@@ -429,25 +396,11 @@ impl<'a, const D: usize> Sweep<'a, D> {
     /// The forward sweep over rows `k = 1 .. n - 2`, two at a time (`pairs`,
     /// then `last` when their number is odd), kept in their slots.
     #[inline(always)]
-    fn forward<const PER: bool, const COPY: bool, S: RowSlot<D>>(
+    fn forward<'s, const PER: bool>(
         &self,
-        pairs: impl Iterator<Item = [S; 2]>,
-        last: Option<S>,
-        out: (&mut [f64], &mut [[f64; D]]),
+        pairs: impl Iterator<Item = [Aside<'s, D>; 2]>,
+        last: Option<Aside<'s, D>>,
     ) {
-        let (knots_out, values_out) = out;
-        // Knots and values `j..j + w` to the copies.
-        let mut copy = |j: usize, k: &[f64], v: &[[f64; D]]| {
-            if COPY {
-                let w = k.len();
-                if let (Some(ko), Some(vo)) =
-                    (knots_out.get_mut(j..j + w), values_out.get_mut(j..j + w))
-                {
-                    ko.copy_from_slice(k);
-                    vo.copy_from_slice(v);
-                }
-            }
-        };
         let (knots, values, alphas) = (self.knots, self.values, self.alphas);
         let ws = self.ws;
         let m = knots.len().saturating_sub(1);
@@ -468,7 +421,6 @@ impl<'a, const D: usize> Sweep<'a, D> {
         ) else {
             return;
         };
-        copy(0, &knots[..2], &values[..2]);
         let v0 = self.scaled(v0);
 
         let mut p_prev2 = 1.0; // P_{k-2}
@@ -484,11 +436,8 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
         let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
         let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
-        let mut j = 2;
         for (((slots, kn), vs), al) in pairs.zip(kn).zip(vs).zip(al) {
             // Rows k and k + 1.
-            copy(j, kn, vs);
-            j += 2;
             let h1 = (kn[0] - kc) * ws;
             let h2 = (kn[1] - kn[0]) * ws;
             kc = kn[1];
@@ -522,8 +471,8 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 y2[c] = (g2 - m2 * g1) + (m2 * m1) * y_prev[c];
             }
             let [mut s1, mut s2] = slots;
-            s1.put(u1 * inv1, y1, i1);
-            s2.put(u2 * inv2, y2, i2);
+            s1.put(u1 * inv1, y1);
+            s2.put(u2 * inv2, y2);
             p_prev2 = p1;
             p_prev = p2;
             since += 2;
@@ -546,7 +495,6 @@ impl<'a, const D: usize> Sweep<'a, D> {
             alphas.get(done),
         ) {
             // The last row when their number is odd.
-            copy(done + 1, &[kr], &[vr]);
             let hr = (kr - kc) * ws;
             let fr = self.scaled(vr);
             let ir = inv_of(ar);
@@ -559,7 +507,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
             let y = core::array::from_fn(|c| {
                 (hl * (fr[c] - fc[c]) - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
             });
-            slot.put(u * inv, y, ir);
+            slot.put(u * inv, y);
         }
     }
 
@@ -567,17 +515,15 @@ impl<'a, const D: usize> Sweep<'a, D> {
     /// end (`pairs`: rows `k - 2, k - 1`; then `first`, row 1, when their
     /// number is odd), then the pieces; `head` is leg 0.
     #[inline(always)]
-    fn backward<const PER: bool, B: BackSlot<D>>(
+    fn backward<'s, const PER: bool, L: Leg<D> + 's, const KNOT: bool>(
         &self,
-        pairs: impl Iterator<Item = [B; 2]>,
-        first: Option<B>,
-        head: &mut [impl Leg<D>],
+        pairs: impl Iterator<Item = [AsideBack<'s, L, D, KNOT>; 2]>,
+        first: Option<AsideBack<'s, L, D, KNOT>>,
+        head: &mut [L],
     ) {
         let (values, alphas) = (self.values, self.alphas);
         let m = self.knots.len().saturating_sub(1);
         let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
-        // The alpha inverses of row k: kept with it, or formed again.
-        let inv_at = |kept: (f64, f64), a: f64| if B::KEEPS_INVERSES { kept } else { inv_of(a) };
         let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64, inv| {
             let pt = if PER {
                 let (ia, iu) = inv;
@@ -594,11 +540,12 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let mut f_next = self.scaled(values.get(m).copied().unwrap_or([0.0; D]));
         let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
         let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
-        for ((pair, vs), al) in pairs.zip(vs).zip(al) {
+        let kn = self.knots.get(1..m).unwrap_or_default().rchunks_exact(2);
+        for (((pair, vs), al), kn) in pairs.zip(vs).zip(al).zip(kn) {
             // Rows k - 2 and k - 1.
             let [mut a, mut b] = pair;
-            let (ma, ya, ia) = a.row();
-            let (mb, yb, ib) = b.row();
+            let (ma, ya) = a.row();
+            let (mb, yb) = b.row();
             let mut d_k = [0.0; D];
             let mut d_km1 = [0.0; D];
             for c in 0..D {
@@ -607,18 +554,26 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 d_km1[c] = (ya[c] - ma * yb[c]) + (ma * mb) * d_next[c];
             }
             let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
-            let (ia, ib) = (inv_at(ia, al[0]), inv_at(ib, al[1]));
-            b.finish(pieces(fk, f_next, d_k, d_next, al[1], ib), vs[1], d_k);
-            a.finish(pieces(fkm1, fk, d_km1, d_k, al[0], ia), vs[0], d_km1);
+            // The alpha inverses, formed again.
+            let (ia, ib) = (inv_of(al[0]), inv_of(al[1]));
+            b.finish(
+                pieces(fk, f_next, d_k, d_next, al[1], ib),
+                vs[1],
+                d_k,
+                kn[1],
+            );
+            a.finish(pieces(fkm1, fk, d_km1, d_k, al[0], ia), vs[0], d_km1, kn[0]);
             d_next = d_km1;
             f_next = fkm1;
         }
-        if let (Some(mut slot), Some(&v), Some(&a)) = (first, values.get(1), alphas.get(1)) {
+        if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) =
+            (first, values.get(1), alphas.get(1), self.knots.get(1))
+        {
             // Row 1 when the number of rows is odd.
-            let (mb, yb, ib) = slot.row();
+            let (mb, yb) = slot.row();
             let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
             let f1 = self.scaled(v);
-            slot.finish(pieces(f1, f_next, d, d_next, a, inv_at(ib, a)), v, d);
+            slot.finish(pieces(f1, f_next, d, d_next, a, inv_of(a)), v, d, kv);
             d_next = d;
             f_next = f1;
         }
@@ -629,53 +584,9 @@ impl<'a, const D: usize> Sweep<'a, D> {
     }
 }
 
-/// A curve's deviations and copy of its points, `n` each, which its sweep
-/// writes (and keeps its rows in meanwhile).
-type CurveOut<'a, const D: usize> = (&'a mut [[f64; D]], &'a mut [[f64; D]]);
-
-/// Where the forward sweep keeps row `k` for the backward sweep.
-trait RowSlot<const D: usize> {
-    /// Stores `u_k / piv_k`, the swept right-hand sides and the alpha inverses
-    /// (where they are kept).
-    fn put(&mut self, m: f64, y: [f64; D], inv: (f64, f64));
-}
-
-impl<const D: usize, L: Leg<D>> RowSlot<D> for &mut L {
-    #[inline(always)]
-    fn put(&mut self, m: f64, y: [f64; D], inv: (f64, f64)) {
-        self.put_row(m, y, inv);
-    }
-}
-
-/// What the backward sweep reads of row `k` and writes for leg `k`.
-trait BackSlot<const D: usize> {
-    /// Whether [`BackSlot::row`] gives the alpha inverses (else they are
-    /// formed again).
-    const KEEPS_INVERSES: bool;
-    /// The row as [`RowSlot::put`] stored it.
-    fn row(&self) -> (f64, [f64; D], (f64, f64));
-    /// Stores leg `k`'s pieces, and where they go point `k`'s copy (`value`,
-    /// unscaled) and deviation `d`.
-    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D]);
-}
-
-impl<const D: usize, L: Leg<D>> BackSlot<D> for &mut L {
-    const KEEPS_INVERSES: bool = true;
-
-    #[inline(always)]
-    fn row(&self) -> (f64, [f64; D], (f64, f64)) {
-        (**self).row()
-    }
-
-    #[inline(always)]
-    fn finish(&mut self, pieces: [[f64; 4]; D], _: [f64; D], _: [f64; D]) {
-        self.put_pieces(pieces);
-    }
-}
-
-/// Row `k` of a curve's sweep in the `2 D` slots of point `k`'s copy `p` and
-/// deviation `d`: `u_k / piv_k`, then the `D` swept right-hand sides (the
-/// alpha inverses are formed again).
+/// Row `k` of a sweep in the `2 D` slots `p` and `d` (a spline's copies of
+/// value and knot `k`, a curve's copy of point `k` and its deviation):
+/// `u_k / piv_k`, then the `D` swept right-hand sides.
 struct Aside<'a, const D: usize> {
     p: &'a mut [f64; D],
     d: &'a mut [f64; D],
@@ -690,11 +601,10 @@ impl<const D: usize> Aside<'_, D> {
             self.d[i - D]
         }
     }
-}
 
-impl<const D: usize> RowSlot<D> for Aside<'_, D> {
+    /// Stores the row.
     #[inline(always)]
-    fn put(&mut self, m: f64, y: [f64; D], _: (f64, f64)) {
+    fn put(&mut self, m: f64, y: [f64; D]) {
         self.p[0] = m;
         for (c, &v) in y.iter().enumerate() {
             if c + 1 < D {
@@ -706,29 +616,31 @@ impl<const D: usize> RowSlot<D> for Aside<'_, D> {
     }
 }
 
-/// Leg `k` with the slots of row `k` ([`Aside`]).
-struct AsideBack<'a, L, const D: usize> {
+/// Leg `k` with the slots of row `k` ([`Aside`]); `KNOT`: the second slot
+/// takes knot `k` (a spline's copy of its knots) rather than the deviation.
+struct AsideBack<'a, L, const D: usize, const KNOT: bool> {
     leg: &'a mut L,
     at: Aside<'a, D>,
 }
 
-impl<const D: usize, L: Leg<D>> BackSlot<D> for AsideBack<'_, L, D> {
-    const KEEPS_INVERSES: bool = false;
-
+impl<const D: usize, L: Leg<D>, const KNOT: bool> AsideBack<'_, L, D, KNOT> {
+    /// The row as [`Aside::put`] stored it.
     #[inline(always)]
-    fn row(&self) -> (f64, [f64; D], (f64, f64)) {
-        (
-            self.at.get(0),
-            core::array::from_fn(|c| self.at.get(c + 1)),
-            (0.0, 0.0),
-        )
+    fn row(&self) -> (f64, [f64; D]) {
+        (self.at.get(0), core::array::from_fn(|c| self.at.get(c + 1)))
     }
 
+    /// Stores leg `k`'s pieces, the copy of value or point `k` (`value`,
+    /// unscaled), and the deviation `d` or the `knot`.
     #[inline(always)]
-    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D]) {
+    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D], knot: f64) {
         self.leg.put_pieces(pieces);
         *self.at.p = value;
-        *self.at.d = d;
+        if KNOT {
+            self.at.d[0] = knot;
+        } else {
+            *self.at.d = d;
+        }
     }
 }
 
