@@ -30,7 +30,7 @@ use crate::spline::Spline;
 
 /// Knots past the last good end of a chord that the chord search tries
 /// before it settles for that end.
-const PATIENCE: usize = 4;
+const PATIENCE: usize = 2;
 
 /// The most vertices one flattening may produce; a tolerance that would need
 /// more is refused.
