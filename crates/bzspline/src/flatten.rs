@@ -190,7 +190,8 @@ impl Curve {
         let mut params = Vec::with_capacity(self.len() + 1);
         self.push_segment_point(0, 0.0, &mut coords);
         params.push(knots[0]);
-        let rel = [self.unit_rel(0), self.unit_rel(1.min(dim - 1))];
+        // Read only by the chord search, which runs on planar curves.
+        let rel = [self.unit_rel(0), self.unit_rel(dim.min(2) - 1)];
         let mut window = Window::new(0.999 * scaled_tol, rel);
         let mut k = 0;
         while k < self.len() {
