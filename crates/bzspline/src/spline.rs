@@ -1514,6 +1514,32 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn rebuilds_of_other_sizes_keep_the_summary_right() {
+        // A stale summary would send the batch search to the wrong stretch
+        // of knots.
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let (x, f, _) = random_data(&mut rng, 40, 1.0);
+        let mut s = Spline::new(&x, &f).unwrap();
+        for n in [17usize, 100, 16, 2, 33, 1000, 5, 64, 65, 3, 48, 49] {
+            let (x, f, a) = random_data(&mut rng, n, 1.0);
+            for alphas in [Alphas::Uniform(0.5), Alphas::PerInterval(&a)] {
+                s.rebuild(&x, &f, alphas).unwrap();
+                let mut want = Vec::new();
+                kernels::summarise(&x, &mut want);
+                assert_eq!(s.summary, want, "n {n}");
+                let q: Vec<f64> = (0..64)
+                    .map(|_| x[0] + (x[n - 1] - x[0]) * rng.next())
+                    .collect();
+                let mut got = vec![0.0; q.len()];
+                s.eval_many(&q, &mut got).unwrap();
+                for (q, g) in q.iter().zip(&got) {
+                    assert_eq!(*g, s.eval(*q).unwrap(), "n {n} x {q}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn fused_build_and_batches_match_the_reference() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         for (case, &n) in [2usize, 3, 4, 5, 17, 18, 33, 100, 1000, 4097]
@@ -1531,6 +1557,7 @@ pub(crate) mod tests {
                     assert_eq!(fast.knots(), slow.knots());
                     assert_eq!(fast.values(), slow.values());
                     assert_eq!(fast.scale, slow.scale);
+                    assert_eq!(fast.summary, slow.summary, "case {case} n {n}: summary");
                     let tol = 1e-13 * fmax;
                     for (k, (p, q)) in fast
                         .knot_values()
