@@ -75,26 +75,32 @@ def median_ns(fn, repeats):
     return times[len(times) // 2]
 
 
-def run_bzspline(n, m, mr, repeats):
+def run_example(name, features, n, m, mr, repeats):
+    """Builds the bzspline crate's example `name` (release) and returns the JSON
+    it prints for these sizes."""
     cmd = ["cargo", "build", "--release", "--quiet", "-p", "bzspline",
-           "--features", "rayon", "--example", "throughput"]
+           *features, "--example", name]
     subprocess.run(cmd, cwd=ROOT, check=True)
-    exe = os.path.join(ROOT, "target", "release", "examples", "throughput")
+    exe = os.path.join(ROOT, "target", "release", "examples", name)
     out = subprocess.run([exe, "--n", str(n), "--m", str(m), "--mr", str(mr),
                           "--repeats", str(repeats)],
                          cwd=ROOT, check=True, capture_output=True, text=True)
     return json.loads(out.stdout)
+
+
+def run_bzspline(n, m, mr, repeats):
+    return run_example("throughput", ["--features", "rayon"], n, m, mr, repeats)
 
 
 def run_baselines(n, m, mr, repeats):
-    cmd = ["cargo", "build", "--release", "--quiet", "-p", "bzspline",
-           "--example", "baselines"]
-    subprocess.run(cmd, cwd=ROOT, check=True)
-    exe = os.path.join(ROOT, "target", "release", "examples", "baselines")
-    out = subprocess.run([exe, "--n", str(n), "--m", str(m), "--mr", str(mr),
-                          "--repeats", str(repeats)],
-                         cwd=ROOT, check=True, capture_output=True, text=True)
-    return json.loads(out.stdout)
+    return run_example("baselines", [], n, m, mr, repeats)
+
+
+def smaller(a, b):
+    """The smaller of two figures of the throughput JSON (counts stay)."""
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return min(a, b)
+    return b
 
 
 # What the targets quote for the machine they were set on (2 cores, AMD EPYC,
@@ -161,13 +167,6 @@ def print_targets(here, bz):
             bs = f"{b:8.2f}" if b is not None else f"{'-':>8}"
             print(f"| {label:30} | {target:5.1f} | {k:40} | {scaled:7.2f} | {bs} | {held:>4} |")
             label = ""
-
-
-def smaller(a, b):
-    """The smaller of two figures of the throughput JSON (counts stay)."""
-    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
-        return min(a, b)
-    return b
 
 
 def run_scipy(n, m, mr, repeats):

@@ -21,83 +21,12 @@
 //! warm-up run, or the smallest with `BZ_MIN=1`), `--seed` (default 1). The
 //! streams run over `--stream` doubles (default 2^25, 256 MiB an array).
 
+mod common;
+
 use std::hint::{black_box, select_unpredictable};
 use std::time::Instant;
 
-/// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-struct Args {
-    n: usize,
-    m: usize,
-    mr: usize,
-    stream: usize,
-    repeats: usize,
-    seed: u64,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let mut a = Args {
-        n: 1_000_000,
-        m: 10_000_000,
-        mr: 0,
-        stream: 1 << 25,
-        repeats: 7,
-        seed: 1,
-    };
-    let mut mr = None;
-    let mut it = std::env::args().skip(1);
-    while let Some(flag) = it.next() {
-        let value = it.next().ok_or_else(|| format!("{flag} needs a value"))?;
-        let num = value
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite() && *v >= 0.0 && v.fract() == 0.0)
-            .ok_or_else(|| format!("{flag}: not a count: {value}"))? as u64;
-        match flag.as_str() {
-            "--n" => a.n = num as usize,
-            "--m" => a.m = num as usize,
-            "--mr" => mr = Some(num as usize),
-            "--stream" => a.stream = (num as usize).max(1024),
-            "--repeats" => a.repeats = (num as usize).max(1),
-            "--seed" => a.seed = num.max(1),
-            _ => return Err(format!("unknown option {flag}")),
-        }
-    }
-    if a.n < 3 {
-        return Err("--n must be at least 3".into());
-    }
-    a.mr = mr.unwrap_or(a.m.min(1_000_000));
-    Ok(a)
-}
-
-/// Median (or with `BZ_MIN=1` smallest) wall time in nanoseconds of `repeats`
-/// runs of `f`, after one warm-up.
-fn time_ns(repeats: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut t: Vec<f64> = (0..repeats)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_nanos() as f64
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    if std::env::var_os("BZ_MIN").is_some_and(|v| v == "1") {
-        t[0]
-    } else {
-        t[t.len() / 2]
-    }
-}
+use common::{median_ns, parse_args, pick, Rng};
 
 /// A tridiagonal system `a[i] x[i-1] + b[i] x[i] + c[i] x[i+1] = d[i]`
 /// (`a[0]` and `c[n-1]` unused), strictly diagonally dominant.
@@ -288,7 +217,7 @@ fn sum4(v: &[f64]) -> f64 {
 }
 
 fn main() {
-    let args = match parse_args() {
+    let args = match parse_args(3, true) {
         Ok(a) => a,
         Err(e) => {
             eprintln!("baselines: {e}");
@@ -296,13 +225,13 @@ fn main() {
         }
     };
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
-    let mut rng = Rng(args.seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut rng = Rng::seeded(args.seed);
 
     let sys = System::random(n, &mut rng);
     let (mut cp, mut dp, mut x) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let plain = time_ns(r, || thomas(&sys, &mut cp, &mut dp, black_box(&mut x)));
+    let plain = median_ns(r, || thomas(&sys, &mut cp, &mut dp, black_box(&mut x)));
     let plain_res = sys.residual(&x);
-    let off = time_ns(r, || {
+    let off = median_ns(r, || {
         thomas_off_chain(&sys, &mut cp, &mut dp, black_box(&mut x));
     });
     let off_res = sys.residual(&x);
@@ -315,17 +244,17 @@ fn main() {
         .collect();
     let random: Vec<f64> = (0..mr).map(|_| lo + (hi - lo) * rng.next()).collect();
     let mut out = vec![0.0; m.max(mr)];
-    let walk = time_ns(r, || p.walk(&sorted, black_box(&mut out[..m])));
-    let search = time_ns(r, || p.search16(&random, black_box(&mut out[..mr])));
+    let walk = median_ns(r, || p.walk(&sorted, black_box(&mut out[..m])));
+    let search = median_ns(r, || p.search16(&random, black_box(&mut out[..mr])));
     drop((p, sorted, random, out));
 
     let len = args.stream;
     let src: Vec<f64> = (0..len).map(|i| i as f64).collect();
     let mut dst = vec![0.0; len];
-    let read = time_ns(r, || {
+    let read = median_ns(r, || {
         black_box(sum4(black_box(&src)));
     });
-    let scale = time_ns(r, || {
+    let scale = median_ns(r, || {
         for (d, s) in dst.iter_mut().zip(&src) {
             *d = 2.0 * s;
         }
@@ -342,12 +271,8 @@ fn main() {
     }
     fresh_ns.remove(0);
     fresh_ns.sort_by(f64::total_cmp);
-    let fresh = if std::env::var_os("BZ_MIN").is_some_and(|v| v == "1") {
-        fresh_ns[0]
-    } else {
-        fresh_ns[fresh_ns.len() / 2]
-    };
-    let fill = time_ns(r, || {
+    let fresh = pick(&fresh_ns);
+    let fill = median_ns(r, || {
         dst.fill(1.0);
         black_box(&dst);
     });

@@ -12,94 +12,19 @@
 //! values are a sine plus noise; sorted queries are evenly spaced over the
 //! domain, random ones uniform.
 
+mod common;
+
 use std::hint::black_box;
 use std::time::Instant;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Spline};
+use common::{median_ns, parse_args, pick, Rng};
 
 /// Control points of the flattening benchmark's spiral.
 const SPIRAL: usize = 100_000;
 
-/// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-struct Args {
-    n: usize,
-    m: usize,
-    mr: usize,
-    repeats: usize,
-    seed: u64,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let mut a = Args {
-        n: 1_000_000,
-        m: 10_000_000,
-        mr: 0,
-        repeats: 7,
-        seed: 1,
-    };
-    let mut mr = None;
-    let mut it = std::env::args().skip(1);
-    while let Some(flag) = it.next() {
-        let value = it.next().ok_or_else(|| format!("{flag} needs a value"))?;
-        // Accept 1e6 as well as 1000000.
-        let num = value
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite() && *v >= 0.0 && v.fract() == 0.0)
-            .ok_or_else(|| format!("{flag}: not a count: {value}"))? as u64;
-        match flag.as_str() {
-            "--n" => a.n = num as usize,
-            "--m" => a.m = num as usize,
-            "--mr" => mr = Some(num as usize),
-            "--repeats" => a.repeats = (num as usize).max(1),
-            "--seed" => a.seed = num.max(1),
-            _ => return Err(format!("unknown option {flag}")),
-        }
-    }
-    if a.n < 2 {
-        return Err("--n must be at least 2".into());
-    }
-    a.mr = mr.unwrap_or(a.m.min(1_000_000));
-    Ok(a)
-}
-
-/// Median wall time in nanoseconds of `repeats` runs of `f`, after one warm-up.
-fn median_ns(repeats: usize, mut f: impl FnMut()) -> f64 {
-    f();
-    let mut t: Vec<f64> = (0..repeats)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_nanos() as f64
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    pick(&t)
-}
-
-/// The median, or the minimum when `BZ_MIN=1` is set (steadier on a busy
-/// machine).
-fn pick(sorted: &[f64]) -> f64 {
-    if std::env::var_os("BZ_MIN").is_some_and(|v| v == "1") {
-        sorted[0]
-    } else {
-        sorted[sorted.len() / 2]
-    }
-}
-
 fn main() {
-    let args = match parse_args() {
+    let args = match parse_args(2, false) {
         Ok(a) => a,
         Err(e) => {
             eprintln!("throughput: {e}");
@@ -107,7 +32,7 @@ fn main() {
         }
     };
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
-    let mut rng = Rng(args.seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    let mut rng = Rng::seeded(args.seed);
     let mut knots = Vec::with_capacity(n);
     let mut t = 0.0;
     for _ in 0..n {

@@ -1,0 +1,95 @@
+//! What the `throughput` and `baselines` examples share: the options, the
+//! random numbers and the timing.
+
+use std::time::Instant;
+
+/// xorshift64*: uniform doubles in `[0, 1)` from a fixed seed.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The generator for `--seed`.
+    pub fn seeded(seed: u64) -> Self {
+        Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
+    }
+
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The options: `--n` (default 1e6), `--m` (1e7), `--mr` (`min(m, 1e6)`),
+/// `--repeats` (7), `--seed` (1) and, where taken, `--stream` (2^25).
+pub struct Args {
+    pub n: usize,
+    pub m: usize,
+    pub mr: usize,
+    pub repeats: usize,
+    pub seed: u64,
+    pub stream: usize,
+}
+
+/// The options from the command line; `--stream` only when `stream`, `--n`
+/// at least `min_n`.
+pub fn parse_args(min_n: usize, stream: bool) -> Result<Args, String> {
+    let mut a = Args {
+        n: 1_000_000,
+        m: 10_000_000,
+        mr: 0,
+        repeats: 7,
+        seed: 1,
+        stream: 1 << 25,
+    };
+    let mut mr = None;
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let value = it.next().ok_or_else(|| format!("{flag} needs a value"))?;
+        // Accept 1e6 as well as 1000000.
+        let num = value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v >= 0.0 && v.fract() == 0.0)
+            .ok_or_else(|| format!("{flag}: not a count: {value}"))? as u64;
+        match flag.as_str() {
+            "--n" => a.n = num as usize,
+            "--m" => a.m = num as usize,
+            "--mr" => mr = Some(num as usize),
+            "--repeats" => a.repeats = (num as usize).max(1),
+            "--seed" => a.seed = num.max(1),
+            "--stream" if stream => a.stream = (num as usize).max(1024),
+            _ => return Err(format!("unknown option {flag}")),
+        }
+    }
+    if a.n < min_n {
+        return Err(format!("--n must be at least {min_n}"));
+    }
+    a.mr = mr.unwrap_or(a.m.min(1_000_000));
+    Ok(a)
+}
+
+/// Median wall time in nanoseconds of `repeats` runs of `f`, after one
+/// warm-up (the smallest with `BZ_MIN=1`, see [`pick`]).
+pub fn median_ns(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    let mut t: Vec<f64> = (0..repeats)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed().as_nanos() as f64
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    pick(&t)
+}
+
+/// The median, or the minimum when `BZ_MIN=1` is set (steadier on a busy
+/// machine).
+pub fn pick(sorted: &[f64]) -> f64 {
+    if std::env::var_os("BZ_MIN").is_some_and(|v| v == "1") {
+        sorted[0]
+    } else {
+        sorted[sorted.len() / 2]
+    }
+}
