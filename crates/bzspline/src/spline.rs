@@ -306,7 +306,16 @@ pub(crate) fn scale_for_max(m: f64) -> f64 {
 /// validation then finds what). A finite positive span and widths that are
 /// positive and at least `span * MIN_RELATIVE_INTERVAL` imply finite,
 /// strictly increasing knots.
-fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64> {
+///
+/// As it reads the knots it puts every [`kernels::STRIDE`]-th into `summary`
+/// (see [`kernels::summarise`]), which then needs no pass over them of its
+/// own; when it returns `None` the summary may be partly written.
+fn quick_check(
+    knots: &[f64],
+    values: &[f64],
+    alphas: Alphas<'_>,
+    summary: &mut Vec<f64>,
+) -> Option<f64> {
     let n = knots.len();
     if n < 2 || values.len() != n {
         return None;
@@ -316,21 +325,28 @@ fn quick_check(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Option<f64>
         return None;
     }
     let thr = span * MIN_RELATIVE_INTERVAL;
-    // Widths in four lanes, so that the loop vectorises.
+    // Widths in four lanes, so that the loop vectorises; a stretch of
+    // `STRIDE` knots at a time, whose first goes into the summary.
+    const STRIDE: usize = kernels::STRIDE;
+    summary.clear();
+    summary.reserve(n.div_ceil(STRIDE));
     let mut lanes = [true; 4];
     let (left, right) = (&knots[..n - 1], &knots[1..]);
-    let (lc, rc) = (left.chunks_exact(4), right.chunks_exact(4));
+    let (lc, rc) = (left.chunks_exact(STRIDE), right.chunks_exact(STRIDE));
     let (lr, rr) = (lc.remainder(), rc.remainder());
     for (l, r) in lc.zip(rc) {
-        for j in 0..4 {
+        summary.push(l[0]);
+        for j in 0..STRIDE {
             let d = r[j] - l[j];
-            lanes[j] &= (d >= thr) & (d > 0.0);
+            lanes[j % 4] &= (d >= thr) & (d > 0.0);
         }
     }
     for (l, r) in lr.iter().zip(rr) {
         let d = r - l;
         lanes[0] &= (d >= thr) & (d > 0.0);
     }
+    // The stretches the loop did not reach (the last knot's included).
+    summary.extend(knots[(n - 1) / STRIDE * STRIDE..].iter().step_by(STRIDE));
     let mut ok = lanes.iter().all(|&b| b);
     // Four running maxima and finiteness flags, so that the loop vectorises.
     let mut mx = [0.0f64; 4];
@@ -576,9 +592,11 @@ impl Spline {
         values: &[f64],
         alphas: Alphas<'_>,
     ) -> Result<(), Error> {
-        let Some(max_abs) = quick_check(knots, values, alphas) else {
+        let Some(max_abs) = quick_check(knots, values, alphas, &mut self.summary) else {
             // Something is wrong (or on an edge the quick check does not
-            // decide): the step-by-step validation names it.
+            // decide): the step-by-step validation names it. The summary of
+            // the knots held first, which the check may have overwritten.
+            kernels::summarise(&self.knots, &mut self.summary);
             let reference = Self::build_reference(knots, values, alphas)?;
             let policy = self.extrapolate;
             *self = reference.with_extrapolation(policy);
@@ -611,7 +629,6 @@ impl Spline {
             kernels::inverse_power_of_two(span),
             (&mut self.coefs, &mut self.knots, &mut self.values),
         );
-        kernels::summarise(knots, &mut self.summary);
         self.scale = scale;
         self.pre = if span < TINY_SPAN {
             kernels::inverse_power_of_two(span)
@@ -1691,6 +1708,12 @@ pub(crate) mod tests {
                 ..
             })
         ));
+        assert_eq!(s, before);
+        // Other knots, good, with a bad value: the check has read them all
+        // (and put them in its summary) before it fails.
+        let mut bad_values = f.clone();
+        bad_values[3] = f64::NAN;
+        assert!(s.rebuild(&x, &bad_values, Alphas::default()).is_err());
         assert_eq!(s, before);
     }
 
