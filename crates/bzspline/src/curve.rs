@@ -847,32 +847,10 @@ impl Curve {
                     .copied()
                     .filter(|&a| self.alphas.iter().all(|&b| b == a))
             });
-            let span = self.knots.last().copied().unwrap_or(0.0)
-                - self.knots.first().copied().unwrap_or(0.0);
-            let ws = kernels::inverse_power_of_two(span);
-            let (knots, p, alphas) = (&self.knots, points, &self.alphas);
-            let inv = |c: usize| self.inv_scales.get(c).copied().unwrap_or(1.0);
-            // The sweep writes the copy of the points as it goes.
-            let (coefs, d, out) = (&mut self.coefs, &mut self.d, &mut self.points);
             match dim {
-                1 => {
-                    let inv = [inv(0)];
-                    kernels::build_open_curve::<1>(
-                        knots, p, inv, alphas, uniform, ws, coefs, d, out,
-                    );
-                }
-                2 => {
-                    let inv = [inv(0), inv(1)];
-                    kernels::build_open_curve::<2>(
-                        knots, p, inv, alphas, uniform, ws, coefs, d, out,
-                    );
-                }
-                _ => {
-                    let inv = [inv(0), inv(1), inv(2)];
-                    kernels::build_open_curve::<3>(
-                        knots, p, inv, alphas, uniform, ws, coefs, d, out,
-                    );
-                }
+                1 => self.solve_fused::<1>(points, uniform),
+                2 => self.solve_fused::<2>(points, uniform),
+                _ => self.solve_fused::<3>(points, uniform),
             }
             return;
         }
@@ -952,6 +930,39 @@ impl Curve {
 
     fn n_points(&self) -> usize {
         self.points.len() / self.dim
+    }
+
+    /// [`kernels::build_open_curve`] in `D` dimensions, which also writes the
+    /// copy of the points as it goes.
+    fn solve_fused<const D: usize>(&mut self, points: &[f64], uniform: Option<f64>) {
+        let span =
+            self.knots.last().copied().unwrap_or(0.0) - self.knots.first().copied().unwrap_or(0.0);
+        let ws = kernels::inverse_power_of_two(span);
+        let inv = core::array::from_fn(|c| self.inv_scales.get(c).copied().unwrap_or(1.0));
+        kernels::build_open_curve::<D>(
+            &self.knots,
+            points,
+            inv,
+            &self.alphas,
+            uniform,
+            ws,
+            &mut self.coefs,
+            &mut self.d,
+            &mut self.points,
+        );
+    }
+
+    /// Coordinate `c` of knot point `i` (the curve's point at knot `i`) in the
+    /// curve's units, from `f`, the scaled control point's coordinate.
+    #[inline]
+    pub(crate) fn knot_coord_with(&self, f: f64, i: usize, c: usize) -> f64 {
+        ((f + self.d[i * self.dim + c]) * self.scales[c]).clamp(-f64::MAX, f64::MAX)
+    }
+
+    /// Coordinate `c` of knot point `i` in the curve's units.
+    #[inline]
+    pub(crate) fn knot_coord(&self, i: usize, c: usize) -> f64 {
+        self.knot_coord_with(self.fv(i, c), i, c)
     }
 
     /// Coordinate `c` of control point `i`, scaled: `P / scale`.
@@ -1411,14 +1422,7 @@ impl Curve {
     pub fn knot_points(&self) -> Vec<Vec<f64>> {
         let dim = self.dim;
         (0..self.n_points())
-            .map(|i| {
-                (0..dim)
-                    .map(|c| {
-                        ((self.fv(i, c) + self.d[i * dim + c]) * self.scales[c])
-                            .clamp(-f64::MAX, f64::MAX)
-                    })
-                    .collect()
-            })
+            .map(|i| (0..dim).map(|c| self.knot_coord(i, c)).collect())
             .collect()
     }
 

@@ -262,6 +262,17 @@ fn inverses(a: f64) -> (f64, f64) {
     (u * iau, a * iau)
 }
 
+/// [`inverses`] of `a` when the alphas differ (`PER`), for the sweeps; not
+/// formed (and not read) otherwise.
+#[inline(always)]
+fn inv_of<const PER: bool>(a: f64) -> (f64, f64) {
+    if PER {
+        inverses(a)
+    } else {
+        (0.0, 0.0)
+    }
+}
+
 /// `a - b` coordinate by coordinate.
 #[inline(always)]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
@@ -404,7 +415,6 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let (knots, values, alphas) = (self.knots, self.values, self.alphas);
         let ws = self.ws;
         let m = knots.len().saturating_sub(1);
-        let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
         let terms = |a: f64, (ia, iu): (f64, f64)| {
             if PER {
                 terms_from_inverses(a, ia, iu)
@@ -431,7 +441,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let mut hl = (k1 - k0) * ws;
         let mut fc = self.scaled(v1);
         let mut df_l = sub(fc, v0); // F_k - F_{k-1}, scaled
-        let mut terms_l = terms(a0, inv_of(a0));
+        let mut terms_l = terms(a0, inv_of::<PER>(a0));
         let mut since = 0;
         let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
         let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
@@ -442,7 +452,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
             let h2 = (kn[1] - kn[0]) * ws;
             kc = kn[1];
             let (f1, f2) = (self.scaled(vs[0]), self.scaled(vs[1]));
-            let (i1, i2) = (inv_of(al[0]), inv_of(al[1]));
+            let (i1, i2) = (inv_of::<PER>(al[0]), inv_of::<PER>(al[1]));
             let (t1, t2) = (terms(al[0], i1), terms(al[1], i2));
             let l1 = -h1 * terms_l[0];
             let d1 = h1 * terms_l[1] + hl * t1[2];
@@ -497,7 +507,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
             // The last row when their number is odd.
             let hr = (kr - kc) * ws;
             let fr = self.scaled(vr);
-            let ir = inv_of(ar);
+            let ir = inv_of::<PER>(ar);
             let terms_r = terms(ar, ir);
             let l = -hr * terms_l[0];
             let d = hr * terms_l[1] + hl * terms_r[2];
@@ -523,7 +533,6 @@ impl<'a, const D: usize> Sweep<'a, D> {
     ) {
         let (values, alphas) = (self.values, self.alphas);
         let m = self.knots.len().saturating_sub(1);
-        let inv_of = |a: f64| if PER { inverses(a) } else { (0.0, 0.0) };
         let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64, inv| {
             let pt = if PER {
                 let (ia, iu) = inv;
@@ -555,7 +564,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
             }
             let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
             // The alpha inverses, formed again.
-            let (ia, ib) = (inv_of(al[0]), inv_of(al[1]));
+            let (ia, ib) = (inv_of::<PER>(al[0]), inv_of::<PER>(al[1]));
             b.finish(
                 pieces(fk, f_next, d_k, d_next, al[1], ib),
                 vs[1],
@@ -573,13 +582,13 @@ impl<'a, const D: usize> Sweep<'a, D> {
             let (mb, yb) = slot.row();
             let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
             let f1 = self.scaled(v);
-            slot.finish(pieces(f1, f_next, d, d_next, a, inv_of(a)), v, d, kv);
+            slot.finish(pieces(f1, f_next, d, d_next, a, inv_of::<PER>(a)), v, d, kv);
             d_next = d;
             f_next = f1;
         }
         if let Some(slot) = head.first_mut() {
             let v0 = self.scaled(v0);
-            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, a0, inv_of(a0)));
+            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, a0, inv_of::<PER>(a0)));
         }
     }
 }

@@ -124,7 +124,7 @@ impl Curve {
                 (0..dim)
                     .map(|c| {
                         let f = if i == index { old_f[c] } else { self.fv(i, c) };
-                        ((f + self.d[i * dim + c]) * self.scales[c]).clamp(-f64::MAX, f64::MAX)
+                        self.knot_coord_with(f, i, c)
                     })
                     .collect()
             })
@@ -151,13 +151,7 @@ impl Curve {
         Ok(touched
             .iter()
             .zip(&old)
-            .filter(|(&i, old)| {
-                (0..dim).any(|c| {
-                    let now = ((self.fv(i, c) + self.d[i * dim + c]) * self.scales[c])
-                        .clamp(-f64::MAX, f64::MAX);
-                    (now - old[c]).abs() > tol
-                })
-            })
+            .filter(|(&i, old)| (0..dim).any(|c| (self.knot_coord(i, c) - old[c]).abs() > tol))
             .map(|(&i, _)| i)
             .collect())
     }
