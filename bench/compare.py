@@ -231,6 +231,7 @@ def main():
         ("construct, fresh allocation", "construct_fresh_ns_per_point", "construct"),
         ("eval sorted (ns/query)", "eval_sorted_ns_per_point", "eval_sorted"),
         ("eval random (ns/query)", "eval_random_ns_per_point", "eval_random"),
+        ("eval random, first after build", "eval_random_first_ns_per_point", "eval_random"),
         ("deriv1 sorted (ns/query)", "deriv1_sorted_ns_per_point", "deriv1_sorted"),
         ("deriv1 random (ns/query)", "deriv1_random_ns_per_point", "deriv1_random"),
         ("eval sorted, 2 threads", "par_eval_sorted_ns_per_point", "eval_sorted"),

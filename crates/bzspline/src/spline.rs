@@ -134,7 +134,11 @@ pub struct Extremum {
 /// the alphas (8 bytes a point each, for [`Spline::knots`], [`Spline::values`]
 /// and [`Spline::alphas`]) and the four coefficients of each piece (32 bytes a
 /// piece, aligned to 32 bytes), plus every 16th knot for the batch search:
-/// 56.5 bytes a point, see [`Spline::heap_bytes`].
+/// 56.5 bytes a point, see [`Spline::heap_bytes`]. The first batch of
+/// queries in random order at least `N / 32` long forms an index of those
+/// knots (a quarter of a byte a point), which later batches reuse until the
+/// next build: at `N = 10^6` it takes a quarter to half a millisecond, and
+/// makes a random query some 30 % faster when the knots are spread evenly.
 ///
 /// # Examples
 ///
@@ -157,8 +161,8 @@ pub struct Spline {
     /// Power-basis coefficients of piece `k` in `t = (x - tau_k) / h_k`, divided
     /// by `scale`. `coefs[k][0]` is the knot value `phi_k / scale`.
     coefs: Vec<Piece>,
-    /// Every 16th knot, for the random-order batch search.
-    summary: Vec<f64>,
+    /// Every 16th knot and an index of them, for the batch search.
+    summary: kernels::Summary,
     /// The one alpha of every interval, when a uniform build set them.
     uniform: UniformHint,
     scale: f64,
@@ -314,7 +318,7 @@ fn quick_check(
     knots: &[f64],
     values: &[f64],
     alphas: Alphas<'_>,
-    summary: &mut Vec<f64>,
+    summary: &mut kernels::Summary,
 ) -> Option<f64> {
     let n = knots.len();
     if n < 2 || values.len() != n {
@@ -328,14 +332,15 @@ fn quick_check(
     // Widths in four lanes, so that the loop vectorises; a stretch of
     // `STRIDE` knots at a time, whose first goes into the summary.
     const STRIDE: usize = kernels::STRIDE;
-    summary.clear();
-    summary.reserve(n.div_ceil(STRIDE));
+    let every = &mut summary.every;
+    every.clear();
+    every.reserve(n.div_ceil(STRIDE));
     let mut lanes = [true; 4];
     let (left, right) = (&knots[..n - 1], &knots[1..]);
     let (lc, rc) = (left.chunks_exact(STRIDE), right.chunks_exact(STRIDE));
     let (lr, rr) = (lc.remainder(), rc.remainder());
     for (l, r) in lc.zip(rc) {
-        summary.push(l[0]);
+        every.push(l[0]);
         for j in 0..STRIDE {
             let d = r[j] - l[j];
             lanes[j % 4] &= (d >= thr) & (d > 0.0);
@@ -346,7 +351,7 @@ fn quick_check(
         lanes[0] &= (d >= thr) & (d > 0.0);
     }
     // The stretches the loop did not reach (the last knot's included).
-    summary.extend(knots[(n - 1) / STRIDE * STRIDE..].iter().step_by(STRIDE));
+    every.extend(knots[(n - 1) / STRIDE * STRIDE..].iter().step_by(STRIDE));
     let mut ok = lanes.iter().all(|&b| b);
     // Four running maxima and finiteness flags, so that the loop vectorises.
     let mut mx = [0.0f64; 4];
@@ -376,6 +381,9 @@ fn quick_check(
         }
     }
     let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
+    if ok {
+        summary.formed(knots[n - 1]);
+    }
     ok.then_some(m)
 }
 
@@ -556,7 +564,7 @@ impl Spline {
             values: Vec::new(),
             alphas: Vec::new(),
             coefs: Vec::new(),
-            summary: Vec::new(),
+            summary: kernels::Summary::default(),
             uniform: UniformHint(None),
             scale: 1.0,
             pre: 1.0,
@@ -596,7 +604,7 @@ impl Spline {
             // Something is wrong (or on an edge the quick check does not
             // decide): the step-by-step validation names it. The summary of
             // the knots held first, which the check may have overwritten.
-            kernels::summarise(&self.knots, &mut self.summary);
+            self.summary.of(&self.knots);
             let reference = Self::build_reference(knots, values, alphas)?;
             let policy = self.extrapolate;
             *self = reference.with_extrapolation(policy);
@@ -667,8 +675,8 @@ impl Spline {
             .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
             .collect();
         let span = knots[knots.len() - 1] - knots[0];
-        let mut summary = Vec::new();
-        kernels::summarise(knots, &mut summary);
+        let mut summary = kernels::Summary::default();
+        summary.of(knots);
         let uniform = match given {
             Alphas::Uniform(a) => UniformHint(Some(a)),
             Alphas::PerInterval(_) => UniformHint(None),
@@ -691,15 +699,13 @@ impl Spline {
     }
 
     /// Bytes of heap memory the spline holds (the capacities of its vectors):
-    /// 56.5 bytes a point when built by [`Spline::build`].
+    /// 56.5 bytes a point when built by [`Spline::build`], 56.75 once a batch
+    /// of random-order queries has formed the search index.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
         let f = core::mem::size_of::<f64>();
-        (self.knots.capacity()
-            + self.values.capacity()
-            + self.alphas.capacity()
-            + self.summary.capacity())
-            * f
+        (self.knots.capacity() + self.values.capacity() + self.alphas.capacity()) * f
+            + self.summary.heap_bytes()
             + self.coefs.capacity() * core::mem::size_of::<Piece>()
     }
 
@@ -1541,8 +1547,8 @@ pub(crate) mod tests {
             let (x, f, a) = random_data(&mut rng, n, 1.0);
             for alphas in [Alphas::Uniform(0.5), Alphas::PerInterval(&a)] {
                 s.rebuild(&x, &f, alphas).unwrap();
-                let mut want = Vec::new();
-                kernels::summarise(&x, &mut want);
+                let mut want = kernels::Summary::default();
+                want.of(&x);
                 assert_eq!(s.summary, want, "n {n}");
                 let q: Vec<f64> = (0..64)
                     .map(|_| x[0] + (x[n - 1] - x[0]) * rng.next())
