@@ -796,6 +796,12 @@ impl Summary {
         }
     }
 
+    /// Whether a usable index is formed.
+    #[cfg(test)]
+    pub(crate) fn indexed(&self) -> bool {
+        self.index.get().is_some_and(|i| !i.start.is_empty())
+    }
+
     /// Bytes of heap memory held.
     pub(crate) fn heap_bytes(&self) -> usize {
         self.every.capacity() * core::mem::size_of::<f64>()

@@ -1563,6 +1563,62 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn random_order_batches_match_pointwise_with_and_without_the_search_index() {
+        let mut rng = Rng(0x51ed_270b_0a3f_1c25);
+        let mut s = Spline::new(&[0.0, 1.0], &[0.0, 1.0]).unwrap();
+        for n in [40usize, 300, 2_000, 5_000] {
+            for shape in 0..3 {
+                let (mut x, f, _) = random_data(&mut rng, n, 1.0);
+                match shape {
+                    // Widths over three decades, mixed: evenly spread at the
+                    // scale of the buckets.
+                    0 => {}
+                    // Runs of close knots between wide gaps.
+                    1 => {
+                        let mut t = 0.0;
+                        for (i, v) in x.iter_mut().enumerate() {
+                            t += if i % 50 < 45 {
+                                1e-3
+                            } else {
+                                10.0 * (1.0 + rng.next())
+                            };
+                            *v = t;
+                        }
+                    }
+                    // Geometric: too uneven for an index.
+                    _ => {
+                        for (i, v) in x.iter_mut().enumerate() {
+                            *v = (30.0 * i as f64 / n as f64).exp();
+                        }
+                    }
+                }
+                s.rebuild(&x, &f, Alphas::Uniform(0.5)).unwrap();
+                assert!(
+                    !s.summary.indexed(),
+                    "n {n} shape {shape}: a rebuild forgets it"
+                );
+                let (lo, hi) = (x[0], x[n - 1]);
+                let q: Vec<f64> = (0..n.max(100))
+                    .map(|_| lo + (hi - lo) * rng.next() * rng.next().sqrt())
+                    .collect();
+                let mut got = vec![0.0; q.len()];
+                for round in 0..2 {
+                    s.deriv_many(&q, 1, &mut got).unwrap();
+                    for (x, g) in q.iter().zip(&got) {
+                        let want = s.deriv(*x, 1).unwrap();
+                        assert_eq!(*g, want, "n {n} shape {shape} round {round} x {x}");
+                    }
+                }
+                // With a handful of entries even uneven knots keep theirs:
+                // it cannot cost much.
+                if n >= 300 {
+                    assert_eq!(s.summary.indexed(), shape < 2, "n {n} shape {shape}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn fused_build_and_batches_match_the_reference() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         for (case, &n) in [2usize, 3, 4, 5, 17, 18, 33, 100, 1000, 4097]
