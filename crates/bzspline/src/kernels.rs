@@ -796,6 +796,23 @@ impl Summary {
         }
     }
 
+    /// The last knot index `i` with `knots[i] <= x` (0 when there is none,
+    /// and any from the last stretch on past the last knot), for one query;
+    /// `knots` are those summarised. With an index that a batch has formed,
+    /// its search; without one, the summary's when the knots outgrow the
+    /// caches (its last halvings stay within two cache lines, where a search
+    /// over all knots touches a new line at each), else that plain search
+    /// (fewer instructions).
+    #[inline]
+    pub(crate) fn locate(&self, knots: &[f64], x: f64) -> usize {
+        let index = self.index(0).filter(|i| !i.start.is_empty());
+        if index.is_none() && knots.len() <= 1 << 18 {
+            knots.partition_point(|&k| k <= x).saturating_sub(1)
+        } else {
+            search_one(knots, (&self.every, index), x)
+        }
+    }
+
     /// Whether a usable index is formed.
     #[cfg(test)]
     pub(crate) fn indexed(&self) -> bool {

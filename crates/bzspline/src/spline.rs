@@ -136,8 +136,8 @@ pub struct Extremum {
 /// piece, aligned to 32 bytes), plus every 16th knot for the batch search:
 /// 56.5 bytes a point, see [`Spline::heap_bytes`]. The first batch of
 /// queries in random order at least `N / 32` long forms an index of those
-/// knots (a quarter of a byte a point), which later batches reuse until the
-/// next build: at `N = 10^6` it takes a quarter to half a millisecond, and
+/// knots (a quarter of a byte a point), which later batches and single
+/// queries reuse until the next build: at `N = 10^6` it takes a quarter to half a millisecond, and
 /// makes a random query some 30 % faster when the knots are spread evenly.
 ///
 /// # Examples
@@ -859,8 +859,7 @@ impl Spline {
     /// docs for the convention at knots); queries outside map to the end pieces.
     #[must_use]
     pub fn piece_index(&self, x: f64) -> usize {
-        let i = self.knots.partition_point(|&k| k <= x);
-        i.saturating_sub(1).min(self.len() - 1)
+        self.summary.locate(&self.knots, x).min(self.len() - 1)
     }
 
     /// The scaled knot value `phi_k / scale`.
@@ -979,7 +978,9 @@ impl Spline {
     /// into `out[i]`, with the same result as [`Spline::deriv`] at each point.
     /// The queries are taken in blocks of 32: a sorted block walks from the
     /// previous piece (one pass over sorted queries), an unsorted one is located
-    /// by a branchless binary search over the knots.
+    /// by a branchless binary search over every 16th knot (or over the one or
+    /// two of them that the search index leaves, see "Memory" above), then
+    /// over the 16 knots of one stretch.
     ///
     /// # Errors
     ///
@@ -1613,6 +1614,45 @@ pub(crate) mod tests {
                 // it cannot cost much.
                 if n >= 300 {
                     assert_eq!(s.summary.indexed(), shape < 2, "n {n} shape {shape}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn piece_index_is_the_last_knot_not_above_at_any_size() {
+        // Past 2^18 knots, and once a batch has formed the index, the single
+        // query takes the summary's search rather than one over all knots.
+        let mut rng = Rng(0x6a09_e667_f3bc_c908);
+        for n in [2usize, 17, 1_000, 300_000] {
+            let (x, f, _) = random_data(&mut rng, n, 1.0);
+            let s = Spline::new(&x, &f).unwrap();
+            let (lo, hi) = (x[0], x[n - 1]);
+            let mut q: Vec<f64> = (0..2_000).map(|_| lo + (hi - lo) * rng.next()).collect();
+            for i in (0..n).step_by((n / 500).max(1)) {
+                q.extend([x[i], x[i].next_down(), x[i].next_up()]);
+            }
+            q.extend([
+                f64::NAN,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                hi.next_up(),
+                lo.next_down(),
+            ]);
+            for indexed in [false, true] {
+                if indexed {
+                    // A batch of random order, long enough to form it.
+                    let b: Vec<f64> = (0..n.div_ceil(32) + 64)
+                        .map(|_| lo + (hi - lo) * rng.next())
+                        .collect();
+                    let mut out = vec![0.0; b.len()];
+                    s.eval_many(&b, &mut out).unwrap();
+                    // One piece: the batch only walks, and never searches.
+                    assert_eq!(s.summary.indexed(), n > 2, "n {n}");
+                }
+                for &x0 in &q {
+                    let want = x.partition_point(|&k| k <= x0).saturating_sub(1).min(n - 2);
+                    assert_eq!(s.piece_index(x0), want, "n {n} x {x0} index {indexed}");
                 }
             }
         }
