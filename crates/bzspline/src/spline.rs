@@ -137,8 +137,9 @@ pub struct Extremum {
 /// 56.5 bytes a point, see [`Spline::heap_bytes`]. The first batch of
 /// queries in random order at least `N / 32` long forms an index of those
 /// knots (a quarter of a byte a point), which later batches and single
-/// queries reuse until the next build: at `N = 10^6` it takes a quarter to half a millisecond, and
-/// makes a random query some 30 % faster when the knots are spread evenly.
+/// queries reuse until the next build: at `N = 10^6` it takes a quarter to
+/// half a millisecond, and makes a random query some 30 % faster when the
+/// knots are spread evenly.
 ///
 /// # Examples
 ///
@@ -979,8 +980,8 @@ impl Spline {
     /// The queries are taken in blocks of 32: a sorted block walks from the
     /// previous piece (one pass over sorted queries), an unsorted one is located
     /// by a branchless binary search over every 16th knot (or over the one or
-    /// two of them that the search index leaves, see "Memory" above), then
-    /// over the 16 knots of one stretch.
+    /// two of them that the search index leaves, see [`Spline`]'s notes on
+    /// memory), then over the 16 knots of one stretch.
     ///
     /// # Errors
     ///
