@@ -797,9 +797,9 @@ impl Summary {
         self.index = std::sync::OnceLock::new();
     }
 
-    /// The index, formed now if a batch of `queries` more pays for it: its
-    /// pass over the summary costs about what a quarter as many searches
-    /// save, so half as many queries as entries suffice.
+    /// The index, formed now if a batch of `queries` more pays for it:
+    /// forming it costs about what it saves the searches of a quarter as
+    /// many queries as the summary has entries, so half as many suffice.
     #[inline]
     fn index(&self, queries: usize) -> Option<&Index> {
         match self.index.get() {
