@@ -713,21 +713,6 @@ fn walk_piece<const O: u32>(
     scale: f64,
 ) -> usize {
     let c = *c;
-    // Two at a time while both lie in the piece, as sorted queries mostly
-    // do: one test for the pair, and the same operations on both, which the
-    // compiler does in the two lanes of one register.
-    while let (Some(&[x0, x1]), Some(o)) = (
-        xb.get(j..j + 2).and_then(|x| <&[f64; 2]>::try_from(x).ok()),
-        ob.get_mut(j..j + 2),
-    ) {
-        if !((x0 >= k0) & (x1 >= k0) & (x0 < k1) & (x1 < k1)) {
-            break;
-        }
-        let t = [(x0 - k0) * inv, (x1 - k0) * inv];
-        o[0] = per_h::<O>(poly::<O>(&c, t[0]) * scale, inv);
-        o[1] = per_h::<O>(poly::<O>(&c, t[1]) * scale, inv);
-        j += 2;
-    }
     while let (Some(&x), Some(o)) = (xb.get(j), ob.get_mut(j)) {
         if !(x >= k0 && x < k1) {
             break;
