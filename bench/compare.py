@@ -132,7 +132,7 @@ TARGETS = [
 
 
 def print_machine(base, sp, n, m, mr):
-    """The second and third tables: this machine against the targets' one."""
+    """The second table: this machine's kernels against the targets' one's."""
     here = dict(base)
     for q in ("construct", "eval_sorted", "eval_random"):
         here[f"CubicSpline {q}"] = sp["CubicSpline"][q]
@@ -151,14 +151,15 @@ def print_machine(base, sp, n, m, mr):
         # Bandwidth: higher is faster.
         slow = there / v if k.endswith("gb_per_s") else v / there
         print(f"| {k:40} | {there:7.1f} | {v:8.2f} | {slow:10.2f}x |")
-    print()
-    print("Targets scaled to this machine by each kernel (target x here / there):")
-    print(f"| {'target':30} | {'there':>5} | {'scaled by':40} | {'scaled':>7} | {'bzspline':>8} | {'held':>4} |")
-    print("|" + "-" * 32 + "|" + "-" * 7 + "|" + "-" * 42 + "|" + "-" * 9 + "|" + "-" * 10 + "|" + "-" * 6 + "|")
     return here
 
 
 def print_targets(here, bz):
+    """The third table: each target scaled to this machine, against bzspline."""
+    print()
+    print("Targets scaled to this machine by each kernel (target x here / there):")
+    print(f"| {'target':30} | {'there':>5} | {'scaled by':40} | {'scaled':>7} | {'bzspline':>8} | {'held':>4} |")
+    print("|" + "-" * 32 + "|" + "-" * 7 + "|" + "-" * 42 + "|" + "-" * 9 + "|" + "-" * 10 + "|" + "-" * 6 + "|")
     for label, target, bkey, keys in TARGETS:
         b = bz.get(bkey)
         for k in keys:

@@ -24,9 +24,8 @@
 mod common;
 
 use std::hint::{black_box, select_unpredictable};
-use std::time::Instant;
 
-use common::{median_ns, parse_args, pick, Rng};
+use common::{args_or_exit, f_median, median_ns, Rng};
 
 /// A tridiagonal system `a[i] x[i-1] + b[i] x[i] + c[i] x[i+1] = d[i]`
 /// (`a[0]` and `c[n-1]` unused), strictly diagonally dominant.
@@ -217,13 +216,7 @@ fn sum4(v: &[f64]) -> f64 {
 }
 
 fn main() {
-    let args = match parse_args(3, true) {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("baselines: {e}");
-            std::process::exit(2);
-        }
-    };
+    let args = args_or_exit("baselines", 3, true);
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
     let mut rng = Rng::seeded(args.seed);
 
@@ -262,16 +255,7 @@ fn main() {
     });
     // Writing a buffer that is already mapped, against writing a fresh one
     // (its page faults); the release of the fresh one is not timed.
-    let mut fresh_ns = Vec::with_capacity(r);
-    for _ in 0..=r {
-        let start = Instant::now();
-        let v = black_box(vec![1.0f64; len]);
-        fresh_ns.push(start.elapsed().as_nanos() as f64);
-        drop(v);
-    }
-    fresh_ns.remove(0);
-    fresh_ns.sort_by(f64::total_cmp);
-    let fresh = pick(&fresh_ns);
+    let fresh = f_median(r, &mut Vec::new(), || black_box(vec![1.0f64; len]));
     let fill = median_ns(r, || {
         dst.fill(1.0);
         black_box(&dst);

@@ -15,22 +15,15 @@
 mod common;
 
 use std::hint::black_box;
-use std::time::Instant;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Spline};
-use common::{median_ns, parse_args, pick, Rng};
+use common::{args_or_exit, f_median, median_ns, median_of, time_ns, Rng};
 
 /// Control points of the flattening benchmark's spiral.
 const SPIRAL: usize = 100_000;
 
 fn main() {
-    let args = match parse_args(2, false) {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("throughput: {e}");
-            std::process::exit(2);
-        }
-    };
+    let args = args_or_exit("throughput", 2, false);
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
     let mut rng = Rng::seeded(args.seed);
     let mut knots = Vec::with_capacity(n);
@@ -135,18 +128,15 @@ fn main() {
     // the search index that later ones reuse.
     let random_first = {
         let o = &mut out[..random.len()];
-        let mut t: Vec<f64> = (0..r)
-            .map(|_| {
-                let res = s.rebuild(black_box(&knots), black_box(&values), Alphas::default());
-                assert!(res.is_ok());
-                let start = Instant::now();
+        let ns = median_of(r, || {
+            let res = s.rebuild(black_box(&knots), black_box(&values), Alphas::default());
+            assert!(res.is_ok());
+            time_ns(|| {
                 assert!(s.deriv_many(&random, 0, o).is_ok());
                 black_box(&o);
-                start.elapsed().as_nanos() as f64
             })
-            .collect();
-        t.sort_by(f64::total_cmp);
-        pick(&t) / random.len().max(1) as f64
+        });
+        ns / random.len().max(1) as f64
     };
     let mut time_eval = |qs: &[f64], order: u32, par: bool| -> f64 {
         let o = &mut out[..qs.len()];
@@ -231,24 +221,6 @@ fn rebuild_ns(repeats: usize, pts: &[[f64; 2]]) -> f64 {
         }
         Err(_) => f64::NAN,
     }
-}
-
-/// Median time of `build`, keeping each result alive until after its timing so
-/// that the release of the memory is not counted.
-fn f_median<T>(repeats: usize, keep: &mut Vec<T>, mut build: impl FnMut() -> T) -> f64 {
-    drop(build());
-    let mut t: Vec<f64> = (0..repeats)
-        .map(|_| {
-            keep.clear();
-            let start = Instant::now();
-            let v = build();
-            let e = start.elapsed().as_nanos() as f64;
-            keep.push(v);
-            e
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    pick(&t)
 }
 
 #[cfg(feature = "rayon")]

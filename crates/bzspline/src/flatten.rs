@@ -239,7 +239,7 @@ impl Curve {
     /// cones are intersected as the run grows: one pass, no square loop.
     ///
     /// A nearly straight segment, whose inner control points lie within `w <=
-    /// tol / 2` of its own chord ([`Segment::straight_bow`]), is held by its
+    /// tol / 2` of its own chord ([`Segment::straight_gap`]), is held by its
     /// end points alone, with the tolerance `tol - w`: its inner control
     /// points are then within `tol` of `A B` by the triangle inequality. One
     /// cone a segment instead of three, and no Bezier points formed; a knot
@@ -278,7 +278,7 @@ impl Curve {
         }
         // The curve's last knot, held by segment n - 1.
         let (base, _) = window.fill(self, n - 1);
-        let w = window.bow[n - base];
+        let w = window.gap[n - base];
         let p = self.unit_knot_2d(n, rel);
         if run.hold_end(p, tol - if w > 0.0 { w } else { 0.0 }) == Some(true) {
             best = n;
@@ -314,7 +314,7 @@ struct Window {
     /// For the segment before the first and each held, the bound on the
     /// distance of its inner points from its chord when that is at most half
     /// the tolerance (the segment is nearly straight), else -1.
-    bow: [f64; WINDOW + 1],
+    gap: [f64; WINDOW + 1],
     /// The tolerance at the knot at the start of the segment: the search's,
     /// less the larger `w` of the two segments it joins.
     knot_tol: [f64; WINDOW],
@@ -332,7 +332,7 @@ impl Window {
             rel,
             x: [0.0; WINDOW],
             y: [0.0; WINDOW],
-            bow: [0.0; WINDOW + 1],
+            gap: [0.0; WINDOW + 1],
             knot_tol: [0.0; WINDOW],
         }
     }
@@ -340,7 +340,7 @@ impl Window {
     /// Whether held segment `i` is nearly straight.
     #[inline(always)]
     fn straight(&self, i: usize) -> bool {
-        self.bow[i + 1] >= 0.0
+        self.gap[i + 1] >= 0.0
     }
 
     /// Makes segment `e` (less than the curve's length) held; the first
@@ -365,22 +365,22 @@ impl Window {
         let len = (curve.len() - base).min(WINDOW);
         let q = curve.coefficients();
         let half = 0.5 * tol;
-        let (before, bows) = self.bow.split_at_mut(1);
-        for (((s, x), y), bow) in q[2 * base..2 * (base + len)]
+        let (before, gaps) = self.gap.split_at_mut(1);
+        for (((s, x), y), gap) in q[2 * base..2 * (base + len)]
             .chunks_exact(2)
             .zip(&mut self.x)
             .zip(&mut self.y)
-            .zip(bows)
+            .zip(gaps)
         {
             let seg = Segment::new(s[0], s[1], rel);
             [*x, *y] = seg.start();
-            *bow = seg.straight_bow(half);
+            *gap = seg.straight_gap(half);
         }
         before[0] = match base.checked_sub(1) {
-            Some(b) => Segment::new(q[2 * b], q[2 * b + 1], rel).straight_bow(half),
+            Some(b) => Segment::new(q[2 * b], q[2 * b + 1], rel).straight_gap(half),
             None => 0.0,
         };
-        for (t, w) in self.knot_tol.iter_mut().zip(self.bow[..=len].windows(2)) {
+        for (t, w) in self.knot_tol.iter_mut().zip(self.gap[..=len].windows(2)) {
             let m = if w[0] > w[1] { w[0] } else { w[1] };
             *t = tol - if m > 0.0 { m } else { 0.0 };
         }
@@ -462,7 +462,7 @@ impl Segment {
     /// cost 14 instructions a control point and saved no vertex on the
     /// benchmark's spiral (2,918 with it, 2,917 without).
     #[inline(always)]
-    fn straight_bow(&self, half: f64) -> f64 {
+    fn straight_gap(&self, half: f64) -> f64 {
         let gap = self.chord_gap();
         // NaN fails.
         if gap <= half {

@@ -753,8 +753,6 @@ pub(crate) const STRIDE: usize = 16;
 pub(crate) struct Summary {
     /// `knots[0], knots[STRIDE], knots[2 STRIDE], ...`
     pub(crate) every: Vec<f64>,
-    /// The last knot.
-    hi: f64,
     /// Formed by the first search of a batch large enough to pay for it
     /// (see [`Summary::index`]), so that building a spline costs nothing more.
     index: std::sync::OnceLock<Index>,
@@ -763,7 +761,7 @@ pub(crate) struct Summary {
 /// The index is formed from the rest when asked for: not part of the value.
 impl PartialEq for Summary {
     fn eq(&self, other: &Self) -> bool {
-        self.every == other.every && self.hi.to_bits() == other.hi.to_bits()
+        self.every == other.every
     }
 }
 
@@ -772,28 +770,30 @@ impl Summary {
     pub(crate) fn of(&mut self, knots: &[f64]) {
         self.every.clear();
         self.every.extend(knots.iter().step_by(STRIDE).copied());
-        self.formed(knots.last().copied().unwrap_or(0.0));
+        self.formed();
     }
 
-    /// Records that `every` now holds the summary of knots ending at `hi`
-    /// (and forgets the index of the knots before).
-    pub(crate) fn formed(&mut self, hi: f64) {
-        self.hi = hi;
+    /// Records that `every` now holds the summary of other knots (and
+    /// forgets the index of the knots before).
+    pub(crate) fn formed(&mut self) {
         self.index = std::sync::OnceLock::new();
     }
 
-    /// The index, formed now if a batch of `queries` more pays for it:
-    /// forming it costs about what it saves the searches of a quarter as
-    /// many queries as the summary has entries, so half as many suffice.
+    /// The index of the summary of knots ending at `hi`, when it is formed
+    /// and of use (see [`Index::of`]); formed now if a batch of `queries`
+    /// more pays for it: forming it costs about what it saves the searches
+    /// of a quarter as many queries as the summary has entries, so half as
+    /// many suffice.
     #[inline]
-    fn index(&self, queries: usize) -> Option<&Index> {
-        match self.index.get() {
-            Some(index) => Some(index),
+    fn index(&self, hi: f64, queries: usize) -> Option<&Index> {
+        let index = match self.index.get() {
+            Some(index) => index,
             None if 2 * queries >= self.every.len() => {
-                Some(self.index.get_or_init(|| Index::of(&self.every, self.hi)))
+                self.index.get_or_init(|| Index::of(&self.every, hi))
             }
-            None => None,
-        }
+            None => return None,
+        };
+        (!index.start.is_empty()).then_some(index)
     }
 
     /// The last knot index `i` with `knots[i] <= x` (0 when there is none,
@@ -805,7 +805,7 @@ impl Summary {
     /// (fewer instructions).
     #[inline]
     pub(crate) fn locate(&self, knots: &[f64], x: f64) -> usize {
-        let index = self.index(0).filter(|i| !i.start.is_empty());
+        let index = self.index(knots.last().copied().unwrap_or(0.0), 0);
         if index.is_none() && knots.len() <= 1 << 18 {
             knots.partition_point(|&k| k <= x).saturating_sub(1)
         } else {
@@ -1019,7 +1019,7 @@ impl Batch<'_> {
                         _ => {
                             // An index only if one is formed: a far jump in a walk does
                             // not pay for one.
-                            let find = (&self.summary.every[..], self.summary.index(0));
+                            let find = (&self.summary.every[..], self.summary.index(hi, 0));
                             let (next, far) = locate_from(knots, find, k, x);
                             jumps += usize::from(far);
                             k = next;
@@ -1042,7 +1042,10 @@ impl Batch<'_> {
                 search = jumps > 2;
             } else {
                 let mut idx = [0usize; BLOCK];
-                let find = (&self.summary.every[..], self.summary.index(xs.len() - base));
+                let find = (
+                    &self.summary.every[..],
+                    self.summary.index(hi, xs.len() - base),
+                );
                 search_block(knots, find, xb, &mut idx);
                 for (j, ((&x, o), &q)) in xb.iter().zip(ob.iter_mut()).zip(&idx).enumerate() {
                     if !(x >= lo && x < hi) {
@@ -1141,7 +1144,7 @@ fn search_block(knots: &[f64], (every, index): Find<'_>, xb: &[f64], idx: &mut [
     let mut stretch = [0usize; BLOCK];
     let entries = every.len();
     let mut len = entries;
-    if let Some(index) = index.filter(|i| !i.start.is_empty()) {
+    if let Some(index) = index {
         // Each query's candidates as a window of the block's widest length
         // `len`, moved left where it would run past the last entry: it still
         // holds them, and the halving then never probes past the end (where
@@ -1377,20 +1380,23 @@ mod tests {
         let mut summary = Summary::default();
         summary.of(&knots);
         assert_eq!(summary.every.len(), 100);
-        assert!(summary.index(49).is_none());
-        assert!(summary.index(0).is_none());
-        assert!(summary.index(50).is_some());
-        assert!(summary.index(0).is_some(), "kept once formed");
+        assert!(summary.index(1_599.0, 49).is_none());
+        assert!(summary.index(1_599.0, 0).is_none());
+        assert!(summary.index(1_599.0, 50).is_some());
+        assert!(summary.index(1_599.0, 0).is_some(), "kept once formed");
         let bytes = summary.heap_bytes();
         summary.of(&knots[..800]);
-        assert!(summary.index(0).is_none(), "forgotten with the knots");
+        assert!(
+            summary.index(799.0, 0).is_none(),
+            "forgotten with the knots"
+        );
         assert!(summary.heap_bytes() < bytes);
         let other = {
             let mut s = Summary::default();
             s.of(&knots[..800]);
             s
         };
-        assert!(summary.index(25).is_some());
+        assert!(summary.index(799.0, 25).is_some());
         assert_eq!(summary, other, "the index is not part of the value");
     }
 

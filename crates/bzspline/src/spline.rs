@@ -313,7 +313,7 @@ pub(crate) fn scale_for_max(m: f64) -> f64 {
 /// strictly increasing knots.
 ///
 /// As it reads the knots it puts every [`kernels::STRIDE`]-th into `summary`
-/// (see [`kernels::summarise`]), which then needs no pass over them of its
+/// (see [`kernels::Summary`]), which then needs no pass over them of its
 /// own; when it returns `None` the summary may be partly written.
 fn quick_check(
     knots: &[f64],
@@ -383,7 +383,7 @@ fn quick_check(
     }
     let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
     if ok {
-        summary.formed(knots[n - 1]);
+        summary.formed();
     }
     ok.then_some(m)
 }

@@ -69,19 +69,48 @@ pub fn parse_args(min_n: usize, stream: bool) -> Result<Args, String> {
     Ok(a)
 }
 
+/// The options, or the error on standard error (naming the example `name`)
+/// and exit code 2.
+pub fn args_or_exit(name: &str, min_n: usize, stream: bool) -> Args {
+    parse_args(min_n, stream).unwrap_or_else(|e| {
+        eprintln!("{name}: {e}");
+        std::process::exit(2);
+    })
+}
+
+/// Nanoseconds `f` takes.
+pub fn time_ns(f: impl FnOnce()) -> f64 {
+    let start = Instant::now();
+    f();
+    start.elapsed().as_nanos() as f64
+}
+
+/// The median (see [`pick`]) of `repeats` timings, each the nanoseconds
+/// `run` returns (so that it can do untimed work around what it times).
+pub fn median_of(repeats: usize, mut run: impl FnMut() -> f64) -> f64 {
+    let mut t: Vec<f64> = (0..repeats).map(|_| run()).collect();
+    t.sort_by(f64::total_cmp);
+    pick(&t)
+}
+
 /// Median wall time in nanoseconds of `repeats` runs of `f`, after one
 /// warm-up (the smallest with `BZ_MIN=1`, see [`pick`]).
 pub fn median_ns(repeats: usize, mut f: impl FnMut()) -> f64 {
     f();
-    let mut t: Vec<f64> = (0..repeats)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_nanos() as f64
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    pick(&t)
+    median_of(repeats, || time_ns(&mut f))
+}
+
+/// Median time of `build`, after one warm-up, keeping each result alive until
+/// after its timing so that the release of the memory is not counted.
+pub fn f_median<T>(repeats: usize, keep: &mut Vec<T>, mut build: impl FnMut() -> T) -> f64 {
+    drop(build());
+    median_of(repeats, || {
+        keep.clear();
+        let mut v = None;
+        let e = time_ns(|| v = Some(build()));
+        keep.extend(v);
+        e
+    })
 }
 
 /// The median, or the minimum when `BZ_MIN=1` is set (steadier on a busy
