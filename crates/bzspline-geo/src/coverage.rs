@@ -1,0 +1,226 @@
+//! A coverage of geo-types geometries: their lines and rings in one
+//! [`Topology`], smoothed together and put back in the geometries' shapes.
+
+use geo_types::{Coord, Geometry, GeometryCollection, Line, LineString, MultiLineString};
+use geo_types::{MultiPolygon, Polygon};
+
+use crate::error::Error;
+use crate::smooth::{SmoothOptions, Stats};
+use crate::topology::{snap, ChainKind, Topology};
+
+/// Where a chain came from: the geometry, the member of a multi-geometry or
+/// collection (0 for a single one), the ring of a polygon (0 the shell).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Origin {
+    geometry: usize,
+    member: usize,
+    ring: usize,
+    polygon: bool,
+}
+
+/// Geometries whose lines and rings are smoothed as one coverage: a border
+/// that two polygons (or a polygon and a line) share is smoothed once and
+/// comes out identical in both.
+///
+/// Points and MultiPoints pass through; Rects and Triangles are smoothed as
+/// the polygons they are and come out as Polygons; a Line is a two-position
+/// line and keeps its positions.
+///
+/// # Examples
+///
+/// ```
+/// use bzspline_geo::{Coverage, SmoothOptions};
+/// use geo_types::{polygon, Geometry};
+///
+/// let a = polygon![(x: 0.0, y: 0.0), (x: 2.0, y: 0.0), (x: 2.0, y: 1.0), (x: 1.0, y: 2.0), (x: 0.0, y: 1.0)];
+/// let b = polygon![(x: 2.0, y: 0.0), (x: 4.0, y: 0.0), (x: 4.0, y: 2.0), (x: 2.0, y: 1.0)];
+/// let coverage = Coverage::new(vec![Geometry::Polygon(a), Geometry::Polygon(b)], None)?;
+/// let (out, stats) = coverage.smooth(&SmoothOptions::default().tolerance(1e-3))?;
+/// assert_eq!(stats.shared_arcs, 1);
+/// // The border (2, 0) - (2, 1) is in both, unchanged: its ends are nodes
+/// // and it is straight.
+/// let ring = |g: &Geometry| match g {
+///     Geometry::Polygon(p) => p.exterior().0.clone(),
+///     _ => unreachable!(),
+/// };
+/// assert!(ring(&out[0]).contains(&(2.0, 1.0).into()));
+/// assert!(ring(&out[1]).contains(&(2.0, 1.0).into()));
+/// # Ok::<(), bzspline_geo::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Coverage {
+    geometries: Vec<Geometry<f64>>,
+    topology: Topology,
+    origins: Vec<Origin>,
+}
+
+impl Coverage {
+    /// Finds the topology of `geometries`; with `snap`, positions closer than
+    /// that distance are merged first ([`crate::topology::snap`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a coordinate that is not finite
+    /// ([`Coverage::describe`] names the geometry); [`Error::InvalidOption`]
+    /// for a snap distance that is not a finite non-negative number.
+    pub fn new(geometries: Vec<Geometry<f64>>, snap_distance: Option<f64>) -> Result<Self, Error> {
+        let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
+        let mut origins: Vec<Origin> = Vec::new();
+        let mut polygons: Vec<Vec<usize>> = Vec::new();
+        for (gi, g) in geometries.iter().enumerate() {
+            let mut member = 0;
+            visit(g, &mut |part| {
+                match part {
+                    Part::Line(coords) => {
+                        origins.push(Origin {
+                            geometry: gi,
+                            member,
+                            ring: 0,
+                            polygon: false,
+                        });
+                        chains.push((ChainKind::Line, coords));
+                    }
+                    Part::Polygon(p) => {
+                        let first = chains.len();
+                        for (ri, r) in std::iter::once(p.exterior())
+                            .chain(p.interiors())
+                            .enumerate()
+                        {
+                            origins.push(Origin {
+                                geometry: gi,
+                                member,
+                                ring: ri,
+                                polygon: true,
+                            });
+                            chains.push((ChainKind::Ring, r.0.clone()));
+                        }
+                        polygons.push((first..chains.len()).collect());
+                    }
+                }
+                member += 1;
+            });
+        }
+        if let Some(eps) = snap_distance {
+            snap(&mut chains, eps)?;
+        }
+        let topology = Topology::from_chains(&chains, polygons)?;
+        Ok(Coverage {
+            geometries,
+            topology,
+            origins,
+        })
+    }
+
+    /// The topology: arcs, the lines and rings made of them, the polygons.
+    #[must_use]
+    pub fn topology(&self) -> &Topology {
+        &self.topology
+    }
+
+    /// The geometries as given.
+    #[must_use]
+    pub fn geometries(&self) -> &[Geometry<f64>] {
+        &self.geometries
+    }
+
+    /// Smooths the coverage (see [`Topology::smooth`]) and returns the
+    /// geometries with their smoothed lines and rings, and what was done.
+    ///
+    /// # Errors
+    ///
+    /// As [`Topology::smooth`].
+    pub fn smooth(&self, opts: &SmoothOptions) -> Result<(Vec<Geometry<f64>>, Stats), Error> {
+        let s = self.topology.smooth(opts)?;
+        Ok((self.assemble(&s.arcs), s.stats))
+    }
+
+    /// The geometries with every line and ring put together from `arcs` (the
+    /// topology's arcs, or smoothed ones with the same indices).
+    ///
+    /// # Panics
+    ///
+    /// When `arcs` has fewer arcs than the topology.
+    #[must_use]
+    pub fn assemble(&self, arcs: &[Vec<Coord>]) -> Vec<Geometry<f64>> {
+        let mut next = 0usize;
+        let mut take = || {
+            let c = self.topology.chain_coords(next, arcs);
+            next += 1;
+            c
+        };
+        self.geometries
+            .iter()
+            .map(|g| rebuild(g, &mut take))
+            .collect()
+    }
+
+    /// Says where an error's chain is: `geometry 4, member 1, ring 2: ...`.
+    #[must_use]
+    pub fn describe(&self, e: &Error) -> String {
+        let chain = match e {
+            Error::NonFinite { chain, .. } | Error::ArcIndex { chain, .. } => Some(*chain),
+            _ => None,
+        };
+        match chain.and_then(|c| self.origins.get(c)) {
+            Some(o) if o.polygon => format!(
+                "geometry {}, member {}, ring {}: {e}",
+                o.geometry, o.member, o.ring
+            ),
+            Some(o) => format!("geometry {}, member {}: {e}", o.geometry, o.member),
+            None => e.to_string(),
+        }
+    }
+}
+
+enum Part<'a> {
+    Line(Vec<Coord>),
+    Polygon(&'a Polygon<f64>),
+}
+
+/// Calls `f` on every line and polygon of `g`, in order.
+fn visit(g: &Geometry<f64>, f: &mut dyn FnMut(Part<'_>)) {
+    match g {
+        Geometry::Point(_) | Geometry::MultiPoint(_) => {}
+        Geometry::Line(l) => f(Part::Line(vec![l.start, l.end])),
+        Geometry::LineString(l) => f(Part::Line(l.0.clone())),
+        Geometry::MultiLineString(m) => m.0.iter().for_each(|l| f(Part::Line(l.0.clone()))),
+        Geometry::Polygon(p) => f(Part::Polygon(p)),
+        Geometry::MultiPolygon(m) => m.0.iter().for_each(|p| f(Part::Polygon(p))),
+        Geometry::Rect(r) => f(Part::Polygon(&r.to_polygon())),
+        Geometry::Triangle(t) => f(Part::Polygon(&t.to_polygon())),
+        Geometry::GeometryCollection(c) => c.0.iter().for_each(|g| visit(g, f)),
+    }
+}
+
+/// `g` with each line and ring, in the order [`visit`] meets them, from `take`.
+fn rebuild(g: &Geometry<f64>, take: &mut dyn FnMut() -> Vec<Coord>) -> Geometry<f64> {
+    let polygon = |rings: usize, take: &mut dyn FnMut() -> Vec<Coord>| {
+        let shell = LineString(take());
+        let holes = (1..rings).map(|_| LineString(take())).collect();
+        Polygon::new(shell, holes)
+    };
+    match g {
+        Geometry::Point(_) | Geometry::MultiPoint(_) => g.clone(),
+        Geometry::Line(l) => {
+            let c = take();
+            Geometry::Line(Line::new(
+                c.first().copied().unwrap_or(l.start),
+                c.last().copied().unwrap_or(l.end),
+            ))
+        }
+        Geometry::LineString(_) => Geometry::LineString(LineString(take())),
+        Geometry::MultiLineString(m) => Geometry::MultiLineString(MultiLineString(
+            m.0.iter().map(|_| LineString(take())).collect(),
+        )),
+        Geometry::Polygon(p) => Geometry::Polygon(polygon(1 + p.interiors().len(), take)),
+        Geometry::MultiPolygon(m) => Geometry::MultiPolygon(MultiPolygon(
+            m.0.iter()
+                .map(|p| polygon(1 + p.interiors().len(), take))
+                .collect(),
+        )),
+        Geometry::Rect(_) | Geometry::Triangle(_) => Geometry::Polygon(polygon(1, take)),
+        Geometry::GeometryCollection(c) => Geometry::GeometryCollection(GeometryCollection(
+            c.0.iter().map(|g| rebuild(g, take)).collect(),
+        )),
+    }
+}

@@ -1,0 +1,631 @@
+//! The topology of a coverage: its lines and rings cut into arcs, maximal
+//! runs of edges used by the same lines and rings, so that a border two
+//! polygons share is stored once.
+//!
+//! The arcs are found the way topojson-server finds them: a position is a
+//! *junction* when it ends a line or when it is met with two different pairs
+//! of neighbours (two runs of edges part or join there); every line and ring
+//! is cut at its junctions, and runs with the same positions in the same or
+//! the opposite order become one arc. A ring without junctions is one closed
+//! arc (an island, a lake, a lone polygon), found again when another ring has
+//! the same positions from any start and in either direction. Positions are
+//! compared exactly, bit for bit ([`snap`] merges near ones first).
+
+use std::collections::HashMap;
+
+use geo_types::Coord;
+use rstar::primitives::GeomWithData;
+use rstar::RTree;
+
+use crate::error::Error;
+
+/// One arc of a chain, in its stored direction or reversed (TopoJSON writes
+/// the reversed arc `k` as `!k`, that is `-k - 1`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ArcRef {
+    /// Index into [`Topology::arcs`].
+    pub arc: usize,
+    /// The chain runs along the arc from its last position to its first.
+    pub reversed: bool,
+}
+
+impl ArcRef {
+    /// The reference TopoJSON writes: `k`, or `!k` (`-k - 1`) when reversed.
+    #[must_use]
+    pub fn to_topojson(self) -> i64 {
+        let k = self.arc as i64;
+        if self.reversed {
+            -k - 1
+        } else {
+            k
+        }
+    }
+
+    /// The reference from TopoJSON's `k` or `!k`.
+    #[must_use]
+    pub fn from_topojson(k: i64) -> ArcRef {
+        if k < 0 {
+            ArcRef {
+                arc: (-(k + 1)) as usize,
+                reversed: true,
+            }
+        } else {
+            ArcRef {
+                arc: k as usize,
+                reversed: false,
+            }
+        }
+    }
+}
+
+/// Whether a chain is an open line or a closed ring.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ChainKind {
+    /// A LineString: its end positions stay where they are.
+    Line,
+    /// A polygon's ring: closed, first position equal to the last.
+    Ring,
+}
+
+/// A line or ring as the arcs it runs along, in order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chain {
+    /// Line or ring.
+    pub kind: ChainKind,
+    /// The arcs, each joined to the next at a shared end position.
+    pub arcs: Vec<ArcRef>,
+}
+
+/// Arcs, the lines and rings made of them, and which rings form a polygon.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Topology {
+    arcs: Vec<Vec<Coord>>,
+    chains: Vec<Chain>,
+    polygons: Vec<Vec<usize>>,
+}
+
+/// Bits of a coordinate for exact comparison; `-0.0` counts as `0.0`.
+fn key(c: Coord) -> (u64, u64) {
+    ((c.x + 0.0).to_bits(), (c.y + 0.0).to_bits())
+}
+
+impl Topology {
+    /// Finds the arcs of `chains` (lines and rings, each as its positions; a
+    /// ring's first position is repeated at its end or not, either is
+    /// accepted). `polygons` lists, for each polygon, the indices of its
+    /// rings in `chains`, the shell first. Consecutive equal positions are
+    /// merged.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a coordinate that is not finite;
+    /// [`Error::Polygon`] for a polygon that names a chain that is not a ring.
+    pub fn from_chains(
+        chains: &[(ChainKind, Vec<Coord>)],
+        polygons: Vec<Vec<usize>>,
+    ) -> Result<Topology, Error> {
+        check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
+        // Positions by identity, and each chain as their ids.
+        let mut ids: HashMap<(u64, u64), u32> = HashMap::new();
+        let mut points: Vec<Coord> = Vec::new();
+        let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.len());
+        for (ci, (kind, coords)) in chains.iter().enumerate() {
+            let mut path: Vec<u32> = Vec::with_capacity(coords.len() + 1);
+            for (pi, &c) in coords.iter().enumerate() {
+                if !(c.x.is_finite() && c.y.is_finite()) {
+                    return Err(Error::NonFinite {
+                        chain: ci,
+                        position: pi,
+                    });
+                }
+                let id = *ids.entry(key(c)).or_insert_with(|| {
+                    points.push(c);
+                    (points.len() - 1) as u32
+                });
+                if path.last() != Some(&id) {
+                    path.push(id);
+                }
+            }
+            if *kind == ChainKind::Ring {
+                while path.len() > 1 && path.first() == path.last() {
+                    path.pop();
+                }
+            }
+            paths.push((*kind, path));
+        }
+        let junction = junctions(points.len(), &paths);
+        let mut b = Builder::default();
+        let mut out_chains = Vec::with_capacity(paths.len());
+        for (kind, path) in &paths {
+            let arcs = match kind {
+                ChainKind::Line => b.cut_line(path, &junction),
+                ChainKind::Ring => b.cut_ring(path, &junction),
+            };
+            out_chains.push(Chain { kind: *kind, arcs });
+        }
+        let arcs = b
+            .arcs
+            .into_iter()
+            .map(|a| a.into_iter().map(|id| points[id as usize]).collect())
+            .collect();
+        Ok(Topology {
+            arcs,
+            chains: out_chains,
+            polygons,
+        })
+    }
+
+    /// A topology from arcs already found (TopoJSON's): each chain lists its
+    /// arcs in order, and `polygons` groups rings as in [`Topology::from_chains`].
+    /// Consecutive equal positions within an arc are merged.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::ArcIndex`] for a reference past the last arc;
+    /// [`Error::EmptyArc`] for an arc without positions;
+    /// [`Error::NonFinite`] (with the arc as `chain`) for a coordinate that is not
+    /// finite; [`Error::Polygon`] as for [`Topology::from_chains`].
+    pub fn from_arcs(
+        arcs: Vec<Vec<Coord>>,
+        chains: Vec<Chain>,
+        polygons: Vec<Vec<usize>>,
+    ) -> Result<Topology, Error> {
+        check_polygons(chains.len(), &polygons, |i| chains[i].kind)?;
+        let mut arcs = arcs;
+        for (ai, a) in arcs.iter_mut().enumerate() {
+            if let Some(pi) = a.iter().position(|c| !(c.x.is_finite() && c.y.is_finite())) {
+                return Err(Error::NonFinite {
+                    chain: ai,
+                    position: pi,
+                });
+            }
+            a.dedup_by(|p, q| key(*p) == key(*q));
+            if a.is_empty() {
+                return Err(Error::EmptyArc { arc: ai });
+            }
+        }
+        for (ci, c) in chains.iter().enumerate() {
+            if let Some(r) = c.arcs.iter().find(|r| r.arc >= arcs.len()) {
+                return Err(Error::ArcIndex {
+                    chain: ci,
+                    arc: r.to_topojson(),
+                    arcs: arcs.len(),
+                });
+            }
+        }
+        Ok(Topology {
+            arcs,
+            chains,
+            polygons,
+        })
+    }
+
+    /// The arcs' positions.
+    #[must_use]
+    pub fn arcs(&self) -> &[Vec<Coord>] {
+        &self.arcs
+    }
+
+    /// The lines and rings, in the order given.
+    #[must_use]
+    pub fn chains(&self) -> &[Chain] {
+        &self.chains
+    }
+
+    /// Each polygon's rings (indices into [`Topology::chains`]), shell first.
+    #[must_use]
+    pub fn polygons(&self) -> &[Vec<usize>] {
+        &self.polygons
+    }
+
+    /// How many chain references each arc has (2 or more: a shared border).
+    #[must_use]
+    pub fn uses(&self) -> Vec<u32> {
+        let mut uses = vec![0u32; self.arcs.len()];
+        for c in &self.chains {
+            for r in &c.arcs {
+                uses[r.arc] += 1;
+            }
+        }
+        uses
+    }
+
+    /// The positions of chain `i` assembled from `arcs` (these arcs, or
+    /// smoothed ones with the same indices): each arc in its direction, the
+    /// position two arcs share written once; a ring ends on its first position.
+    ///
+    /// # Panics
+    ///
+    /// When `i` is not a chain's index or `arcs` is shorter than the arcs.
+    #[must_use]
+    pub fn chain_coords(&self, i: usize, arcs: &[Vec<Coord>]) -> Vec<Coord> {
+        let chain = &self.chains[i];
+        let mut out: Vec<Coord> = Vec::new();
+        for r in &chain.arcs {
+            let arc = &arcs[r.arc];
+            let mut push = |c: Coord| {
+                if out.last().map(|&l| key(l)) != Some(key(c)) {
+                    out.push(c);
+                }
+            };
+            if r.reversed {
+                arc.iter().rev().for_each(|&c| push(c));
+            } else {
+                arc.iter().for_each(|&c| push(c));
+            }
+        }
+        if chain.kind == ChainKind::Ring {
+            if let Some(&first) = out.first() {
+                if out.len() == 1 || key(first) != key(out[out.len() - 1]) {
+                    out.push(first);
+                }
+            }
+        }
+        out
+    }
+}
+
+fn check_polygons(
+    n: usize,
+    polygons: &[Vec<usize>],
+    kind: impl Fn(usize) -> ChainKind,
+) -> Result<(), Error> {
+    for (pi, p) in polygons.iter().enumerate() {
+        if let Some(&c) = p.iter().find(|&&c| c >= n || kind(c) != ChainKind::Ring) {
+            return Err(Error::Polygon {
+                polygon: pi,
+                chain: c,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Marks every position that ends a line or is met with two different pairs
+/// of neighbours.
+fn junctions(n: usize, paths: &[(ChainKind, Vec<u32>)]) -> Vec<bool> {
+    const NONE: (u32, u32) = (u32::MAX, u32::MAX);
+    let mut seen = vec![NONE; n];
+    let mut junction = vec![false; n];
+    let mut meet = |p: u32, a: u32, b: u32| {
+        let pair = (a.min(b), a.max(b));
+        let s = &mut seen[p as usize];
+        if *s == NONE {
+            *s = pair;
+        } else if *s != pair {
+            junction[p as usize] = true;
+        }
+    };
+    for (kind, path) in paths {
+        let k = path.len();
+        match kind {
+            ChainKind::Line => {
+                for i in 1..k.saturating_sub(1) {
+                    meet(path[i], path[i - 1], path[i + 1]);
+                }
+            }
+            ChainKind::Ring => {
+                if k >= 2 {
+                    for i in 0..k {
+                        meet(path[i], path[(i + k - 1) % k], path[(i + 1) % k]);
+                    }
+                }
+            }
+        }
+    }
+    for (kind, path) in paths {
+        if *kind == ChainKind::Line {
+            if let (Some(&a), Some(&b)) = (path.first(), path.last()) {
+                junction[a as usize] = true;
+                junction[b as usize] = true;
+            }
+        }
+    }
+    junction
+}
+
+/// Cuts chains into arcs and finds each arc again when another chain runs
+/// along it.
+#[derive(Default)]
+struct Builder {
+    arcs: Vec<Vec<u32>>,
+    /// Open arcs by their ids; closed ones by a canonical rotation behind a
+    /// marker.
+    /// (arc, whether the stored closed arc runs against its canonical order).
+    index: HashMap<Vec<u32>, (usize, bool)>,
+}
+
+impl Builder {
+    fn open_arc(&mut self, run: &[u32]) -> ArcRef {
+        if let Some(&(arc, _)) = self.index.get(run) {
+            return ArcRef {
+                arc,
+                reversed: false,
+            };
+        }
+        let rev: Vec<u32> = run.iter().rev().copied().collect();
+        if let Some(&(arc, _)) = self.index.get(&rev) {
+            return ArcRef {
+                arc,
+                reversed: true,
+            };
+        }
+        self.arcs.push(run.to_vec());
+        let arc = self.arcs.len() - 1;
+        self.index.insert(run.to_vec(), (arc, false));
+        ArcRef {
+            arc,
+            reversed: false,
+        }
+    }
+
+    fn cut_line(&mut self, path: &[u32], junction: &[bool]) -> Vec<ArcRef> {
+        let mut out = Vec::new();
+        if path.len() < 2 {
+            if !path.is_empty() {
+                out.push(self.open_arc(path));
+            }
+            return out;
+        }
+        let mut start = 0;
+        for i in 1..path.len() {
+            if i + 1 == path.len() || junction[path[i] as usize] {
+                out.push(self.open_arc(&path[start..=i]));
+                start = i;
+            }
+        }
+        out
+    }
+
+    fn cut_ring(&mut self, path: &[u32], junction: &[bool]) -> Vec<ArcRef> {
+        let k = path.len();
+        if k == 0 {
+            return Vec::new();
+        }
+        match (0..k).find(|&i| junction[path[i] as usize]) {
+            Some(j) => {
+                let mut rotated: Vec<u32> = Vec::with_capacity(k + 1);
+                rotated.extend_from_slice(&path[j..]);
+                rotated.extend_from_slice(&path[..=j]);
+                self.cut_line(&rotated, junction)
+            }
+            None => vec![self.closed_arc(path)],
+        }
+    }
+
+    /// A ring without junctions: one closed arc, found again from any start
+    /// and in either direction.
+    fn closed_arc(&mut self, path: &[u32]) -> ArcRef {
+        let k = path.len();
+        let m = (0..k).min_by_key(|&i| path[i]).unwrap_or(0);
+        let fwd: Vec<u32> = (0..k).map(|j| path[(m + j) % k]).collect();
+        let bwd: Vec<u32> = (0..k).map(|j| path[(m + k - j) % k]).collect();
+        let (canon, reversed) = if bwd < fwd { (bwd, true) } else { (fwd, false) };
+        let mut key = Vec::with_capacity(k + 1);
+        key.push(u32::MAX);
+        key.extend_from_slice(&canon);
+        if let Some(&(arc, stored_reversed)) = self.index.get(&key) {
+            return ArcRef {
+                arc,
+                reversed: stored_reversed != reversed,
+            };
+        }
+        let mut closed = path.to_vec();
+        closed.push(path[0]);
+        self.arcs.push(closed);
+        let arc = self.arcs.len() - 1;
+        self.index.insert(key, (arc, reversed));
+        ArcRef {
+            arc,
+            reversed: false,
+        }
+    }
+}
+
+/// Moves every position to the first one met within `eps` of it (Euclidean
+/// distance, in the order of the chains and their positions), so that
+/// borders digitised twice with small differences become one. Chains are
+/// changed in place.
+///
+/// # Errors
+///
+/// [`Error::NonFinite`] for a coordinate that is not finite, or `eps` that is
+/// not a finite non-negative number (as chain `usize::MAX`).
+pub fn snap(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> Result<(), Error> {
+    if !(eps.is_finite() && eps >= 0.0) {
+        return Err(Error::InvalidOption {
+            what: "snap distance",
+            value: eps,
+        });
+    }
+    let mut reps: RTree<GeomWithData<[f64; 2], ()>> = RTree::new();
+    let eps2 = eps * eps;
+    for (ci, (_, coords)) in chains.iter_mut().enumerate() {
+        for (pi, c) in coords.iter_mut().enumerate() {
+            if !(c.x.is_finite() && c.y.is_finite()) {
+                return Err(Error::NonFinite {
+                    chain: ci,
+                    position: pi,
+                });
+            }
+            let p = [c.x, c.y];
+            match reps.nearest_neighbor(&p) {
+                Some(r) if dist2(r.geom(), &p) <= eps2 => {
+                    *c = Coord {
+                        x: r.geom()[0],
+                        y: r.geom()[1],
+                    };
+                }
+                _ => reps.insert(GeomWithData::new(p, ())),
+            }
+        }
+    }
+    Ok(())
+}
+
+fn dist2(a: &[f64; 2], b: &[f64; 2]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn c(x: f64, y: f64) -> Coord {
+        Coord { x, y }
+    }
+
+    fn square(x: f64, y: f64) -> Vec<Coord> {
+        vec![
+            c(x, y),
+            c(x + 1.0, y),
+            c(x + 1.0, y + 1.0),
+            c(x, y + 1.0),
+            c(x, y),
+        ]
+    }
+
+    #[test]
+    fn two_squares_share_one_arc() {
+        let chains = vec![
+            (ChainKind::Ring, square(0.0, 0.0)),
+            (ChainKind::Ring, square(1.0, 0.0)),
+        ];
+        let t = Topology::from_chains(&chains, vec![vec![0], vec![1]]).unwrap();
+        let uses = t.uses();
+        assert_eq!(t.arcs().len(), 3, "arcs {:?}", t.arcs());
+        assert_eq!(uses.iter().filter(|&&u| u == 2).count(), 1, "{uses:?}");
+        // The shared arc is the edge x = 1, run in opposite directions.
+        let shared = uses.iter().position(|&u| u == 2).unwrap();
+        let refs: Vec<ArcRef> = t
+            .chains()
+            .iter()
+            .flat_map(|ch| ch.arcs.iter().copied())
+            .filter(|r| r.arc == shared)
+            .collect();
+        assert_eq!(refs.len(), 2);
+        assert_ne!(refs[0].reversed, refs[1].reversed);
+        // Chains assemble back to the same rings (rotated).
+        for (i, (_, given)) in chains.iter().enumerate() {
+            let ring = t.chain_coords(i, t.arcs());
+            assert_eq!(ring.len(), 5);
+            assert_eq!(ring[0], ring[4]);
+            for p in given {
+                assert!(ring.contains(p), "{p:?} missing from {ring:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn an_island_filling_a_hole_is_one_closed_arc() {
+        let shell = vec![
+            c(0.0, 0.0),
+            c(9.0, 0.0),
+            c(9.0, 9.0),
+            c(0.0, 9.0),
+            c(0.0, 0.0),
+        ];
+        let hole = vec![
+            c(3.0, 3.0),
+            c(3.0, 5.0),
+            c(5.0, 5.0),
+            c(5.0, 3.0),
+            c(3.0, 3.0),
+        ];
+        // The island runs the other way and starts elsewhere.
+        let island = vec![
+            c(5.0, 5.0),
+            c(3.0, 5.0),
+            c(3.0, 3.0),
+            c(5.0, 3.0),
+            c(5.0, 5.0),
+        ];
+        let chains = vec![
+            (ChainKind::Ring, shell),
+            (ChainKind::Ring, hole.clone()),
+            (ChainKind::Ring, island.clone()),
+        ];
+        let t = Topology::from_chains(&chains, vec![vec![0, 1], vec![2]]).unwrap();
+        assert_eq!(t.arcs().len(), 2);
+        assert_eq!(t.chains()[1].arcs[0].arc, t.chains()[2].arcs[0].arc);
+        let h = t.chain_coords(1, t.arcs());
+        let i = t.chain_coords(2, t.arcs());
+        // Same positions, opposite directions, as given.
+        let turn = |r: &[Coord]| -> f64 {
+            r.windows(2)
+                .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+                .sum()
+        };
+        assert!(turn(&h) * turn(&hole) > 0.0);
+        assert!(turn(&i) * turn(&island) > 0.0);
+    }
+
+    #[test]
+    fn a_line_ending_on_a_ring_cuts_it() {
+        let chains = vec![
+            (ChainKind::Ring, square(0.0, 0.0)),
+            (ChainKind::Line, vec![c(1.0, 1.0), c(2.0, 2.0), c(3.0, 2.0)]),
+        ];
+        let t = Topology::from_chains(&chains, vec![vec![0]]).unwrap();
+        // The ring is cut at (1, 1), where the line ends; a ring with one
+        // junction is one arc from that junction round to it.
+        let ring = &t.chains()[0];
+        let a = &t.arcs()[ring.arcs[0].arc];
+        assert_eq!(ring.arcs.len(), 1);
+        assert_eq!(a[0], c(1.0, 1.0));
+        assert_eq!(a[a.len() - 1], c(1.0, 1.0));
+    }
+
+    #[test]
+    fn topojson_references() {
+        for k in [0i64, 1, 7, -1, -2, -8] {
+            assert_eq!(ArcRef::from_topojson(k).to_topojson(), k);
+        }
+        assert_eq!(
+            ArcRef::from_topojson(-1),
+            ArcRef {
+                arc: 0,
+                reversed: true
+            }
+        );
+    }
+
+    #[test]
+    fn snapping_merges_near_positions() {
+        let mut chains = vec![
+            (ChainKind::Line, vec![c(0.0, 0.0), c(1.0, 0.0)]),
+            (ChainKind::Line, vec![c(1.0 + 1e-9, 1e-9), c(2.0, 0.0)]),
+        ];
+        snap(&mut chains, 1e-6).unwrap();
+        assert_eq!(chains[1].1[0], c(1.0, 0.0));
+        assert_eq!(chains[1].1[1], c(2.0, 0.0));
+    }
+
+    #[test]
+    fn bad_input_is_named() {
+        let chains = vec![(ChainKind::Line, vec![c(0.0, 0.0), c(f64::NAN, 0.0)])];
+        assert_eq!(
+            Topology::from_chains(&chains, vec![]),
+            Err(Error::NonFinite {
+                chain: 0,
+                position: 1
+            })
+        );
+        let e = Topology::from_arcs(
+            vec![vec![c(0.0, 0.0), c(1.0, 0.0)]],
+            vec![Chain {
+                kind: ChainKind::Line,
+                arcs: vec![ArcRef::from_topojson(-3)],
+            }],
+            vec![],
+        );
+        assert_eq!(
+            e,
+            Err(Error::ArcIndex {
+                chain: 0,
+                arc: -3,
+                arcs: 1
+            })
+        );
+    }
+}
