@@ -34,7 +34,8 @@ pub enum Command {
     /// standard input). The output is PNG when its name ends in `.png`, else SVG;
     /// without -o, SVG goes to standard output.
     Plot(crate::plot::PlotArgs),
-    /// Smooth the lines and rings of a GeoJSON document.
+    /// Smooth the lines and polygons of a GeoJSON or TopoJSON document as one
+    /// coverage: shared borders smoothed once, valid polygons kept valid.
     Smooth(SmoothArgs),
     /// Serve an interactive editor over HTTP.
     Serve(crate::serve::ServeArgs),
@@ -87,6 +88,8 @@ pub enum InputFormat {
     Geojson,
     /// Newline-delimited GeoJSON, one feature or geometry per line.
     Geojsonseq,
+    /// A TopoJSON Topology (`smooth` only; recognised by its content too).
+    Topojson,
 }
 
 /// The shape of the spline.
@@ -259,11 +262,98 @@ pub struct SmoothArgs {
     #[arg(long, value_enum, value_name = "KIND", default_value_t = ParamArg::Centripetal)]
     pub param: ParamArg,
     /// Largest distance between the smooth curve and the output polyline, in
-    /// coordinate units.
-    #[arg(long, value_name = "T")]
-    pub tolerance: f64,
+    /// coordinate units. Default: 1e-4 of the diagonal of the data's bounding
+    /// box (of each line's, for newline-delimited GeoJSON).
+    #[arg(long, value_name = "T", value_parser = positive)]
+    pub tolerance: Option<f64>,
+    /// Smooth every ring and line on its own, as if it had no neighbours (the
+    /// borders that features share are no longer shared afterwards).
+    #[arg(long, conflicts_with_all = ["snap", "keep_angle"])]
+    pub independent: bool,
+    /// Merge positions closer than EPS before finding the shared borders
+    /// (for borders digitised twice with small differences).
+    #[arg(long, value_name = "EPS", value_parser = non_negative)]
+    pub snap: Option<f64>,
+    /// Keep every position where the line turns by more than DEG degrees as a
+    /// sharp corner (street blocks, buildings, survey lines).
+    #[arg(long, value_name = "DEG", value_parser = degrees)]
+    pub keep_angle: Option<f64>,
+    /// Print a summary (features, rings, arcs, refinements, positions, area
+    /// change) on standard error; printed anyway when it is a terminal.
+    #[arg(long)]
+    pub stats: bool,
+    /// Output format: GeoJSON (the default) or TopoJSON (also chosen by an
+    /// output file name ending in `.topojson`).
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub output_format: Option<SmoothFormat>,
+    /// With TopoJSON input and GeoJSON output: only the features of this
+    /// object (all objects are smoothed together either way).
+    #[arg(long, value_name = "NAME")]
+    pub object: Option<String>,
     #[command(flatten)]
     pub output: OutputArgs,
+}
+
+/// Output formats of `smooth`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SmoothFormat {
+    /// A GeoJSON document (newline-delimited for newline-delimited input).
+    Geojson,
+    /// A TopoJSON Topology with the smoothed arcs.
+    Topojson,
+}
+
+/// An error in the arguments found after parsing them: exit code 2.
+#[derive(Debug)]
+pub struct UsageError(String);
+
+impl UsageError {
+    /// The error with its message.
+    #[must_use]
+    pub fn new(msg: &str) -> Self {
+        UsageError(msg.to_owned())
+    }
+}
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for UsageError {}
+
+fn parse_number(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .map_err(|_| format!("'{s}' is not a number"))
+}
+
+fn positive(s: &str) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be a positive number (got {s})"))
+    }
+}
+
+fn non_negative(s: &str) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be a number of at least 0 (got {s})"))
+    }
+}
+
+fn degrees(s: &str) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if (0.0..=180.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("must be an angle from 0 to 180 degrees (got {s})"))
+    }
 }
 
 /// The validated shape options.

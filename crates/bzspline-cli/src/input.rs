@@ -6,7 +6,7 @@ use std::fmt;
 use std::io::Read;
 use std::path::Path;
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use serde_json::Value;
 
 use crate::cli::{InputArgs, InputFormat};
@@ -294,6 +294,7 @@ pub fn format_of(file: Option<&Path>, explicit: Option<InputFormat>) -> InputFor
         Some("tsv" | "tab") => InputFormat::Tsv,
         Some("json") => InputFormat::Json,
         Some("geojson") => InputFormat::Geojson,
+        Some("topojson") => InputFormat::Topojson,
         Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => InputFormat::Geojsonseq,
         _ => InputFormat::Csv,
     }
@@ -317,6 +318,9 @@ pub fn load(args: &InputArgs) -> Result<Points> {
         InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t'), max),
         InputFormat::Json => parse_json(&name, &bytes, max),
         InputFormat::Geojson => parse_geojson_points(&name, &bytes, max),
+        InputFormat::Topojson => {
+            bail!("{name}: TopoJSON holds a coverage: `bzspline smooth` reads it; fit, eval, sample and plot take a table, JSON or GeoJSON")
+        }
         InputFormat::Geojsonseq => {
             // The first feature of the stream.
             let text = utf8(&name, &bytes)?;

@@ -11,6 +11,7 @@ mod output;
 mod plot;
 mod serve;
 mod smooth;
+mod topojson;
 
 fn main() {
     let args = cli::Cli::parse();
@@ -21,6 +22,7 @@ fn main() {
         let chain: Vec<String> = e.chain().map(ToString::to_string).collect();
         // One line, whatever the messages contain.
         eprintln!("error: {}", chain.join(": ").replace(['\n', '\r'], " "));
-        std::process::exit(1);
+        let usage = e.downcast_ref::<cli::UsageError>().is_some();
+        std::process::exit(if usage { 2 } else { 1 });
     }
 }

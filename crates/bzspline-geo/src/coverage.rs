@@ -154,21 +154,56 @@ impl Coverage {
             .collect()
     }
 
-    /// Says where an error's chain is: `geometry 4, member 1, ring 2: ...`.
+    /// Where an error's chain (or, for an arc's error, the first chain that
+    /// uses the arc) comes from.
     #[must_use]
-    pub fn describe(&self, e: &Error) -> String {
+    pub fn locate(&self, e: &Error) -> Option<Location> {
         let chain = match e {
             Error::NonFinite { chain, .. } | Error::ArcIndex { chain, .. } => Some(*chain),
+            Error::Overflow { arc } | Error::Spline { arc, .. } | Error::EmptyArc { arc } => self
+                .topology
+                .chains()
+                .iter()
+                .position(|c| c.arcs.iter().any(|r| r.arc == *arc)),
             _ => None,
-        };
-        match chain.and_then(|c| self.origins.get(c)) {
-            Some(o) if o.polygon => format!(
-                "geometry {}, member {}, ring {}: {e}",
-                o.geometry, o.member, o.ring
-            ),
-            Some(o) => format!("geometry {}, member {}: {e}", o.geometry, o.member),
+        }?;
+        let o = self.origins.get(chain)?;
+        Some(Location {
+            geometry: o.geometry,
+            member: o.member,
+            ring: o.polygon.then_some(o.ring),
+        })
+    }
+
+    /// The error with its place: `geometry 4, member 1, ring 2: ...`.
+    #[must_use]
+    pub fn describe(&self, e: &Error) -> String {
+        match self.locate(e) {
+            Some(l) => format!("{l}: {e}"),
             None => e.to_string(),
         }
+    }
+}
+
+/// Where in the geometries a line or ring is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Location {
+    /// The geometry's index.
+    pub geometry: usize,
+    /// The line or polygon within a multi-geometry or collection (0 for a
+    /// single one), counted over nested collections in order.
+    pub member: usize,
+    /// The ring of a polygon (0 the shell); `None` for a line.
+    pub ring: Option<usize>,
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "geometry {}, member {}", self.geometry, self.member)?;
+        if let Some(r) = self.ring {
+            write!(f, ", ring {r}")?;
+        }
+        Ok(())
     }
 }
 

@@ -43,7 +43,7 @@ mod error;
 pub mod smooth;
 pub mod topology;
 
-pub use coverage::Coverage;
+pub use coverage::{Coverage, Location};
 pub use error::Error;
 pub use smooth::{SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL};
 pub use topology::{ArcRef, Chain, ChainKind, Topology};

@@ -578,6 +578,13 @@ fn smooth_arc(
         return Ok((arc.to_vec(), Vec::new(), 0));
     }
     let closed = is_closed(arc);
+    if closed && n_legs < 3 {
+        // Too few distinct positions for a ring's curve: kept as it is.
+        let all: Vec<usize> = (0..=n_legs).map(|j| j % n_legs).collect();
+        let (mut out, mut segs) = (Vec::new(), Vec::new());
+        keep(arc, &all, &mut out, &mut segs);
+        return finish(ai, out, segs, 0, closed);
+    }
     // Leg l runs from position l to l + 1 (for a closed arc, modulo n_legs).
     let straight = |l: usize| levels[l] >= STRAIGHT;
     // A position cuts the arc when it is fixed or ends a straight leg.

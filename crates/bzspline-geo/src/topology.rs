@@ -232,7 +232,8 @@ impl Topology {
 
     /// The positions of chain `i` assembled from `arcs` (these arcs, or
     /// smoothed ones with the same indices): each arc in its direction, the
-    /// position two arcs share written once; a ring ends on its first position.
+    /// position two arcs share written once; a ring ends on its first position
+    /// and has at least four (a collapsed one repeats its first).
     ///
     /// # Panics
     ///
@@ -257,6 +258,11 @@ impl Topology {
         if chain.kind == ChainKind::Ring {
             if let Some(&first) = out.first() {
                 if out.len() == 1 || key(first) != key(out[out.len() - 1]) {
+                    out.push(first);
+                }
+                // A ring collapsed to one or two positions still has the four
+                // a ring needs (RFC 7946).
+                while out.len() < 4 {
                     out.push(first);
                 }
             }

@@ -24,6 +24,7 @@ fn check_all(input: &[Geometry<f64>], output: &[Geometry<f64>]) {
     }
     let crossings = brute_force_crossings(output);
     assert_eq!(crossings, 0, "{crossings} pairs of segments cross");
+    assert_eq!(grid_crossings(output), 0, "the grid search finds crossings");
     valid_stays_valid(input, output).unwrap_or_else(|e| panic!("{e}"));
 }
 

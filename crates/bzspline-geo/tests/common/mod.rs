@@ -207,55 +207,106 @@ fn on(a: Coord, b: Coord, p: Coord) -> bool {
         && p.y <= a.y.max(b.y)
 }
 
+/// The distinct segments of all geometries (a shared border once).
+fn distinct_segments(gs: &[Geometry<f64>]) -> Vec<(Coord, Coord)> {
+    let mut seen = HashSet::new();
+    gs.iter()
+        .flat_map(segments)
+        .filter(|&(a, b)| bits(a) != bits(b) && seen.insert(seg_key(a, b)))
+        .collect()
+}
+
+/// Two distinct segments meet anywhere but at a common end position, or
+/// overlap.
+fn pair_conflicts((a0, a1): (Coord, Coord), (b0, b1): (Coord, Coord)) -> bool {
+    if a0.x.max(a1.x) < b0.x.min(b1.x)
+        || b0.x.max(b1.x) < a0.x.min(a1.x)
+        || a0.y.max(a1.y) < b0.y.min(b1.y)
+        || b0.y.max(b1.y) < a0.y.min(a1.y)
+    {
+        return false;
+    }
+    let shared = [a0, a1]
+        .iter()
+        .any(|&p| bits(p) == bits(b0) || bits(p) == bits(b1));
+    let d1 = orient(a0, a1, b0);
+    let d2 = orient(a0, a1, b1);
+    let d3 = orient(b0, b1, a0);
+    let d4 = orient(b0, b1, a1);
+    let proper = d1 * d2 < 0.0 && d3 * d4 < 0.0;
+    let touch = on(a0, a1, b0) || on(a0, a1, b1) || on(b0, b1, a0) || on(b0, b1, a1);
+    if !shared {
+        return proper || touch;
+    }
+    // Sharing one end: they conflict when collinear and leaving it together,
+    // or when the other end of one lies on the other.
+    let (e, oa, ob) = if bits(a0) == bits(b0) {
+        (a0, a1, b1)
+    } else if bits(a0) == bits(b1) {
+        (a0, a1, b0)
+    } else if bits(a1) == bits(b0) {
+        (a1, a0, b1)
+    } else {
+        (a1, a0, b0)
+    };
+    let together =
+        d1 == 0.0 && d2 == 0.0 && (oa.x - e.x) * (ob.x - e.x) + (oa.y - e.y) * (ob.y - e.y) > 0.0;
+    together || on(a0, a1, ob) || on(b0, b1, oa)
+}
+
 /// Brute force over every pair of distinct segments of all geometries: the
 /// pairs that meet anywhere but at a common end position, or overlap.
 pub fn brute_force_crossings(gs: &[Geometry<f64>]) -> usize {
-    let mut seen = HashSet::new();
-    let segs: Vec<(Coord, Coord)> = gs
-        .iter()
-        .flat_map(segments)
-        .filter(|&(a, b)| bits(a) != bits(b) && seen.insert(seg_key(a, b)))
-        .collect();
+    let segs = distinct_segments(gs);
     let mut bad = 0;
     for i in 0..segs.len() {
-        let (a0, a1) = segs[i];
-        for &(b0, b1) in &segs[i + 1..] {
-            if a0.x.max(a1.x) < b0.x.min(b1.x)
-                || b0.x.max(b1.x) < a0.x.min(a1.x)
-                || a0.y.max(a1.y) < b0.y.min(b1.y)
-                || b0.y.max(b1.y) < a0.y.min(a1.y)
-            {
-                continue;
-            }
-            let shared = [a0, a1]
-                .iter()
-                .any(|&p| bits(p) == bits(b0) || bits(p) == bits(b1));
-            let d1 = orient(a0, a1, b0);
-            let d2 = orient(a0, a1, b1);
-            let d3 = orient(b0, b1, a0);
-            let d4 = orient(b0, b1, a1);
-            let proper = d1 * d2 < 0.0 && d3 * d4 < 0.0;
-            let touch = (!shared || d1 == 0.0 && d2 == 0.0)
-                && (on(a0, a1, b0) || on(a0, a1, b1) || on(b0, b1, a0) || on(b0, b1, a1));
-            let collinear_overlap = shared && d1 == 0.0 && d2 == 0.0 && {
-                // Sharing one end, collinear: overlap unless they leave it apart.
-                let (e, oa, ob) = if bits(a0) == bits(b0) {
-                    (a0, a1, b1)
-                } else if bits(a0) == bits(b1) {
-                    (a0, a1, b0)
-                } else if bits(a1) == bits(b0) {
-                    (a1, a0, b1)
-                } else {
-                    (a1, a0, b0)
-                };
-                (oa.x - e.x) * (ob.x - e.x) + (oa.y - e.y) * (ob.y - e.y) > 0.0
-            };
-            if proper || (touch && !shared) || collinear_overlap {
+        for &q in &segs[i + 1..] {
+            if pair_conflicts(segs[i], q) {
                 bad += 1;
             }
         }
     }
     bad
+}
+
+/// The same count as [`brute_force_crossings`], with the pairs tried only
+/// within the cells of a uniform grid, for inputs too large for all pairs.
+pub fn grid_crossings(gs: &[Geometry<f64>]) -> usize {
+    let segs = distinct_segments(gs);
+    if segs.is_empty() {
+        return 0;
+    }
+    let mean = segs
+        .iter()
+        .map(|(a, b)| (b.x - a.x).hypot(b.y - a.y))
+        .sum::<f64>()
+        / segs.len() as f64;
+    let cell = (4.0 * mean).max(f64::MIN_POSITIVE);
+    let (x0, y0) = segs
+        .iter()
+        .fold((f64::INFINITY, f64::INFINITY), |(x, y), (a, b)| {
+            (x.min(a.x).min(b.x), y.min(a.y).min(b.y))
+        });
+    let idx = |v: f64, o: f64| ((v - o) / cell).floor() as i64;
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (k, (a, b)) in segs.iter().enumerate() {
+        for i in idx(a.x.min(b.x), x0)..=idx(a.x.max(b.x), x0) {
+            for j in idx(a.y.min(b.y), y0)..=idx(a.y.max(b.y), y0) {
+                grid.entry((i, j)).or_default().push(k);
+            }
+        }
+    }
+    let mut bad = HashSet::new();
+    for members in grid.values() {
+        for (x, &i) in members.iter().enumerate() {
+            for &j in &members[x + 1..] {
+                if pair_conflicts(segs[i], segs[j]) {
+                    bad.insert((i.min(j), i.max(j)));
+                }
+            }
+        }
+    }
+    bad.len()
 }
 
 /// The polygons' rings (shell first) of a geometry.
@@ -295,22 +346,27 @@ pub fn neighbours(gs: &[Geometry<f64>]) -> Vec<(usize, usize)> {
     pairs
 }
 
-/// For a pair of neighbours: their output boundaries share at least one
-/// segment, every segment of `a`'s output that lies on the border they
-/// shared in the input region is shared bit for bit, and their interiors do
-/// not overlap.
-pub fn share_border(out_a: &Geometry<f64>, out_b: &Geometry<f64>) -> Result<(), String> {
+/// The two geometries' boundaries have at least one segment in common, bit
+/// for bit.
+pub fn share_segment(out_a: &Geometry<f64>, out_b: &Geometry<f64>) -> Result<(), String> {
     let sa: HashSet<_> = segments(out_a)
         .into_iter()
         .map(|(a, b)| seg_key(a, b))
         .collect();
-    let sb: HashSet<_> = segments(out_b)
+    if segments(out_b)
         .into_iter()
-        .map(|(a, b)| seg_key(a, b))
-        .collect();
-    if sa.intersection(&sb).next().is_none() {
-        return Err("no segment in common".into());
+        .any(|(a, b)| sa.contains(&seg_key(a, b)))
+    {
+        Ok(())
+    } else {
+        Err("no segment in common".into())
     }
+}
+
+/// For a pair of neighbours: their output boundaries share at least one
+/// segment and their interiors do not overlap (geo's DE-9IM relate).
+pub fn share_border(out_a: &Geometry<f64>, out_b: &Geometry<f64>) -> Result<(), String> {
+    share_segment(out_a, out_b)?;
     let m = out_a.relate(out_b);
     if !m.is_touches() {
         return Err(format!("not touching only: {m:?}"));

@@ -1,181 +1,38 @@
-//! The `smooth` subcommand: every LineString and Polygon ring of a GeoJSON
-//! document is replaced by the paper's curve through its vertices (open for
-//! lines, closed for rings), flattened to within `--tolerance`.
+//! Smoothing ring by ring (`smooth --independent`, and documents whose
+//! positions carry z): every LineString and Polygon ring is replaced by the
+//! method's curve with its vertices as control points (open for lines, closed
+//! for rings), flattened to within the tolerance, on its own, with no regard
+//! for neighbours.
 //!
-//! Properties, ids, bounding boxes and foreign members are kept; Points and
-//! MultiPoints pass through; a third coordinate (z) is carried along as a 3D
-//! curve. Lines keep their end points exactly; rings come out closed (first
-//! vertex = last). Lines or rings with too few distinct vertices for a curve
-//! pass through unchanged. Newline-delimited GeoJSON is streamed line by line.
-//! A table of points (or `--example`) is read as one LineString.
+//! Properties, ids and foreign members are kept; Points and MultiPoints pass
+//! through; a third coordinate (z) is carried along as a 3D curve. Lines keep
+//! their end points exactly; rings come out closed (first vertex = last).
+//! Lines or rings with too few distinct vertices for a curve pass through
+//! unchanged.
 
-use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
-use std::path::Path;
-
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use bzspline::{CurveBuilder, Param, Repeats};
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 
-use crate::cli::{InputFormat, ParamArg, SmoothArgs};
 use crate::input;
-use crate::output::Sink;
 
-/// The validated options of `smooth`.
+/// The options of ring-by-ring smoothing.
 #[derive(Debug, Clone, PartialEq)]
-struct Options {
-    alpha: f64,
-    param: Param,
-    tolerance: f64,
-    limits: input::Limits,
-}
-
-/// Runs `smooth`.
-///
-/// # Errors
-///
-/// Bad options; `FILE:LINE: ...` for invalid JSON or GeoJSON;
-/// `FILE: feature i: ...` for a geometry the curve cannot take (mixed or
-/// unsupported coordinate counts, a tolerance too small); I/O errors.
-pub fn run(a: &SmoothArgs) -> Result<()> {
-    let alpha = a.alpha.unwrap_or(bzspline::DEFAULT_ALPHA);
-    crate::cli::check_alpha("--alpha", alpha)?;
-    if !(a.tolerance.is_finite() && a.tolerance > 0.0) {
-        bail!(
-            "--tolerance must be a positive number (got {})",
-            a.tolerance
-        );
-    }
-    let opts = Options {
-        alpha,
-        param: match a.param {
-            ParamArg::Uniform => Param::Uniform,
-            ParamArg::Chordal => Param::Chordal,
-            ParamArg::Centripetal => Param::Centripetal,
-        },
-        tolerance: a.tolerance,
-        limits: input::Limits::of(&a.input),
-    };
-    let file = a.input.file.as_deref();
-    let format = match (a.input.example, a.input.input_format) {
-        (Some(_), _) => InputFormat::Csv,
-        (None, Some(f)) => f,
-        (None, None) => match input::format_of(file, None) {
-            InputFormat::Geojsonseq => InputFormat::Geojsonseq,
-            InputFormat::Csv
-                if file.is_some_and(|f| f != Path::new("-") && has_table_extension(f)) =>
-            {
-                InputFormat::Csv
-            }
-            InputFormat::Tsv => InputFormat::Tsv,
-            _ => InputFormat::Geojson,
-        },
-    };
-    let mut sink = Sink::create(a.output.output.as_deref())?;
-    let doc = match format {
-        InputFormat::Geojson | InputFormat::Json => {
-            let (name, bytes) = input::read_source(file, opts.limits.max_bytes)?;
-            let text = input::utf8(&name, &bytes)?;
-            let doc: GeoJson = serde_json::from_str(text)
-                .map_err(|e| anyhow!("{name}:{}: invalid GeoJSON: {e}", e.line()))?;
-            smooth_document(doc, &opts, &name, true)?
-        }
-        InputFormat::Geojsonseq => {
-            stream(file, &opts, &mut sink)?;
-            return sink.finish();
-        }
-        InputFormat::Csv | InputFormat::Tsv => {
-            // A table (or an example) is one line: its rows are the vertices.
-            let points = input::load(&a.input)?;
-            input::check_columns(&points, &[2, 3], "2 or 3 coordinates")?;
-            let line: Vec<Position> = points.rows().map(|r| Position::from(r.to_vec())).collect();
-            let mut feature = Feature::from(Geometry::new(GeometryValue::LineString {
-                coordinates: line,
-            }));
-            feature.set_property("source", points.source.clone());
-            smooth_document(GeoJson::Feature(feature), &opts, &points.source, false)?
-        }
-    };
-    let s = serde_json::to_string(&doc).context("formatting GeoJSON")?;
-    sink.write_all(s.as_bytes())
-        .and_then(|()| sink.write_all(b"\n"))
-        .context("writing output")?;
-    sink.finish()
-}
-
-/// True for `.csv`, `.tsv`, `.tab` and `.txt` files.
-fn has_table_extension(f: &Path) -> bool {
-    f.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| ["csv", "tsv", "tab", "txt"].contains(&e.to_ascii_lowercase().as_str()))
-}
-
-/// Smooths newline-delimited GeoJSON one line at a time (RFC 8142 record
-/// separators are accepted), with a progress bar when stderr is a terminal.
-fn stream(file: Option<&Path>, opts: &Options, sink: &mut Sink) -> Result<()> {
-    let (name, reader, size): (String, Box<dyn Read>, Option<u64>) = match file {
-        Some(p) if p != Path::new("-") => {
-            let name = p.display().to_string();
-            let f = std::fs::File::open(p).with_context(|| format!("reading {name}"))?;
-            let size = f.metadata().ok().map(|m| m.len());
-            (name, Box::new(f), size)
-        }
-        _ => ("<stdin>".to_owned(), Box::new(std::io::stdin()), None),
-    };
-    let bar = if std::io::stderr().is_terminal() {
-        let bar = match size {
-            Some(n) => indicatif::ProgressBar::new(n),
-            None => indicatif::ProgressBar::new_spinner(),
-        };
-        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
-        Some(bar)
-    } else {
-        None
-    };
-    let mut reader = BufReader::new(reader);
-    let mut buf = Vec::new();
-    let mut line_no = 0usize;
-    let max_bytes = opts.limits.max_bytes;
-    loop {
-        buf.clear();
-        let n = (&mut reader)
-            .take(max_bytes.saturating_add(1))
-            .read_until(b'\n', &mut buf)
-            .with_context(|| format!("reading {name}"))?;
-        if n == 0 {
-            break;
-        }
-        line_no += 1;
-        if n as u64 > max_bytes {
-            bail!("{name}:{line_no}: a line longer than {max_bytes} bytes (--max-bytes)");
-        }
-        if let Some(bar) = &bar {
-            bar.inc(n as u64);
-        }
-        let here = format!("{name}:{line_no}");
-        let text = input::utf8(&here, &buf)
-            .map_err(|_| anyhow!("{here}: not valid UTF-8"))?
-            .trim_matches(|c: char| c.is_whitespace() || c == '\u{1e}');
-        if text.is_empty() {
-            continue;
-        }
-        let doc: GeoJson =
-            serde_json::from_str(text).map_err(|e| anyhow!("{here}: invalid GeoJSON: {e}"))?;
-        let out = smooth_document(doc, opts, &here, false)?;
-        let s = serde_json::to_string(&out).context("formatting GeoJSON")?;
-        sink.write_all(s.as_bytes())
-            .and_then(|()| sink.write_all(b"\n"))
-            .context("writing output")?;
-    }
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
-    }
-    Ok(())
+pub struct Options {
+    /// The shape parameter.
+    pub alpha: f64,
+    /// The curves' parametrisation.
+    pub param: Param,
+    /// The flattening tolerance.
+    pub tolerance: f64,
+    /// Input limits (positions per line).
+    pub limits: input::Limits,
 }
 
 /// Smooths every feature of a document; errors name `where_` and the feature
 /// (a lone feature or geometry is `feature 0` when `number_single`, else just
 /// `where_`, the line of newline-delimited input).
-fn smooth_document(
+pub fn smooth_document(
     doc: GeoJson,
     opts: &Options,
     where_: &str,

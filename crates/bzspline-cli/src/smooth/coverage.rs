@@ -1,0 +1,201 @@
+//! Smoothing a GeoJSON document as one coverage (the default): its features'
+//! geometries go to [`bzspline_geo::Coverage`] as geo-types, and come back
+//! into the same features, with properties, ids and foreign members kept.
+
+use anyhow::{anyhow, Result};
+use bzspline_geo::{Coverage, SmoothOptions, Stats};
+use geo_types::Coord;
+use geojson::{GeoJson, Geometry, GeometryValue};
+use serde_json::Value;
+
+/// A smoothed document and what is needed to write it as TopoJSON.
+pub struct Smoothed {
+    /// The document with smoothed geometries.
+    pub doc: GeoJson,
+    /// What smoothing did.
+    pub stats: Stats,
+    /// The coverage (its topology numbers the chains).
+    pub coverage: Coverage,
+    /// The smoothed arcs.
+    pub arcs: Vec<Vec<Coord>>,
+}
+
+/// The geometry slots of a document: one per feature (or the lone geometry).
+fn slots(doc: &mut GeoJson) -> Vec<&mut Option<Geometry>> {
+    match doc {
+        GeoJson::FeatureCollection(fc) => fc.features.iter_mut().map(|f| &mut f.geometry).collect(),
+        GeoJson::Feature(f) => vec![&mut f.geometry],
+        GeoJson::Geometry(_) => Vec::new(),
+    }
+}
+
+/// True when some position of the geometry has more than two numbers.
+pub fn has_z(v: &GeometryValue) -> bool {
+    let line = |l: &[geojson::Position]| l.iter().any(|p| p.len() > 2);
+    match v {
+        GeometryValue::Point { coordinates } => coordinates.len() > 2,
+        GeometryValue::MultiPoint { coordinates } | GeometryValue::LineString { coordinates } => {
+            line(coordinates)
+        }
+        GeometryValue::MultiLineString { coordinates } | GeometryValue::Polygon { coordinates } => {
+            coordinates.iter().any(|l| line(l))
+        }
+        GeometryValue::MultiPolygon { coordinates } => {
+            coordinates.iter().flatten().any(|l| line(l))
+        }
+        GeometryValue::GeometryCollection { geometries } => {
+            geometries.iter().any(|g| has_z(&g.value))
+        }
+    }
+}
+
+/// The most positions of one line or ring of the geometry.
+fn longest(v: &GeometryValue) -> usize {
+    match v {
+        GeometryValue::Point { .. } | GeometryValue::MultiPoint { .. } => 0,
+        GeometryValue::LineString { coordinates } => coordinates.len(),
+        GeometryValue::MultiLineString { coordinates } | GeometryValue::Polygon { coordinates } => {
+            coordinates.iter().map(Vec::len).max().unwrap_or(0)
+        }
+        GeometryValue::MultiPolygon { coordinates } => coordinates
+            .iter()
+            .flatten()
+            .map(Vec::len)
+            .max()
+            .unwrap_or(0),
+        GeometryValue::GeometryCollection { geometries } => geometries
+            .iter()
+            .map(|g| longest(&g.value))
+            .max()
+            .unwrap_or(0),
+    }
+}
+
+/// True when some geometry of the document has positions with z.
+pub fn document_has_z(doc: &GeoJson) -> bool {
+    match doc {
+        GeoJson::FeatureCollection(fc) => fc
+            .features
+            .iter()
+            .any(|f| f.geometry.as_ref().is_some_and(|g| has_z(&g.value))),
+        GeoJson::Feature(f) => f.geometry.as_ref().is_some_and(|g| has_z(&g.value)),
+        GeoJson::Geometry(g) => has_z(&g.value),
+    }
+}
+
+/// Smooths every feature's geometry of `doc` as one coverage. Errors name
+/// `where_` and the feature (`feature i`, or only `where_` for a lone
+/// feature or geometry when not `number_single`).
+pub fn smooth_document(
+    mut doc: GeoJson,
+    opts: &SmoothOptions,
+    snap: Option<f64>,
+    max_points: usize,
+    where_: &str,
+    number_single: bool,
+) -> Result<Smoothed> {
+    let collection = matches!(doc, GeoJson::FeatureCollection(_));
+    let place = |i: usize| {
+        if collection || number_single {
+            format!("{where_}: feature {i}")
+        } else {
+            where_.to_owned()
+        }
+    };
+    // Geometries as geo-types; a feature without one holds an empty
+    // collection so that geometry i is feature i.
+    let empty = || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
+    let too_long = |i: usize, g: &Geometry| -> Result<()> {
+        if longest(&g.value) > max_points {
+            return Err(anyhow!(
+                "{}: more than {max_points} positions (--max-points)",
+                place(i)
+            ));
+        }
+        Ok(())
+    };
+    let mut geoms: Vec<geo_types::Geometry<f64>> = Vec::new();
+    if let GeoJson::Geometry(g) = &doc {
+        too_long(0, g)?;
+        geoms.push(
+            geo_types::Geometry::try_from(&g.value).map_err(|e| anyhow!("{}: {e}", place(0)))?,
+        );
+    } else {
+        for (i, slot) in slots(&mut doc).into_iter().enumerate() {
+            geoms.push(match slot {
+                Some(g) => {
+                    too_long(i, g)?;
+                    geo_types::Geometry::try_from(&g.value)
+                        .map_err(|e| anyhow!("{}: {e}", place(i)))?
+                }
+                None => empty(),
+            });
+        }
+    }
+    let coverage = Coverage::new(geoms, snap).map_err(|e| anyhow!("{where_}: {e}"))?;
+    let located = |e: bzspline_geo::Error| match coverage.locate(&e) {
+        Some(l) => {
+            let ring = l.ring.map(|r| format!(", ring {r}")).unwrap_or_default();
+            anyhow!("{}, part {}{ring}: {e}", place(l.geometry), l.member)
+        }
+        None => anyhow!("{where_}: {e}"),
+    };
+    let s = coverage.topology().smooth(opts).map_err(located)?;
+    let out = coverage.assemble(&s.arcs);
+    let put = |g: &mut Geometry, o: &geo_types::Geometry<f64>| {
+        g.value = GeometryValue::from(o);
+        // A bounding box of the input may no longer be tight: dropped.
+        g.bbox = None;
+    };
+    if let GeoJson::Geometry(g) = &mut doc {
+        put(g, &out[0]);
+    } else {
+        for (slot, o) in slots(&mut doc).into_iter().zip(&out) {
+            if let Some(g) = slot {
+                put(g, o);
+            }
+        }
+    }
+    Ok(Smoothed {
+        doc,
+        stats: s.stats,
+        coverage,
+        arcs: s.arcs,
+    })
+}
+
+/// The features of a smoothed document as (id, properties, geometry), for
+/// [`crate::topojson::from_features`].
+pub fn features(doc: &GeoJson) -> Vec<(Option<Value>, Value, Option<&GeometryValue>)> {
+    let props = |p: &Option<geojson::JsonObject>| {
+        p.as_ref()
+            .map_or(Value::Object(serde_json::Map::new()), |m| {
+                Value::Object(m.clone())
+            })
+    };
+    let id = |i: &Option<geojson::feature::Id>| {
+        i.as_ref().map(|i| match i {
+            geojson::feature::Id::String(s) => Value::String(s.clone()),
+            geojson::feature::Id::Number(n) => Value::Number(n.clone()),
+        })
+    };
+    match doc {
+        GeoJson::FeatureCollection(fc) => fc
+            .features
+            .iter()
+            .map(|f| {
+                (
+                    id(&f.id),
+                    props(&f.properties),
+                    f.geometry.as_ref().map(|g| &g.value),
+                )
+            })
+            .collect(),
+        GeoJson::Feature(f) => vec![(
+            id(&f.id),
+            props(&f.properties),
+            f.geometry.as_ref().map(|g| &g.value),
+        )],
+        GeoJson::Geometry(g) => vec![(None, Value::Object(serde_json::Map::new()), Some(&g.value))],
+    }
+}

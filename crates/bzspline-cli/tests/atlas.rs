@@ -1,0 +1,144 @@
+//! The command on public coverages: US states and counties (us-atlas) and
+//! world countries (world-atlas), as TopoJSON and as the GeoJSON that
+//! topojson-client's `topo2geo` makes of them. The folder named by
+//! `BZSPLINE_ATLAS` holds them (`.ci/run` installs the packages and fills
+//! it); without it the test says so and checks nothing.
+//!
+//! Checked with helpers independent of the code under test: every pair of
+//! features that shared an edge in the input shares one in the output;
+//! crossings (a grid search over every pair of segments in a cell) are none
+//! where the input had none; every polygon valid in the input is valid
+//! (geo's `Validation`); every ring is a ring.
+
+#[path = "../../bzspline-geo/tests/common/mod.rs"]
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use geo_types::Geometry;
+
+const BIN: &str = env!("CARGO_BIN_EXE_bzspline");
+
+fn geometries(path: &Path) -> Vec<Geometry<f64>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let doc: geojson::GeoJson = text
+        .parse()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let geojson::GeoJson::FeatureCollection(fc) = doc else {
+        panic!("{}: not a FeatureCollection", path.display())
+    };
+    fc.features
+        .iter()
+        .map(|f| match &f.geometry {
+            Some(g) => Geometry::try_from(&g.value).expect("geo-types"),
+            None => Geometry::GeometryCollection(geo_types::GeometryCollection(vec![])),
+        })
+        .collect()
+}
+
+fn smooth(input: &Path, out: &Path, extra: &[&str]) -> String {
+    let o = Command::new(BIN)
+        .arg("smooth")
+        .arg(input)
+        .args(extra)
+        .arg("--stats")
+        .arg("-o")
+        .arg(out)
+        .output()
+        .expect("the binary runs");
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{}: {stderr}", input.display());
+    stderr
+}
+
+/// Checks one data set: `topo` (TopoJSON) and `geo` (its features as GeoJSON)
+/// smoothed both ways, against the GeoJSON input.
+fn check(dir: &Path, topo: &str, object: &str, geo: &str) {
+    let input = geometries(&dir.join(geo));
+    let pairs = common::neighbours(&input);
+    let crossings_in = common::grid_crossings(&input);
+    let tmp = std::env::temp_dir().join(format!("bzspline-atlas-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    for (source, extra) in [
+        (dir.join(topo), vec!["--object", object]),
+        (dir.join(geo), vec![]),
+    ] {
+        let out_path = tmp.join(format!("{object}.geojson"));
+        let stats = smooth(&source, &out_path, &extra);
+        let output = geometries(&out_path);
+        assert_eq!(output.len(), input.len(), "{}", source.display());
+        let lost: Vec<(usize, usize, String)> = pairs
+            .iter()
+            .filter_map(|&(a, b)| {
+                common::share_segment(&output[a], &output[b])
+                    .err()
+                    .map(|e| (a, b, e))
+            })
+            .collect();
+        assert!(
+            lost.is_empty(),
+            "{}: {} of {} neighbouring pairs lost their border, first {:?}",
+            source.display(),
+            lost.len(),
+            pairs.len(),
+            lost.first()
+        );
+        let crossings_out = common::grid_crossings(&output);
+        assert!(
+            crossings_out <= crossings_in,
+            "{}: {crossings_out} crossings after, {crossings_in} before",
+            source.display()
+        );
+        common::valid_stays_valid(&input, &output)
+            .unwrap_or_else(|e| panic!("{}: {e}", source.display()));
+        eprintln!(
+            "{}: {} features, {} neighbouring pairs kept, crossings {crossings_in} -> {crossings_out}\n{stats}",
+            source.display(),
+            input.len(),
+            pairs.len()
+        );
+    }
+}
+
+fn atlas() -> Option<PathBuf> {
+    let dir = PathBuf::from(std::env::var_os("BZSPLINE_ATLAS")?);
+    Some(dir)
+}
+
+#[test]
+fn us_states_keep_their_borders() {
+    let Some(dir) = atlas() else {
+        eprintln!("BZSPLINE_ATLAS is not set: no public coverage to check");
+        return;
+    };
+    check(&dir, "us-atlas/states-10m.json", "states", "states.geojson");
+}
+
+#[test]
+fn us_counties_keep_their_borders() {
+    let Some(dir) = atlas() else {
+        eprintln!("BZSPLINE_ATLAS is not set: no public coverage to check");
+        return;
+    };
+    check(
+        &dir,
+        "us-atlas/counties-10m.json",
+        "counties",
+        "counties.geojson",
+    );
+}
+
+#[test]
+fn world_countries_keep_their_borders() {
+    let Some(dir) = atlas() else {
+        eprintln!("BZSPLINE_ATLAS is not set: no public coverage to check");
+        return;
+    };
+    check(
+        &dir,
+        "world-atlas/countries-50m.json",
+        "countries",
+        "countries.geojson",
+    );
+}
