@@ -8,11 +8,11 @@
 //! arc hold them). Even there they conflict when they run on from the shared
 //! position in the same direction (an overlap).
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 use geo_types::Coord;
 use robust::{orient2d, Coord as RCoord};
-use rstar::{RTree, RTreeObject, AABB};
+use rstar::{Envelope, RTree, RTreeObject, AABB};
 
 /// A segment of polyline `line`, from its position `seg` to `seg + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -21,17 +21,32 @@ pub(crate) struct SegId {
     pub seg: u32,
 }
 
+/// Segments in one tree entry: a run of consecutive segments of one line
+/// under one box, so that the tree holds a fraction of the segments.
+const RUN: usize = 8;
+
+/// A run of up to [`RUN`] segments of line `line`, from segment `first`.
 struct Item {
-    id: SegId,
-    a: Coord,
-    b: Coord,
+    line: u32,
+    first: u32,
+    count: u32,
+    env: AABB<[f64; 2]>,
 }
 
 impl RTreeObject for Item {
     type Envelope = AABB<[f64; 2]>;
     fn envelope(&self) -> Self::Envelope {
-        AABB::from_corners([self.a.x, self.a.y], [self.b.x, self.b.y])
+        self.env
     }
+}
+
+fn seg_env(a: Coord, b: Coord) -> AABB<[f64; 2]> {
+    AABB::from_corners([a.x, a.y], [b.x, b.y])
+}
+
+fn boxes_meet(p: &AABB<[f64; 2]>, q: &AABB<[f64; 2]>) -> bool {
+    let (pl, pu, ql, qu) = (p.lower(), p.upper(), q.lower(), q.upper());
+    pl[0] <= qu[0] && ql[0] <= pu[0] && pl[1] <= qu[1] && ql[1] <= pu[1]
 }
 
 pub(crate) fn key(c: Coord) -> (u64, u64) {
@@ -79,7 +94,7 @@ pub(crate) struct Lines<'a> {
     pub lines: &'a [Vec<Coord>],
     /// A closed polyline's last segment is followed by its first.
     pub closed: &'a [bool],
-    pub nodes: &'a HashSet<(u64, u64)>,
+    pub nodes: &'a FxHashSet<(u64, u64)>,
 }
 
 impl Lines<'_> {
@@ -125,51 +140,96 @@ impl Lines<'_> {
         }
     }
 
-    /// Every conflicting pair with at least one segment on a line in `dirty`,
-    /// each pair once, in order.
-    pub(crate) fn conflicts(&self, dirty: &[bool]) -> Vec<(SegId, SegId)> {
-        let items: Vec<Item> = self
-            .lines
-            .iter()
-            .enumerate()
-            .flat_map(|(li, l)| {
-                l.windows(2).enumerate().map(move |(si, w)| Item {
-                    id: SegId {
-                        line: li as u32,
-                        seg: si as u32,
-                    },
-                    a: w[0],
-                    b: w[1],
-                })
-            })
-            .collect();
-        let tree = RTree::bulk_load(items);
+    /// The runs of segments of the lines `keep` selects.
+    fn runs(&self, keep: &dyn Fn(usize) -> bool) -> Vec<Item> {
         let mut out = Vec::new();
         for (li, l) in self.lines.iter().enumerate() {
-            if !dirty[li] {
+            if !keep(li) || l.len() < 2 {
                 continue;
             }
-            for (si, w) in l.windows(2).enumerate() {
-                let p = SegId {
-                    line: li as u32,
-                    seg: si as u32,
-                };
-                let env = AABB::from_corners([w[0].x, w[0].y], [w[1].x, w[1].y]);
-                for it in tree.locate_in_envelope_intersecting(&env) {
-                    let q = it.id;
-                    // A pair of two dirty lines is seen from both: keep one.
-                    if dirty[q.line as usize] && q < p {
-                        continue;
-                    }
-                    if self.conflict(p, q) {
-                        out.push((p, q));
-                    }
+            let n = l.len() - 1;
+            for first in (0..n).step_by(RUN) {
+                let count = RUN.min(n - first);
+                let mut env = seg_env(l[first], l[first + 1]);
+                for c in &l[first + 2..=first + count] {
+                    env.merge(&AABB::from_point([c.x, c.y]));
                 }
+                out.push(Item {
+                    line: li as u32,
+                    first: first as u32,
+                    count: count as u32,
+                    env,
+                });
+            }
+        }
+        out
+    }
+
+    /// Every conflicting pair with at least one segment on a line in `dirty`,
+    /// each pair once, in order.
+    ///
+    /// When most lines are dirty, every run of segments is put in one tree and
+    /// the dirty runs are looked up in it; when few are (a refinement round),
+    /// the tree holds only the dirty runs and every run is looked up in that,
+    /// which is much cheaper than building the whole tree again.
+    pub(crate) fn conflicts(&self, dirty: &[bool]) -> Vec<(SegId, SegId)> {
+        let total: usize = self.lines.iter().map(|l| l.len().saturating_sub(1)).sum();
+        let changed: usize = self
+            .lines
+            .iter()
+            .zip(dirty)
+            .filter(|(_, &d)| d)
+            .map(|(l, _)| l.len().saturating_sub(1))
+            .sum();
+        let few = changed * 8 < total;
+        let tree = RTree::bulk_load(if few {
+            self.runs(&|li| dirty[li])
+        } else {
+            self.runs(&|_| true)
+        });
+        let queries = self.runs(&|li| few || dirty[li]);
+        let mut out = Vec::new();
+        for p in &queries {
+            for q in tree.locate_in_envelope_intersecting(&p.env) {
+                // Both on dirty lines: the pair of runs is met from both sides.
+                let key = |i: &Item| (i.line, i.first);
+                if dirty[p.line as usize] && dirty[q.line as usize] && key(q) < key(p) {
+                    continue;
+                }
+                self.run_conflicts(p, q, &mut out);
             }
         }
         out.sort_unstable();
         out.dedup();
         out
+    }
+
+    /// The conflicting pairs of segments of two runs.
+    fn run_conflicts(&self, p: &Item, q: &Item, out: &mut Vec<(SegId, SegId)>) {
+        let (lp, lq) = (&self.lines[p.line as usize], &self.lines[q.line as usize]);
+        for i in p.first..p.first + p.count {
+            let ep = seg_env(lp[i as usize], lp[i as usize + 1]);
+            if !boxes_meet(&ep, &q.env) {
+                continue;
+            }
+            for j in q.first..q.first + q.count {
+                let eq = seg_env(lq[j as usize], lq[j as usize + 1]);
+                if !boxes_meet(&ep, &eq) {
+                    continue;
+                }
+                let a = SegId {
+                    line: p.line,
+                    seg: i,
+                };
+                let b = SegId {
+                    line: q.line,
+                    seg: j,
+                };
+                if self.conflict(a, b) {
+                    out.push((a.min(b), a.max(b)));
+                }
+            }
+        }
     }
 }
 
@@ -199,7 +259,7 @@ mod tests {
             vec![c(0.0, 0.0), c(0.0, 1.0)],
             vec![c(1.0, 0.0), c(1.0, -1.0)],
         ];
-        let mut nodes = HashSet::new();
+        let mut nodes = FxHashSet::default();
         for l in &lines[..2] {
             nodes.insert(key(l[0]));
             nodes.insert(key(l[l.len() - 1]));
@@ -233,7 +293,7 @@ mod tests {
             vec![c(0.0, 0.0), c(2.0, 0.0)],
             vec![c(0.0, 0.0), c(1.0, 0.0), c(1.0, 1.0)],
         ];
-        let nodes: HashSet<_> = [key(c(0.0, 0.0))].into_iter().collect();
+        let nodes: FxHashSet<_> = [key(c(0.0, 0.0))].into_iter().collect();
         let set = Lines {
             lines: &lines,
             closed: &[false, false],

@@ -18,7 +18,7 @@
 //! [`MAX_LEVEL`] is kept as the original edge, the last resort. Conflicts
 //! between two original edges were in the input and are left as they are.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use bzspline::{CurveBuilder, Param, Polyline};
 use geo_types::Coord;
@@ -240,9 +240,12 @@ impl Topology {
                 polygon_of[c] = Some(pi as u32);
             }
         }
+        let shoelace = Shoelace::about(arcs);
+        let cross_in: Vec<f64> = arcs.iter().map(|a| shoelace.arc(a)).collect();
+        let mut cross_out: Vec<f64> = vec![0.0; arcs.len()];
         let sign_in: Vec<f64> = (0..self.chains().len())
             .map(|ci| match self.chains()[ci].kind {
-                ChainKind::Ring => signed_area(&self.chain_coords(ci, arcs)).signum(),
+                ChainKind::Ring => shoelace.ring(self, ci, &cross_in).signum(),
                 ChainKind::Line => 0.0,
             })
             .collect();
@@ -251,20 +254,20 @@ impl Topology {
             .iter()
             .map(|p| holes_inside(self, p, arcs))
             .collect();
-        stats.area_in = self.area(arcs);
+        stats.area_in = shoelace.polygons(self, &cross_in);
 
         let mut levels: Vec<Vec<u8>> = arcs.iter().map(|a| vec![0; a.len() - 1]).collect();
         let mut out: Vec<Vec<Coord>> = vec![Vec::new(); arcs.len()];
         let mut segs: Vec<Vec<Seg>> = vec![Vec::new(); arcs.len()];
         let mut dirty = vec![true; arcs.len()];
-        let mut input_conflicts: HashSet<(SegId, SegId)> = HashSet::new();
-        let mut ever_refined: Vec<HashSet<u32>> = vec![HashSet::new(); arcs.len()];
+        let mut input_conflicts: FxHashSet<(SegId, SegId)> = FxHashSet::default();
         loop {
             stats.rounds += 1;
             for a in (0..arcs.len()).filter(|&a| dirty[a]) {
                 let (coords, s, kept) =
                     smooth_arc(a, &arcs[a], &plans[a], &levels[a], opts, tolerance)?;
                 stats.kept_pieces += kept;
+                cross_out[a] = shoelace.arc(&coords);
                 out[a] = coords;
                 segs[a] = s;
             }
@@ -298,8 +301,7 @@ impl Topology {
             suspects.dedup();
             let mut polys: Vec<usize> = Vec::new();
             for &ci in &suspects {
-                if sign_in[ci] != 0.0
-                    && signed_area(&self.chain_coords(ci, &out)).signum() != sign_in[ci]
+                if sign_in[ci] != 0.0 && shoelace.ring(self, ci, &cross_out).signum() != sign_in[ci]
                 {
                     bump_chain(self, ci, &segs, &mut bump);
                 }
@@ -334,19 +336,18 @@ impl Topology {
                     } else if *l < STRAIGHT {
                         *l += 1;
                     }
-                    ever_refined[a].insert(leg);
                 }
                 dirty[a] = true;
             }
         }
         stats.input_conflicts = input_conflicts.len();
-        stats.refined_legs = ever_refined.iter().map(HashSet::len).sum();
+        stats.refined_legs = levels.iter().flatten().filter(|&&l| l > 0).count();
         stats.straight_legs = levels
             .iter()
             .map(|l| l.iter().filter(|&&v| v == STRAIGHT).count())
             .sum();
         stats.positions_out = self.positions(&out);
-        stats.area_out = self.area(&out);
+        stats.area_out = shoelace.polygons(self, &cross_out);
         Ok(Smoothed { arcs: out, stats })
     }
 
@@ -359,31 +360,11 @@ impl Topology {
             .sum()
     }
 
-    /// Area of the polygons: shells less holes.
-    fn area(&self, arcs: &[Vec<Coord>]) -> f64 {
-        self.polygons()
-            .iter()
-            .map(|p| {
-                p.iter()
-                    .enumerate()
-                    .map(|(k, &c)| {
-                        let a = signed_area(&self.chain_coords(c, arcs)).abs();
-                        if k == 0 {
-                            a
-                        } else {
-                            -a
-                        }
-                    })
-                    .sum::<f64>()
-            })
-            .sum()
-    }
-
     /// Each arc's plan, and the nodes: positions where arcs may meet.
-    fn plans(&self, keep_angle: Option<f64>) -> (Vec<Plan>, HashSet<(u64, u64)>) {
+    fn plans(&self, keep_angle: Option<f64>) -> (Vec<Plan>, FxHashSet<(u64, u64)>) {
         let arcs = self.arcs();
         // How often each position occurs over all arcs (a closed arc's end once).
-        let mut count: HashMap<(u64, u64), u32> = HashMap::new();
+        let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
         for a in arcs {
             let distinct = if is_closed(a) {
                 &a[..a.len() - 1]
@@ -409,7 +390,7 @@ impl Topology {
                 min_out[r.arc] = min_out[r.arc].max(want.min(arcs[r.arc].len()));
             }
         }
-        let mut nodes: HashSet<(u64, u64)> = count
+        let mut nodes: FxHashSet<(u64, u64)> = count
             .iter()
             .filter(|&(_, &n)| n >= 2)
             .map(|(&k, _)| k)
@@ -517,16 +498,79 @@ fn turning_degrees(a: Coord, b: Coord, c: Coord) -> f64 {
         .to_degrees()
 }
 
-/// Twice the signed area... halved: the shoelace formula.
-fn signed_area(ring: &[Coord]) -> f64 {
-    if ring.len() < 3 {
-        return 0.0;
+/// Signed areas by the shoelace formula, summed over arcs: a ring's area is
+/// half the sum of its arcs' cross products (negated for a reversed arc), so
+/// no ring is assembled. Coordinates are taken about the centre of the data,
+/// which keeps the products small far from the origin.
+struct Shoelace {
+    origin: Coord,
+}
+
+impl Shoelace {
+    fn about(arcs: &[Vec<Coord>]) -> Shoelace {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for c in arcs.iter().flatten() {
+            lo = [lo[0].min(c.x), lo[1].min(c.y)];
+            hi = [hi[0].max(c.x), hi[1].max(c.y)];
+        }
+        let mid = |a: f64, b: f64| {
+            if a.is_finite() {
+                a / 2.0 + b / 2.0
+            } else {
+                0.0
+            }
+        };
+        Shoelace {
+            origin: Coord {
+                x: mid(lo[0], hi[0]),
+                y: mid(lo[1], hi[1]),
+            },
+        }
     }
-    let o = ring[0];
-    ring.windows(2)
-        .map(|w| (w[0].x - o.x) * (w[1].y - o.y) - (w[1].x - o.x) * (w[0].y - o.y))
-        .sum::<f64>()
-        / 2.0
+
+    /// The sum of `x_i y_{i+1} - x_{i+1} y_i` along an arc.
+    fn arc(&self, a: &[Coord]) -> f64 {
+        let o = self.origin;
+        a.windows(2)
+            .map(|w| (w[0].x - o.x) * (w[1].y - o.y) - (w[1].x - o.x) * (w[0].y - o.y))
+            .sum()
+    }
+
+    /// The signed area of ring `ci` (positive counter-clockwise).
+    fn ring(&self, t: &Topology, ci: usize, cross: &[f64]) -> f64 {
+        t.chains()[ci]
+            .arcs
+            .iter()
+            .map(|r| {
+                if r.reversed {
+                    -cross[r.arc]
+                } else {
+                    cross[r.arc]
+                }
+            })
+            .sum::<f64>()
+            / 2.0
+    }
+
+    /// Area of the polygons: shells less holes.
+    fn polygons(&self, t: &Topology, cross: &[f64]) -> f64 {
+        t.polygons()
+            .iter()
+            .map(|p| {
+                p.iter()
+                    .enumerate()
+                    .map(|(k, &c)| {
+                        let a = self.ring(t, c, cross).abs();
+                        if k == 0 {
+                            a
+                        } else {
+                            -a
+                        }
+                    })
+                    .sum::<f64>()
+            })
+            .sum()
+    }
 }
 
 /// Whether `p` is inside the closed `ring` (winding number with exact
@@ -765,6 +809,8 @@ fn collect(
     };
     let params = poly.params();
     let coords = poly.coords();
+    out.reserve(params.len());
+    segs.reserve(params.len());
     let mut prev = params[0];
     for (i, &p) in params.iter().enumerate() {
         let c = Coord {

@@ -11,7 +11,7 @@
 //! the same positions from any start and in either direction. Positions are
 //! compared exactly, bit for bit ([`snap`] merges near ones first).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use geo_types::Coord;
 use rstar::primitives::GeomWithData;
@@ -106,7 +106,7 @@ impl Topology {
     ) -> Result<Topology, Error> {
         check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
         // Positions by identity, and each chain as their ids.
-        let mut ids: HashMap<(u64, u64), u32> = HashMap::new();
+        let mut ids: FxHashMap<(u64, u64), u32> = FxHashMap::default();
         let mut points: Vec<Coord> = Vec::new();
         let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.len());
         for (ci, (kind, coords)) in chains.iter().enumerate() {
@@ -338,7 +338,7 @@ struct Builder {
     /// Open arcs by their ids; closed ones by a canonical rotation behind a
     /// marker.
     /// (arc, whether the stored closed arc runs against its canonical order).
-    index: HashMap<Vec<u32>, (usize, bool)>,
+    index: FxHashMap<Vec<u32>, (usize, bool)>,
 }
 
 impl Builder {
