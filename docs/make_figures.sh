@@ -14,3 +14,4 @@ for ext in svg png; do
         --title "Example 1 with α = 1/3, 1/2 and 2/3" -o "docs/alpha.$ext"
 done
 python3 docs/make_compare.py
+python3 docs/make_coverage.py   # coverage.png needs rsvg-convert (apt-get install librsvg2-bin)

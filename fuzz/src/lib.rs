@@ -18,6 +18,11 @@ pub mod input;
 #[path = "../../crates/bzspline-cli/src/model.rs"]
 pub mod model;
 
+/// The command's TopoJSON reader and writers, compiled from their source file
+/// like the readers.
+#[path = "../../crates/bzspline-cli/src/topojson.rs"]
+pub mod topojson;
+
 /// The editor server's `POST /api/fit` handler body: request parsing and the
 /// response, without the HTTP layer.
 #[path = "../../crates/bzspline-cli/src/serve/api.rs"]
@@ -56,6 +61,8 @@ pub mod cli {
         Geojson,
         /// Newline-delimited GeoJSON.
         Geojsonseq,
+        /// TopoJSON.
+        Topojson,
     }
 }
 

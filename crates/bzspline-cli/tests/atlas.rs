@@ -130,6 +130,27 @@ fn us_counties_keep_their_borders() {
 }
 
 #[test]
+fn readme_shows_the_counties_summary() {
+    let Some(dir) = atlas() else {
+        eprintln!("BZSPLINE_ATLAS is not set: no public coverage to check");
+        return;
+    };
+    let out = std::env::temp_dir().join(format!("bzspline-readme-{}.geojson", std::process::id()));
+    let stats = smooth(
+        &dir.join("us-atlas/counties-10m.json"),
+        &out,
+        &["--object", "counties"],
+    );
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+            .unwrap();
+    assert!(
+        readme.contains(&stats),
+        "README's smooth summary is stale:\n{stats}"
+    );
+}
+
+#[test]
 fn world_countries_keep_their_borders() {
     let Some(dir) = atlas() else {
         eprintln!("BZSPLINE_ATLAS is not set: no public coverage to check");

@@ -188,8 +188,11 @@ impl Job<'_> {
                 limits: self.limits,
             };
             let positions_in = positions(&doc);
+            let (rings, lines) = chains(&doc);
             let out = independent::smooth_document(doc, &opts, where_, number_single)?;
             let mut s = Stats::default();
+            s.rings = rings;
+            s.lines = lines;
             s.positions_in = positions_in;
             s.positions_out = positions(&out);
             s.tolerance = tolerance;
@@ -331,7 +334,7 @@ impl Job<'_> {
         );
         if !self.args.independent {
             s += &format!(
-                "  refined {} legs ({} kept as original edges) in {} rounds; {} crossings already in the input\n",
+                "  refined {} legs ({} kept as original edges) in {} rounds; {} pairs of edges already met in the input (left as they were)\n",
                 t.refined_legs, t.straight_legs, t.rounds, t.input_conflicts
             );
         }
@@ -394,6 +397,38 @@ fn each_position(doc: &GeoJson, f: &mut dyn FnMut(&Position)) {
         }
         GeoJson::Geometry(g) => geometry(&g.value, f),
     }
+}
+
+/// The rings and lines of a document.
+fn chains(doc: &GeoJson) -> (usize, usize) {
+    fn geometry(v: &GeometryValue) -> (usize, usize) {
+        match v {
+            GeometryValue::Point { .. } | GeometryValue::MultiPoint { .. } => (0, 0),
+            GeometryValue::LineString { .. } => (0, 1),
+            GeometryValue::MultiLineString { coordinates } => (0, coordinates.len()),
+            GeometryValue::Polygon { coordinates } => (coordinates.len(), 0),
+            GeometryValue::MultiPolygon { coordinates } => {
+                (coordinates.iter().map(Vec::len).sum(), 0)
+            }
+            GeometryValue::GeometryCollection { geometries } => geometries
+                .iter()
+                .map(|g| geometry(&g.value))
+                .fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1)),
+        }
+    }
+    let values: Vec<&GeometryValue> = match doc {
+        GeoJson::FeatureCollection(fc) => fc
+            .features
+            .iter()
+            .filter_map(|f| f.geometry.as_ref().map(|g| &g.value))
+            .collect(),
+        GeoJson::Feature(f) => f.geometry.iter().map(|g| &g.value).collect(),
+        GeoJson::Geometry(g) => vec![&g.value],
+    };
+    values
+        .into_iter()
+        .map(geometry)
+        .fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
 }
 
 fn positions(doc: &GeoJson) -> usize {
