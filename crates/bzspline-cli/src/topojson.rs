@@ -112,7 +112,8 @@ pub fn read(name: &str, v: Value) -> Result<TopoDoc> {
         origins: Vec::new(),
     };
     for (oname, o) in objects {
-        r.geometry(o, &format!("object '{oname}'"))?;
+        // Names and types are quoted with escapes: a message stays one line.
+        r.geometry(o, &format!("object {oname:?}"))?;
     }
     let features = objects
         .values()
@@ -220,7 +221,7 @@ impl Reader<'_> {
                     self.geometry(sub, &format!("{at}, geometry {gi}"))?;
                 }
             }
-            Some(other) => bail!("{name}: {at}: unknown geometry type '{other}'"),
+            Some(other) => bail!("{name}: {at}: unknown geometry type {other:?}"),
             None => bail!("{name}: {at}: a geometry object needs a \"type\""),
         }
         Ok(())
@@ -321,10 +322,7 @@ impl TopoDoc {
         if let Some(o) = object {
             if !objects.contains_key(o) {
                 let names: Vec<&str> = objects.keys().map(String::as_str).collect();
-                bail!(
-                    "no object '{o}' in the Topology (it has {})",
-                    names.join(", ")
-                );
+                bail!("no object {o:?} in the Topology (it has {names:?})");
             }
         }
         let mut next = 0usize;
@@ -473,5 +471,42 @@ fn object(g: &geojson::GeometryValue, refs: &mut dyn FnMut() -> Value) -> Value 
             "type": "GeometryCollection",
             "geometries": geometries.iter().map(|s| object(&s.value, refs)).collect::<Vec<_>>()
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_stay_on_one_line() {
+        // Found by the parse_topojson fuzz target: a type with a newline.
+        let v: Value = serde_json::from_str(
+            r#"{"type":"Topology","objects":{"b\nc":{"type":"Li\neString","arcs":[0]}},"arcs":[[[0,0],[1,1]]]}"#,
+        )
+        .unwrap();
+        let e = read("t.json", v).err().expect("refused").to_string();
+        assert!(!e.contains('\n'), "{e}");
+        assert!(
+            e.contains(r#"object "b\nc": unknown geometry type "Li\neString""#),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn quantized_arcs_are_delta_decoded() {
+        let v: Value = serde_json::from_str(
+            r#"{"type":"Topology","transform":{"scale":[0.5,2],"translate":[10,20]},
+                "objects":{"l":{"type":"LineString","arcs":[0]},"p":{"type":"Point","coordinates":[2,3]}},
+                "arcs":[[[2,1],[2,0],[-4,3]]]}"#,
+        )
+        .unwrap();
+        let d = read("t.json", v).unwrap();
+        let a = &d.topology.arcs()[0];
+        let got: Vec<(f64, f64)> = a.iter().map(|c| (c.x, c.y)).collect();
+        assert_eq!(got, vec![(11.0, 22.0), (12.0, 22.0), (10.0, 28.0)]);
+        let out = d.to_topojson(d.topology.arcs());
+        assert_eq!(out["objects"]["p"]["coordinates"], json!([11.0, 26.0]));
+        assert!(out.get("transform").is_none());
     }
 }

@@ -250,7 +250,7 @@ fn object_selects_features_and_stats_summarise() {
     assert_data_error(
         &["smooth", "mosaic.json", "--object", "roads"],
         None,
-        &["mosaic.json: no object 'roads'", "mosaic"],
+        &["mosaic.json: no object \"roads\"", "[\"mosaic\"]"],
     );
 }
 
@@ -320,11 +320,11 @@ fn bad_topojson_names_the_object_and_the_arc() {
     let cases: &[(&str, &[&str])] = &[
         (
             r#"{"type":"Topology","objects":{"land":{"type":"GeometryCollection","geometries":[{"type":"Polygon","arcs":[[0,7]]}]}},"arcs":[[[0,0],[1,0],[0,1],[0,0]]]}"#,
-            &["object 'land', geometry 0, ring 0: arc 7 is out of range (there are 1 arcs)"],
+            &["object \"land\", geometry 0, ring 0: arc 7 is out of range (there are 1 arcs)"],
         ),
         (
             r#"{"type":"Topology","objects":{"land":{"type":"Polygon","arcs":[[-3]]}},"arcs":[[[0,0],[1,0],[0,1],[0,0]]]}"#,
-            &["object 'land', ring 0: arc -3 is out of range"],
+            &["object \"land\", ring 0: arc -3 is out of range"],
         ),
         (
             r#"{"type":"Topology","transform":{"scale":[0,1],"translate":[0,0]},"objects":{},"arcs":[]}"#,
@@ -344,11 +344,11 @@ fn bad_topojson_names_the_object_and_the_arc() {
         ),
         (
             r#"{"type":"Topology","objects":{"x":{"type":"Polygon","arcs":[[0.5]]}},"arcs":[[[0,0],[1,1]]]}"#,
-            &["object 'x', ring 0: arc index 0.5 is not an integer"],
+            &["object \"x\", ring 0: arc index 0.5 is not an integer"],
         ),
         (
             r#"{"type":"Topology","objects":{"x":{"type":"Circle","arcs":[]}},"arcs":[]}"#,
-            &["object 'x': unknown geometry type 'Circle'"],
+            &["object \"x\": unknown geometry type \"Circle\""],
         ),
         (r#"{"type":"Topology","objects":{}}"#, &["needs \"arcs\""]),
     ];

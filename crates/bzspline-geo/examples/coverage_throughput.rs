@@ -9,7 +9,9 @@
 //! ```
 //!
 //! Prints one `name value` line per figure; times are the smallest of the
-//! repeats.
+//! repeats. `--only coverage`, `--only independent` or `--only none` runs one
+//! side (or only makes the mosaic), for instruction counts:
+//! `valgrind --tool=callgrind target/release/examples/coverage_throughput 60 55 4 1 --only coverage`.
 
 use std::time::Instant;
 
@@ -111,10 +113,20 @@ fn memory() -> (u64, u64) {
 }
 
 fn main() {
-    let args: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse().expect("numbers: NX NY M REPEATS [TOL]"))
-        .collect();
+    let mut only: Option<String> = None;
+    let mut args: Vec<f64> = Vec::new();
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        if a == "--only" {
+            only = it.next();
+        } else {
+            args.push(
+                a.parse()
+                    .expect("numbers: NX NY M REPEATS [TOL], or --only coverage|independent|none"),
+            );
+        }
+    }
+    let run = |side: &str| only.as_deref().is_none_or(|o| o == side);
     let get = |i: usize, d: usize| args.get(i).map_or(d, |&v| v as usize);
     let (nx, ny, m, repeats) = (get(0, 60), get(1, 55), get(2, 4), get(3, 5));
     let extent = (nx as f64).hypot(ny as f64);
@@ -135,16 +147,21 @@ fn main() {
     let mut best = [f64::INFINITY; 4];
     let mut stats = None;
     for _ in 0..repeats.max(1) {
-        let t = Instant::now();
-        let cov = Coverage::new(cells.clone(), None).expect("coverage");
-        let t_topology = t.elapsed().as_secs_f64();
-        let (out, s) = cov.smooth(&opts).expect("smoothed");
-        let t_total = t.elapsed().as_secs_f64();
-        std::hint::black_box(out);
-        stats = Some(s);
-        let t = Instant::now();
-        std::hint::black_box(independent(&cells, tol));
-        let t_indep = t.elapsed().as_secs_f64();
+        let (mut t_topology, mut t_total, mut t_indep) = (0.0, 0.0, 0.0);
+        if run("coverage") {
+            let t = Instant::now();
+            let cov = Coverage::new(cells.clone(), None).expect("coverage");
+            t_topology = t.elapsed().as_secs_f64();
+            let (out, s) = cov.smooth(&opts).expect("smoothed");
+            t_total = t.elapsed().as_secs_f64();
+            std::hint::black_box(out);
+            stats = Some(s);
+        }
+        if run("independent") {
+            let t = Instant::now();
+            std::hint::black_box(independent(&cells, tol));
+            t_indep = t.elapsed().as_secs_f64();
+        }
         for (b, v) in best
             .iter_mut()
             .zip([t_topology, t_total, t_indep, t_total - t_topology])
@@ -153,7 +170,10 @@ fn main() {
         }
     }
     let (_, peak) = memory();
-    let s = stats.expect("one repeat");
+    let Some(s) = stats else {
+        println!("cells {} positions_in {positions}", cells.len());
+        return;
+    };
     println!("cells {}", cells.len());
     println!("tolerance {tol}");
     println!("positions_in {positions}");

@@ -49,6 +49,46 @@ fn a_hexagonal_mosaic_keeps_its_borders() {
 }
 
 #[test]
+fn voronoi_cells_of_random_points_keep_their_borders() {
+    // Seeds whose wiggled edges do not cross in the input (the test checks).
+    for seed in [2, 6, 7, 11] {
+        let input = voronoi_mosaic(40, 3, 0.08, seed);
+        assert!(input.len() >= 20, "{} cells", input.len());
+        assert_eq!(brute_force_crossings(&input), 0, "the input crosses");
+        valid_stays_valid(&input, &input).unwrap();
+        assert!(
+            neighbours(&input).len() >= 40,
+            "the cells share too few edges"
+        );
+        let (out, stats) = smooth(&input, &SmoothOptions::default().tolerance(1e-4));
+        assert!(stats.shared_arcs > 0, "{stats:?}");
+        check_all(&input, &out);
+    }
+}
+
+#[test]
+fn crossings_in_the_input_are_not_added_to() {
+    // Seeds whose wiggled edges already cross: those crossings stay (they are
+    // original edges), and smoothing adds none.
+    for seed in [1, 3, 4, 5, 8] {
+        let input = voronoi_mosaic(40, 3, 0.08, seed);
+        let before = brute_force_crossings(&input);
+        assert!(before > 0, "seed {seed}: the input does not cross");
+        let (out, stats) = smooth(&input, &SmoothOptions::default().tolerance(1e-4));
+        let after = brute_force_crossings(&out);
+        assert!(
+            after <= before,
+            "seed {seed}: {before} crossings before, {after} after"
+        );
+        assert!(stats.input_conflicts > 0, "{stats:?}");
+        for (a, b) in neighbours(&input) {
+            share_segment(&out[a], &out[b])
+                .unwrap_or_else(|e| panic!("seed {seed}: {a} and {b}: {e}"));
+        }
+    }
+}
+
+#[test]
 fn smoothing_each_ring_alone_breaks_the_borders_that_the_coverage_keeps() {
     // The defect the coverage fixes: ring by ring, neighbours no longer share
     // a border.

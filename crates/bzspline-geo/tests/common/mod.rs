@@ -155,6 +155,78 @@ pub fn hexagons(n: usize, m: usize, amp: f64, seed: u64) -> Vec<Geometry<f64>> {
     cells
 }
 
+/// Voronoi cells of `n` random points in the unit square (geo's `Voronoi`;
+/// clipped by geo to a box around the points), positions rounded to 1e-6,
+/// each edge given `m` positions displaced across it by up to
+/// `amp` of its length; the positions depend only on the edge, so the two
+/// cells that share it get them bit for bit.
+pub fn voronoi_mosaic(n: usize, m: usize, amp: f64, seed: u64) -> Vec<Geometry<f64>> {
+    use geo::Voronoi;
+    let mut rng = Rng(seed);
+    let pts = geo_types::MultiPoint(
+        (0..n)
+            .map(|_| geo_types::Point::new(rng.next(), rng.next()))
+            .collect(),
+    );
+    let Ok(cells) = pts.voronoi_cells() else {
+        return Vec::new();
+    };
+    let clip = Polygon::new(
+        LineString(vec![
+            c(-0.5, -0.5),
+            c(1.5, -0.5),
+            c(1.5, 1.5),
+            c(-0.5, 1.5),
+            c(-0.5, -0.5),
+        ]),
+        vec![],
+    );
+    cells
+        .into_iter()
+        .filter(|cell| cell.exterior().0.len() >= 4 && cell.relate(&clip).is_within())
+        .map(|cell| {
+            // geo computes a vertex for each cell that meets it, a few ulps
+            // apart (up to about 1e-8): rounded to a grid of 1e-6 they agree.
+            let q = |v: f64| (v * 1e6).round() / 1e6;
+            let r: Vec<Coord> = cell
+                .exterior()
+                .0
+                .iter()
+                .map(|p| c(q(p.x), q(p.y)))
+                .collect();
+            let mut ring = Vec::new();
+            for w in r.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                ring.push(a);
+                let (p, q, flip) = if bits(a) <= bits(b) {
+                    (a, b, false)
+                } else {
+                    (b, a, true)
+                };
+                let mut e = Rng(seed
+                    ^ p.x.to_bits()
+                    ^ p.y.to_bits().rotate_left(17)
+                    ^ q.x.to_bits().rotate_left(31)
+                    ^ q.y.to_bits().rotate_left(47));
+                let (dx, dy) = (q.x - p.x, q.y - p.y);
+                let mut mids: Vec<Coord> = (1..=m)
+                    .map(|k| {
+                        let t = k as f64 / (m + 1) as f64;
+                        let d = amp * e.sym();
+                        c(p.x + dx * t - dy * d, p.y + dy * t + dx * d)
+                    })
+                    .collect();
+                if flip {
+                    mids.reverse();
+                }
+                ring.extend(mids);
+            }
+            ring.push(r[r.len() - 1]);
+            poly(ring, vec![])
+        })
+        .collect()
+}
+
 /// Every segment of the geometry's lines and rings.
 pub fn segments(g: &Geometry<f64>) -> Vec<(Coord, Coord)> {
     let mut out = Vec::new();
