@@ -232,16 +232,7 @@ impl TopoDoc {
     /// The error with the object and geometry of its chain (or of the first
     /// chain that uses its arc).
     pub fn describe(&self, e: &bzspline_geo::Error) -> String {
-        use bzspline_geo::Error as E;
-        let chain = match e {
-            E::NonFinite { chain, .. } | E::ArcIndex { chain, .. } => Some(*chain),
-            E::Overflow { arc } | E::Spline { arc, .. } | E::EmptyArc { arc } => self
-                .topology
-                .chains()
-                .iter()
-                .position(|c| c.arcs.iter().any(|r| r.arc == *arc)),
-            _ => None,
-        };
+        let chain = self.topology.chain_of(e);
         match chain.and_then(|c| self.origins.get(c)) {
             Some(at) => format!("{at}: {e}"),
             None => e.to_string(),

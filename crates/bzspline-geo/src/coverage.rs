@@ -158,15 +158,7 @@ impl Coverage {
     /// uses the arc) comes from.
     #[must_use]
     pub fn locate(&self, e: &Error) -> Option<Location> {
-        let chain = match e {
-            Error::NonFinite { chain, .. } | Error::ArcIndex { chain, .. } => Some(*chain),
-            Error::Overflow { arc } | Error::Spline { arc, .. } | Error::EmptyArc { arc } => self
-                .topology
-                .chains()
-                .iter()
-                .position(|c| c.arcs.iter().any(|r| r.arc == *arc)),
-            _ => None,
-        }?;
+        let chain = self.topology.chain_of(e)?;
         let o = self.origins.get(chain)?;
         Some(Location {
             geometry: o.geometry,

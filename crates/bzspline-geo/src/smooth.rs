@@ -226,34 +226,10 @@ impl Topology {
         stats.closed_arcs = plans.iter().filter(|p| p.closed_curve).count();
         let closed: Vec<bool> = arcs.iter().map(|a| is_closed(a)).collect();
 
-        // Which chains use each arc, which polygon holds each ring, and what
-        // the input says about each ring (winding, holes inside).
-        let mut chains_of: Vec<Vec<u32>> = vec![Vec::new(); arcs.len()];
-        for (ci, c) in self.chains().iter().enumerate() {
-            for r in &c.arcs {
-                chains_of[r.arc].push(ci as u32);
-            }
-        }
-        let mut polygon_of: Vec<Option<u32>> = vec![None; self.chains().len()];
-        for (pi, p) in self.polygons().iter().enumerate() {
-            for &c in p {
-                polygon_of[c] = Some(pi as u32);
-            }
-        }
         let shoelace = Shoelace::about(arcs);
         let cross_in: Vec<f64> = arcs.iter().map(|a| shoelace.arc(a)).collect();
         let mut cross_out: Vec<f64> = vec![0.0; arcs.len()];
-        let sign_in: Vec<f64> = (0..self.chains().len())
-            .map(|ci| match self.chains()[ci].kind {
-                ChainKind::Ring => shoelace.ring(self, ci, &cross_in).signum(),
-                ChainKind::Line => 0.0,
-            })
-            .collect();
-        let inside_in: Vec<Vec<bool>> = self
-            .polygons()
-            .iter()
-            .map(|p| holes_inside(self, p, arcs))
-            .collect();
+        let rings = RingFacts::of(self, &shoelace, &cross_in);
         stats.area_in = shoelace.polygons(self, &cross_in);
 
         let mut levels: Vec<Vec<u8>> = arcs.iter().map(|a| vec![0; a.len() - 1]).collect();
@@ -291,52 +267,31 @@ impl Topology {
                     }
                 }
             }
-            // Rings that turned over and holes that left their shell: every
-            // leg of their arcs is refined.
-            let mut suspects: Vec<usize> = (0..arcs.len())
-                .filter(|&a| dirty[a])
-                .flat_map(|a| chains_of[a].iter().map(|&c| c as usize))
-                .collect();
-            suspects.sort_unstable();
-            suspects.dedup();
-            let mut polys: Vec<usize> = Vec::new();
-            for &ci in &suspects {
-                if sign_in[ci] != 0.0 && shoelace.ring(self, ci, &cross_out).signum() != sign_in[ci]
-                {
-                    bump_chain(self, ci, &segs, &mut bump);
-                }
-                if let Some(p) = polygon_of[ci] {
-                    polys.push(p as usize);
-                }
-            }
-            polys.sort_unstable();
-            polys.dedup();
-            for p in polys {
-                let rings = &self.polygons()[p];
-                let now = holes_inside(self, rings, &out);
-                for (h, (&was, &is)) in inside_in[p].iter().zip(&now).enumerate() {
-                    if was && !is {
-                        bump_chain(self, rings[0], &segs, &mut bump);
-                        bump_chain(self, rings[h + 1], &segs, &mut bump);
-                    }
-                }
-            }
+            self.ring_conflicts(
+                &dirty, &rings, &shoelace, &cross_out, &out, &segs, &mut bump,
+            );
             dirty.iter_mut().for_each(|d| *d = false);
             if bump.is_empty() {
                 break;
             }
+            // Each leg named this round is raised once, however many
+            // conflicts name it.
             let last_resort = stats.rounds >= MAX_ROUNDS;
+            let mut raise: FxHashSet<(usize, u32)> = FxHashSet::default();
             for (a, s) in bump {
-                let n = levels[a].len() as u32;
-                let wrap = closed[a];
-                for leg in leg_range(s, n, wrap) {
-                    let l = &mut levels[a][leg as usize];
-                    if last_resort {
-                        *l = STRAIGHT;
-                    } else if *l < STRAIGHT {
-                        *l += 1;
-                    }
-                }
+                raise.extend(
+                    leg_range(s, levels[a].len() as u32, closed[a])
+                        .into_iter()
+                        .map(|l| (a, l)),
+                );
+            }
+            for (a, leg) in raise {
+                let l = &mut levels[a][leg as usize];
+                *l = if last_resort {
+                    STRAIGHT
+                } else {
+                    (*l + 1).min(STRAIGHT)
+                };
                 dirty[a] = true;
             }
         }
@@ -349,6 +304,50 @@ impl Topology {
         stats.positions_out = self.positions(&out);
         stats.area_out = shoelace.polygons(self, &cross_out);
         Ok(Smoothed { arcs: out, stats })
+    }
+
+    /// Adds to `bump` every leg of the rings that turned over and of the
+    /// holes (and their shells) that left their shell, among the rings that
+    /// use a `dirty` arc.
+    #[allow(clippy::too_many_arguments)] // the round's state, read only
+    fn ring_conflicts(
+        &self,
+        dirty: &[bool],
+        rings: &RingFacts,
+        shoelace: &Shoelace,
+        cross_out: &[f64],
+        out: &[Vec<Coord>],
+        segs: &[Vec<Seg>],
+        bump: &mut Vec<(usize, Seg)>,
+    ) {
+        let mut suspects: Vec<usize> = (0..dirty.len())
+            .filter(|&a| dirty[a])
+            .flat_map(|a| rings.chains_of[a].iter().map(|&c| c as usize))
+            .collect();
+        suspects.sort_unstable();
+        suspects.dedup();
+        let mut polys: Vec<usize> = Vec::new();
+        for &ci in &suspects {
+            let sign = rings.sign_in[ci];
+            if sign != 0.0 && shoelace.ring(self, ci, cross_out).signum() != sign {
+                bump_chain(self, ci, segs, bump);
+            }
+            if let Some(p) = rings.polygon_of[ci] {
+                polys.push(p as usize);
+            }
+        }
+        polys.sort_unstable();
+        polys.dedup();
+        for p in polys {
+            let members = &self.polygons()[p];
+            let now = holes_inside(self, members, out);
+            for (h, (&was, &is)) in rings.inside_in[p].iter().zip(&now).enumerate() {
+                if was && !is {
+                    bump_chain(self, members[0], segs, bump);
+                    bump_chain(self, members[h + 1], segs, bump);
+                }
+            }
+        }
     }
 
     /// Positions of all chains assembled from `arcs` (joints once, rings
@@ -427,6 +426,52 @@ impl Topology {
             });
         }
         (plans, nodes)
+    }
+}
+
+/// What the input says about its rings, for the checks after smoothing.
+struct RingFacts {
+    /// The chains that use each arc.
+    chains_of: Vec<Vec<u32>>,
+    /// The polygon each ring belongs to.
+    polygon_of: Vec<Option<u32>>,
+    /// Each ring's winding in the input (0 for a line or a flat ring).
+    sign_in: Vec<f64>,
+    /// Per polygon, whether each hole lies inside the shell in the input.
+    inside_in: Vec<Vec<bool>>,
+}
+
+impl RingFacts {
+    fn of(t: &Topology, shoelace: &Shoelace, cross_in: &[f64]) -> RingFacts {
+        let mut chains_of: Vec<Vec<u32>> = vec![Vec::new(); t.arcs().len()];
+        for (ci, c) in t.chains().iter().enumerate() {
+            for r in &c.arcs {
+                chains_of[r.arc].push(ci as u32);
+            }
+        }
+        let mut polygon_of: Vec<Option<u32>> = vec![None; t.chains().len()];
+        for (pi, p) in t.polygons().iter().enumerate() {
+            for &c in p {
+                polygon_of[c] = Some(pi as u32);
+            }
+        }
+        let sign_in = (0..t.chains().len())
+            .map(|ci| match t.chains()[ci].kind {
+                ChainKind::Ring => shoelace.ring(t, ci, cross_in).signum(),
+                ChainKind::Line => 0.0,
+            })
+            .collect();
+        let inside_in = t
+            .polygons()
+            .iter()
+            .map(|p| holes_inside(t, p, t.arcs()))
+            .collect();
+        RingFacts {
+            chains_of,
+            polygon_of,
+            sign_in,
+            inside_in,
+        }
     }
 }
 

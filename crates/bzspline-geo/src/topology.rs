@@ -218,6 +218,20 @@ impl Topology {
         &self.polygons
     }
 
+    /// The chain an error names, or for an error about an arc the first chain
+    /// that uses the arc; `None` for errors about neither.
+    #[must_use]
+    pub fn chain_of(&self, e: &Error) -> Option<usize> {
+        match e {
+            Error::NonFinite { chain, .. } | Error::ArcIndex { chain, .. } => Some(*chain),
+            Error::Overflow { arc } | Error::Spline { arc, .. } | Error::EmptyArc { arc } => self
+                .chains
+                .iter()
+                .position(|c| c.arcs.iter().any(|r| r.arc == *arc)),
+            _ => None,
+        }
+    }
+
     /// How many chain references each arc has (2 or more: a shared border).
     #[must_use]
     pub fn uses(&self) -> Vec<u32> {

@@ -93,17 +93,7 @@ fn smoothing_each_ring_alone_breaks_the_borders_that_the_coverage_keeps() {
     // The defect the coverage fixes: ring by ring, neighbours no longer share
     // a border.
     let input = wiggly_grid(3, 3, 4, 0.15, 0.1, 3);
-    let alone: Vec<Geometry<f64>> = input
-        .iter()
-        .map(|g| {
-            smooth(
-                std::slice::from_ref(g),
-                &SmoothOptions::default().tolerance(1e-3),
-            )
-            .0[0]
-                .clone()
-        })
-        .collect();
+    let alone = ring_by_ring(&input, &SmoothOptions::default().tolerance(1e-3));
     let broken = neighbours(&input)
         .into_iter()
         .filter(|&(a, b)| share_border(&alone[a], &alone[b]).is_err())
@@ -142,17 +132,7 @@ fn a_polygon_in_the_notch_of_another_is_not_crossed() {
     );
     let input = vec![l_shape, square];
     // Each alone: they cross.
-    let alone: Vec<Geometry<f64>> = input
-        .iter()
-        .map(|g| {
-            smooth(
-                std::slice::from_ref(g),
-                &SmoothOptions::default().tolerance(1e-3),
-            )
-            .0[0]
-                .clone()
-        })
-        .collect();
+    let alone = ring_by_ring(&input, &SmoothOptions::default().tolerance(1e-3));
     assert!(
         brute_force_crossings(&alone) > 0,
         "the test case does not provoke a crossing"
