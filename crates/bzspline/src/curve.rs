@@ -19,7 +19,7 @@
 //! row-scaled continuity equation of [`crate::spline`] holds at every knot with
 //! indices taken cyclically, `d` is fixed nowhere, and the system is cyclic
 //! tridiagonal and diagonally dominant in the theorem's range. It is solved in
-//! O(n) by [`CyclicThomas`]. The curve is C1 across the
+//! O(n) by [`CyclicThomas`](crate::CyclicThomas). The curve is C1 across the
 //! closing knot too. A closed curve answers at every finite parameter: it is
 //! periodic with period `tau_n - tau_0`.
 //!
@@ -38,14 +38,13 @@ use std::borrow::Cow;
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
-use crate::flatten::Polyline;
 use crate::kernels;
+use crate::method::{alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::polyline::Polyline;
 use crate::spline::{
-    alpha_terms, check_alphas, check_finite, check_knots, neighbour_weights, piece_coefs_with,
-    power_of_two_scale, quadratic_roots, resolve_alphas, scale_for_max, Alphas, OpenSystem,
-    DEFAULT_ALPHA,
+    check_alphas, check_finite, check_knots, power_of_two_scale, quadratic_roots, resolve_alphas,
+    scale_for_max, Alphas, DEFAULT_ALPHA,
 };
-use crate::tridiag::CyclicThomas;
 
 /// Default absolute accuracy of arc lengths and their inverse, in the curve's
 /// units.
@@ -478,65 +477,6 @@ fn chord_step(kind: &ParamKind, a: &[f64], b: &[f64], chord_scale: f64, buf: &mu
         len.sqrt()
     } else {
         len
-    }
-}
-
-/// Row `i` of the row-scaled continuity system for the knot between legs of
-/// widths `hl`, `hr` and alphas `al`, `ar`: `(lower, diag, upper, p)`.
-#[inline]
-fn row(hl: f64, hr: f64, al: f64, ar: f64) -> (f64, f64, f64, f64) {
-    let (p, q) = neighbour_weights(hl, hr);
-    let [a, b1, _, _] = alpha_terms(al);
-    let [_, _, b2, c] = alpha_terms(ar);
-    (-p * a, p * b1 + q * b2, -q * c, p)
-}
-
-/// The factored cyclic system of a closed curve.
-struct ClosedSystem {
-    p: Vec<f64>,
-    solver: Option<CyclicThomas>,
-}
-
-impl ClosedSystem {
-    fn new(widths: &[f64], alphas: &[f64]) -> Self {
-        let n = widths.len();
-        let (mut lower, mut diag, mut upper, mut ps) = (
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-            Vec::with_capacity(n),
-        );
-        for i in 0..n {
-            let l = (i + n - 1) % n;
-            let (lo, di, up, p) = row(widths[l], widths[i], alphas[l], alphas[i]);
-            lower.push(lo);
-            diag.push(di);
-            upper.push(up);
-            ps.push(p);
-        }
-        ClosedSystem {
-            p: ps,
-            solver: CyclicThomas::factor(&lower, &diag, &upper),
-        }
-    }
-
-    /// Deviations of the scaled closed polygon `f` (one coordinate).
-    fn solve(&self, f: &[f64], d: &mut [f64]) {
-        let n = f.len();
-        for i in 0..n {
-            let p = self.p[i];
-            let q = 1.0 - p;
-            let (prev, next) = (f[(i + n - 1) % n], f[(i + 1) % n]);
-            d[i] = q * (next - f[i]) - p * (f[i] - prev);
-        }
-        // Diagonal dominance keeps the factorization valid for alphas in range;
-        // the fallback (no correction) is unreachable but never panics.
-        match &self.solver {
-            Some(s) => {
-                s.solve_in_place(d);
-            }
-            None => d.iter_mut().for_each(|v| *v = 0.0),
-        }
     }
 }
 
@@ -1399,7 +1339,7 @@ impl Curve {
     }
 
     /// Where the curve touches each leg: `(x_k, alpha_k P_k + (1 - alpha_k)
-    /// P_{k+1})` with `x_k = tau_{k+1} - alpha_k h_k` (method.md, misprint 1).
+    /// P_{k+1})` with `x_k = tau_{k+1} - alpha_k h_k` (docs/method.md §9, misprint 1).
     #[must_use]
     pub fn tangent_points(&self) -> Vec<(f64, Vec<f64>)> {
         let (dim, n) = (self.dim, self.n_points());

@@ -36,7 +36,7 @@
 //! nothing else holds the rows: no scratch vector. The alpha inverses of
 //! per-interval alphas are formed again in the backward sweep.
 
-use crate::spline::alpha_terms;
+use crate::method::alpha_terms;
 
 /// Rows between two renormalisations of the continuants: each row multiplies
 /// them by a pivot between `3 * 2^-52` and `32` (widths relative to a span

@@ -17,9 +17,10 @@
 //! tridiagonal system (the paper's (16)), solved in O(N) by the Thomas
 //! algorithm; each piece is then exactly one cubic Bezier segment. The spline is
 //! linear in `F` with a non-negative basis for alphas in the theorem's range, so it
-//! stays inside the convex hull of the control points. The module [`spline`]
-//! states the equations as implemented, including the three misprints of the
-//! paper that this crate does not copy.
+//! stays inside the convex hull of the control points. `docs/method.md` in the
+//! repository derives the equations as implemented, with the proof that the
+//! system is diagonally dominant and the three misprints of the paper that this
+//! crate does not copy.
 //!
 //! # Curves
 //!
@@ -82,6 +83,8 @@ pub mod flatten;
 mod kernels;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
+pub(crate) mod method;
+mod polyline;
 pub mod spline;
 mod tridiag;
 

@@ -1,51 +1,8 @@
 //! The spline `y = S(x)` of Stelia, Potapenko and Sirenko.
 //!
-//! # The method, in the deviation form
-//!
-//! Knots `tau_0 < ... < tau_{N-1}`, values `F_0 .. F_{N-1}`, and one shape
-//! parameter `alpha_k` in `[1/3, 2/3]` per interval `[tau_k, tau_{k+1}]` (the paper
-//! numbers knots from 1 and intervals from 2; this crate counts from 0). With
-//! `h_k = tau_{k+1} - tau_k` and `dF_k = F_{k+1} - F_k`, the tangent abscissa of
-//! interval `k` is `x_k = tau_{k+1} - alpha_k h_k` and the point of leg `k` there is
-//! `f_k = alpha_k F_k + (1 - alpha_k) F_{k+1}` (the paper prints this with the
-//! weights swapped: misprint 1 of `method.md`).
-//!
-//! On each interval `S` is one cubic with `S(x_k) = f_k`, `S'(x_k) = dF_k / h_k`
-//! (conditions (1)-(2) of the paper), `S` and `S'` continuous at every interior
-//! knot, `S(tau_0) = F_0` and `S(tau_{N-1}) = F_{N-1}`. Writing the knot values as
-//! `phi_k = F_k + d_k` (so `d_0 = d_{N-1} = 0`), continuity of `S'` at knot `k`
-//! is the paper's system (16):
-//!
-//! ```text
-//! -A_k d_{k-1} + (B1_k + B2_k) d_k - C_k d_{k+1} = s_k - s_{k-1},   s_k = dF_k / h_k
-//! A_k  = a^2 / ((1-a)^2 h_{k-1})     B1_k = (2/a + 1) / h_{k-1}       (a = alpha_{k-1})
-//! C_k  = (1-b)^2 / (b^2 h_k)         B2_k = (2/(1-b) + 1) / h_k       (b = alpha_k)
-//! ```
-//!
-//! This module multiplies row `k` by `h_{k-1} h_k / (h_{k-1} + h_k)`, which turns
-//! every coefficient and the right-hand side into bounded numbers
-//! (`p = h_k / (h_{k-1} + h_k)`, `q = 1 - p`):
-//!
-//! ```text
-//! -p A' d_{k-1} + (p B1' + q B2') d_k - q C' d_{k+1} = q dF_k - p dF_{k-1}
-//! A' = a^2/(1-a)^2   B1' = 2/a + 1   B2' = 2/(1-b) + 1   C' = (1-b)^2/b^2
-//! ```
-//!
-//! `B1' >= A'` iff `a <= 2/3` and `B2' >= C'` iff `b >= 1/3`: the system is
-//! diagonally dominant in the theorem's range and the Thomas algorithm needs no
-//! pivoting. Values are scaled by a power of two so that `max |F|` is about 1, so
-//! values near `1e308` do not overflow intermediate products.
-//!
-//! In the local variable `t = (x - tau_k) / h_k` each piece depends only on
-//! `F_k, F_{k+1}, d_k, d_{k+1}` and `alpha_k`: its end slopes (times `h_k`) are
-//!
-//! ```text
-//! h S'(tau_k + 0)     = dF_k - d_k (2/(1-a) + 1) + d_{k+1} (1-a)^2 / a^2
-//! h S'(tau_{k+1} - 0) = dF_k + d_{k+1} (2/a + 1) - d_k a^2 / (1-a)^2
-//! ```
-//!
-//! and its Bezier ordinates are `phi_k`, `phi_k + h S'(tau_k+0)/3`,
-//! `phi_{k+1} - h S'(tau_{k+1}-0)/3`, `phi_{k+1}`.
+//! The method itself (the rows of the paper's system (16), the pieces, the
+//! reference assembly) is in `method.rs`, beside its equations;
+//! `docs/method.md` derives them.
 //!
 //! # Conventions
 //!
@@ -59,7 +16,7 @@
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::kernels::{self, Batch, Piece};
-use crate::tridiag::Thomas;
+use crate::method::{piece_coefs, OpenSystem};
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
 /// literal `0.3333333333333333` parses to it).
@@ -388,108 +345,6 @@ fn quick_check(
     ok.then_some(m)
 }
 
-/// The factored continuity system of an open spline: depends on the widths and
-/// alphas only, so one factorization serves every coordinate of a curve.
-#[derive(Clone, Debug)]
-pub(crate) struct OpenSystem {
-    /// `p_k` of row `k` (knot `k`, 1 <= k <= N-2), stored at `k - 1`.
-    p: Vec<f64>,
-    thomas: Thomas,
-}
-
-/// `a^2 / (1-a)^2`, `2/a + 1`, `2/(1-a) + 1`, `(1-a)^2 / a^2` for one alpha.
-#[inline]
-pub(crate) fn alpha_terms(a: f64) -> [f64; 4] {
-    let r = a / (1.0 - a);
-    [r * r, 2.0 / a + 1.0, 2.0 / (1.0 - a) + 1.0, 1.0 / (r * r)]
-}
-
-/// `(hr / (hl + hr), hl / (hl + hr))` for the widths left and right of a knot.
-/// Each width is finite, but their sum can round above `f64::MAX` when the span
-/// is within rounding of it; then both are halved first (exact at that size).
-#[inline]
-pub(crate) fn neighbour_weights(hl: f64, hr: f64) -> (f64, f64) {
-    let sum = hl + hr;
-    if sum.is_finite() {
-        (hr / sum, hl / sum)
-    } else {
-        let (hl, hr) = (0.5 * hl, 0.5 * hr);
-        let sum = hl + hr;
-        (hr / sum, hl / sum)
-    }
-}
-
-impl OpenSystem {
-    /// Builds and factors the row-scaled system (16) for interior knots.
-    pub(crate) fn new(widths: &[f64], alphas: &[f64]) -> Self {
-        let n = widths.len() + 1;
-        let m = n.saturating_sub(2);
-        let mut p_all = Vec::with_capacity(m);
-        // Each leg's terms are formed once (once in all for one alpha) and
-        // serve the rows on both sides of it.
-        let uniform = alphas
-            .first()
-            .filter(|&&a| alphas.iter().all(|&b| b == a))
-            .map(|&a| alpha_terms(a));
-        let terms = |k: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[k]));
-        let mut left = if m > 0 { terms(0) } else { [0.0; 4] };
-        // Diagonal dominance with a strictly dominant first row (it has no lower
-        // neighbour) keeps every pivot positive, so factoring cannot fail.
-        let thomas = Thomas::factor_rows(m, |i| {
-            let k = i + 1;
-            let (p, q) = neighbour_weights(widths[k - 1], widths[k]);
-            let [al, b1, _, _] = left;
-            let right = terms(k);
-            let [_, _, b2, cr] = right;
-            left = right;
-            p_all.push(p);
-            (-p * al, p * b1 + q * b2, -q * cr)
-        })
-        .unwrap_or_default();
-        OpenSystem { p: p_all, thomas }
-    }
-
-    /// Solves for the deviations `d` (length N, zero at both ends) of the scaled
-    /// values `f`.
-    pub(crate) fn solve(&self, f: &[f64], d: &mut Vec<f64>) {
-        let n = f.len();
-        d.clear();
-        d.resize(n, 0.0);
-        if n < 3 {
-            return;
-        }
-        for k in 1..n - 1 {
-            let p = self.p[k - 1];
-            let q = 1.0 - p;
-            d[k] = q * (f[k + 1] - f[k]) - p * (f[k] - f[k - 1]);
-        }
-        self.thomas.solve_in_place(&mut d[1..n - 1]);
-    }
-}
-
-/// Power-basis coefficients in `t` of the piece between scaled values `f0, f1`
-/// with deviations `d0, d1` and shape parameter `a`.
-#[inline]
-pub(crate) fn piece_coefs(f0: f64, f1: f64, d0: f64, d1: f64, a: f64) -> [f64; 4] {
-    piece_coefs_with(f0, f1, d0, d1, alpha_terms(a))
-}
-
-/// [`piece_coefs`] with the [`alpha_terms`] of its shape parameter given.
-#[inline]
-pub(crate) fn piece_coefs_with(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 4]) -> [f64; 4] {
-    let [al, b1, b2, cr] = terms;
-    let df = f1 - f0;
-    let s0 = df - d0 * b2 + d1 * cr; // h S'(tau_k + 0)
-    let s1 = df + d1 * b1 - d0 * al; // h S'(tau_{k+1} - 0)
-    let rise = df + (d1 - d0);
-    [
-        f0 + d0,
-        s0,
-        3.0 * rise - 2.0 * s0 - s1,
-        s0 + s1 - 2.0 * rise,
-    ]
-}
-
 #[inline]
 fn horner(c: &[f64; 4], t: f64) -> f64 {
     c[0] + t * (c[1] + t * (c[2] + t * c[3]))
@@ -772,7 +627,7 @@ impl Spline {
 
     /// The points `(x_k, f_k)` where the spline touches leg `k` of the control
     /// polygon: `x_k = tau_{k+1} - alpha_k h_k`,
-    /// `f_k = alpha_k F_k + (1 - alpha_k) F_{k+1}` (method.md, misprint 1).
+    /// `f_k = alpha_k F_k + (1 - alpha_k) F_{k+1}` (docs/method.md §9, misprint 1).
     #[must_use]
     pub fn tangent_points(&self) -> Vec<(f64, f64)> {
         let inv = 1.0 / self.scale;
@@ -797,7 +652,7 @@ impl Spline {
     }
 
     /// Piece `k` as a cubic Bezier segment in the plane: control points at
-    /// abscissas `tau_k + j h_k / 3` and the ordinates of method.md. The two
+    /// abscissas `tau_k + j h_k / 3` and the ordinates of `docs/method.md` §3. The two
     /// inner ordinates lie outside the range of the values and can be infinite
     /// when the values come near `f64::MAX`.
     #[must_use]
@@ -1860,9 +1715,6 @@ pub(crate) mod tests {
             assert!(close(*got, want, 1e-14), "want {want}, got {got}");
         }
         assert!(s.knot_values()[1] < 0.1, "{:?}", s.knot_values());
-        let (p, q) = neighbour_weights(f64::MAX, f64::MAX);
-        assert_eq!((p, q), (0.5, 0.5));
-        assert_eq!(neighbour_weights(1.0, 3.0), (0.75, 0.25));
     }
 
     #[test]

@@ -219,7 +219,7 @@ pub(crate) mod tests {
         assert_eq!(d.control, square.to_vec());
         assert_eq!(d.segments.len(), 4);
         assert_eq!(d.tangent_points.len(), 4);
-        // method.md: knot points pulled 0.1 inside each corner.
+        // docs/method.md §7: knot points pulled 0.1 inside each corner.
         let want = [[0.1, 0.1], [0.9, 0.1], [0.9, 0.9], [0.1, 0.9]];
         for (k, w) in d.knot_points.iter().zip(want) {
             assert!(

@@ -16,7 +16,7 @@
 
 use super::{check_tolerance, dot, norm, Curve};
 use crate::error::{Error, Field};
-use crate::flatten::Polyline;
+use crate::polyline::Polyline;
 use crate::spline::quadratic_roots;
 use std::sync::OnceLock;
 

@@ -11,8 +11,9 @@
 //! until the correction at its edges is below the tolerance, or covers the
 //! whole curve.
 
-use super::{check_query, check_tolerance, chord_step, row, Curve, ParamKind};
+use super::{check_query, check_tolerance, chord_step, Curve, ParamKind};
 use crate::error::Error;
+use crate::method::row;
 use crate::spline::validate_knots;
 use crate::tridiag::{CyclicThomas, Thomas};
 
