@@ -480,6 +480,18 @@ fn chord_step(kind: &ParamKind, a: &[f64], b: &[f64], chord_scale: f64, buf: &mu
     }
 }
 
+/// Refuses an output buffer that does not hold `dim` numbers.
+pub(crate) fn check_out(out: &[f64], dim: usize) -> Result<(), Error> {
+    if out.len() == dim {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument {
+            what: "the output buffer must hold one number per coordinate; its length",
+            value: out.len() as f64,
+        })
+    }
+}
+
 impl Curve {
     /// A builder for points stored flat, `dim` coordinates per point.
     #[must_use]
@@ -1099,6 +1111,19 @@ impl Curve {
     /// [`Error::NonFinite`] for a NaN or infinite `s`; [`Error::OutOfDomain`]
     /// outside the domain of an open curve (a closed curve is periodic).
     pub fn eval(&self, s: f64) -> Result<Vec<f64>, Error> {
+        let mut out = vec![0.0; self.dim];
+        self.eval_into(s, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Curve::eval`] into `out` (`dim` numbers), without allocating.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::eval`]; [`Error::InvalidArgument`] when `out` does not hold
+    /// [`Curve::dim`] numbers.
+    pub fn eval_into(&self, s: f64, out: &mut [f64]) -> Result<(), Error> {
+        check_out(out, self.dim)?;
         let (k, t) = self.locate(s)?;
         let dim = self.dim;
         let n = self.n_points();
@@ -1107,24 +1132,24 @@ impl Curve {
             // An open curve's end points are its end control points, also when
             // one of them underflowed in scaling beside a much larger one.
             let i = if t == 0.0 { 0 } else { n - 1 };
-            return Ok(self.points[i * dim..(i + 1) * dim].to_vec());
+            out.copy_from_slice(&self.points[i * dim..(i + 1) * dim]);
+            return Ok(());
         }
-        Ok((0..dim)
-            .map(|c| {
-                let v = if t == 1.0 {
-                    self.fv(j, c) + self.d[j * dim + c]
-                } else {
-                    horner(&self.coefs[k * dim + c], t)
-                };
-                let v = v * self.scales[c];
-                if v.is_infinite() {
-                    // Rounding above the largest double inside the hull.
-                    f64::MAX.copysign(v)
-                } else {
-                    v
-                }
-            })
-            .collect())
+        for (c, o) in out.iter_mut().enumerate() {
+            let v = if t == 1.0 {
+                self.fv(j, c) + self.d[j * dim + c]
+            } else {
+                horner(&self.coefs[k * dim + c], t)
+            };
+            let v = v * self.scales[c];
+            *o = if v.is_infinite() {
+                // Rounding above the largest double inside the hull.
+                f64::MAX.copysign(v)
+            } else {
+                v
+            };
+        }
+        Ok(())
     }
 
     /// The derivative of order `order` (0..=3; higher ones are 0) with respect
@@ -1136,14 +1161,26 @@ impl Curve {
     /// As [`Curve::eval`]; [`Error::Overflow`] when a derivative exceeds the
     /// range of a double.
     pub fn deriv(&self, s: f64, order: u32) -> Result<Vec<f64>, Error> {
+        let mut out = vec![0.0; self.dim];
+        self.deriv_into(s, order, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Curve::deriv`] into `out` (`dim` numbers), without allocating.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::deriv`]; [`Error::InvalidArgument`] when `out` does not hold
+    /// [`Curve::dim`] numbers.
+    pub fn deriv_into(&self, s: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
         if order == 0 {
-            return self.eval(s);
+            return self.eval_into(s, out);
         }
+        check_out(out, self.dim)?;
         let (k, t) = self.locate(s)?;
         let h = self.knots[k + 1] - self.knots[k];
         let dim = self.dim;
-        let mut out = Vec::with_capacity(dim);
-        for c in 0..dim {
+        for (c, o) in out.iter_mut().enumerate() {
             let mut v = poly_deriv(&self.coefs[k * dim + c], t, order) * self.scales[c];
             for _ in 0..order.min(4) {
                 v /= h;
@@ -1153,9 +1190,9 @@ impl Curve {
                     what: "the derivative",
                 });
             }
-            out.push(v);
+            *o = v;
         }
-        Ok(out)
+        Ok(())
     }
 
     /// The unit tangent at `s` (the zero vector where the derivative vanishes).

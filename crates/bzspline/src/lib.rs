@@ -86,6 +86,7 @@ mod kurbo_path;
 pub(crate) mod method;
 mod polyline;
 pub mod spline;
+mod traits;
 mod tridiag;
 
 pub use bezier::CubicBez;
@@ -96,4 +97,5 @@ pub use spline::{
     Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
     MIN_RELATIVE_INTERVAL,
 };
+pub use traits::{BezierPieces, Bounds, Flatten, ParamCurve};
 pub use tridiag::{CyclicThomas, Thomas};

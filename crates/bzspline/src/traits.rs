@@ -1,0 +1,405 @@
+//! Capabilities shared by the crate's curve types, in the spirit of kurbo's
+//! `ParamCurve` family but for any dimension: evaluation and derivatives into a
+//! caller's buffer ([`ParamCurve`]), the pieces as cubic Bezier segments
+//! ([`BezierPieces`]), flattening ([`Flatten`]) and the exact bounding box
+//! ([`Bounds`]).
+//!
+//! [`Curve`] implements them in its own dimension; a [`Spline`] as its graph,
+//! the planar curve `x -> (x, S(x))`; a [`CubicBez`] on `t` in `[0, 1]`. Generic
+//! code (the command, the geo and Python crates) writes against these.
+//!
+//! ```
+//! use bzspline::{Curve, ParamCurve, Spline};
+//!
+//! /// The midpoint of the domain, whatever the curve.
+//! fn middle(c: &impl ParamCurve) -> Vec<f64> {
+//!     let (a, b) = c.domain();
+//!     let mut p = vec![0.0; c.dim()];
+//!     c.eval_into(0.5 * (a + b), &mut p).unwrap();
+//!     p
+//! }
+//! let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+//! assert_eq!(middle(&s), vec![1.0, s.eval(1.0)?]);
+//! let c = Curve::open(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 0.0, 2.0]])?;
+//! assert_eq!(middle(&c), c.eval(1.0)?);
+//! # Ok::<(), bzspline::Error>(())
+//! ```
+
+use crate::bezier::CubicBez;
+use crate::curve::{check_out, BBox, Curve};
+use crate::error::{Error, Field};
+use crate::polyline::Polyline;
+use crate::spline::{quadratic_roots, Spline};
+
+/// A curve `t -> C(t)` in `R^dim` over a parameter interval.
+pub trait ParamCurve {
+    /// How many coordinates a point has.
+    fn dim(&self) -> usize;
+
+    /// The parameter interval `(start, end)`.
+    fn domain(&self) -> (f64, f64);
+
+    /// The point at `t` into `out`, which holds [`ParamCurve::dim`] numbers.
+    ///
+    /// # Errors
+    ///
+    /// A typed error for a parameter the curve does not answer at (not finite,
+    /// or outside the domain where the type refuses that), or an `out` of the
+    /// wrong length.
+    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error>;
+
+    /// The derivative of order `order` with respect to `t` into `out` (order 0
+    /// is the point).
+    ///
+    /// # Errors
+    ///
+    /// As [`ParamCurve::eval_into`]; an overflow of the derivative.
+    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error>;
+
+    /// The point at `t` as an array of `D` coordinates.
+    ///
+    /// # Errors
+    ///
+    /// As [`ParamCurve::eval_into`] (`D` must be the dimension).
+    fn point<const D: usize>(&self, t: f64) -> Result<[f64; D], Error>
+    where
+        Self: Sized,
+    {
+        let mut p = [0.0; D];
+        self.eval_into(t, &mut p)?;
+        Ok(p)
+    }
+}
+
+/// A curve made of cubic Bezier segments, exactly.
+pub trait BezierPieces {
+    /// How many segments.
+    fn piece_count(&self) -> usize;
+
+    /// The four control points of segment `k`, flat (`4 * dim` numbers), into
+    /// `out`; false past the last segment or for an `out` of the wrong length.
+    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool;
+}
+
+/// A polyline within a distance of the curve.
+pub trait Flatten {
+    /// Vertices on the curve, every point of the curve within `tol` of the
+    /// polyline; the first and last vertices are the curve's ends.
+    ///
+    /// # Errors
+    ///
+    /// A tolerance that is not a finite positive number, or one that needs too
+    /// many vertices.
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error>;
+}
+
+/// The exact axis-aligned bounding box.
+pub trait Bounds {
+    /// The smallest and largest value of each coordinate over the curve.
+    fn bbox(&self) -> BBox;
+}
+
+impl ParamCurve for Curve {
+    fn dim(&self) -> usize {
+        Curve::dim(self)
+    }
+    fn domain(&self) -> (f64, f64) {
+        Curve::domain(self)
+    }
+    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
+        Curve::eval_into(self, t, out)
+    }
+    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
+        Curve::deriv_into(self, t, order, out)
+    }
+}
+
+impl BezierPieces for Curve {
+    fn piece_count(&self) -> usize {
+        self.len()
+    }
+    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
+        match self.segment_points(k) {
+            Some(p) if p.len() == out.len() => {
+                out.copy_from_slice(&p);
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+impl Flatten for Curve {
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        Curve::flatten(self, tol)
+    }
+}
+
+impl Bounds for Curve {
+    fn bbox(&self) -> BBox {
+        Curve::bbox(self)
+    }
+}
+
+/// The graph `x -> (x, S(x))`, under the spline's extrapolation policy.
+impl ParamCurve for Spline {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn domain(&self) -> (f64, f64) {
+        Spline::domain(self)
+    }
+    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
+        check_out(out, 2)?;
+        out[1] = self.eval(t)?;
+        out[0] = t;
+        Ok(())
+    }
+    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
+        check_out(out, 2)?;
+        out[1] = self.deriv(t, order)?;
+        out[0] = match order {
+            0 => t,
+            1 => 1.0,
+            _ => 0.0,
+        };
+        Ok(())
+    }
+}
+
+impl BezierPieces for Spline {
+    fn piece_count(&self) -> usize {
+        self.len()
+    }
+    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
+        match self.segment(k) {
+            Some(s) if out.len() == 8 => {
+                out.copy_from_slice(s.p.as_flattened());
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+impl Flatten for Spline {
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        Spline::flatten(self, tol)
+    }
+}
+
+impl Bounds for Spline {
+    fn bbox(&self) -> BBox {
+        let (a, b) = self.domain();
+        let ((_, lo), (_, hi)) = self.range();
+        BBox {
+            min: vec![a, lo],
+            max: vec![b, hi],
+        }
+    }
+}
+
+/// On `t` in `[0, 1]`; the polynomial is evaluated at any finite `t`.
+impl<const D: usize> ParamCurve for CubicBez<D> {
+    fn dim(&self) -> usize {
+        D
+    }
+    fn domain(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
+        self.deriv_into(t, 0, out)
+    }
+    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
+        check_out(out, D)?;
+        if !t.is_finite() {
+            return Err(Error::NonFinite {
+                field: Field::Query,
+                index: 0,
+                value: t,
+            });
+        }
+        let [p0, p1, p2, p3] = self.p;
+        let v = match order {
+            0 => self.eval(t),
+            1 => self.deriv(t),
+            2 => self.deriv2(t),
+            3 => std::array::from_fn(|i| 6.0 * (p3[i] - 3.0 * p2[i] + 3.0 * p1[i] - p0[i])),
+            _ => [0.0; D],
+        };
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Overflow {
+                what: "the derivative",
+            });
+        }
+        out.copy_from_slice(&v);
+        Ok(())
+    }
+}
+
+impl<const D: usize> BezierPieces for CubicBez<D> {
+    fn piece_count(&self) -> usize {
+        1
+    }
+    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
+        if k != 0 || out.len() != 4 * D {
+            return false;
+        }
+        out.copy_from_slice(self.p.as_flattened());
+        true
+    }
+}
+
+/// The fewest equal steps in `t` that keep every chord within `tol`: the
+/// chord over a step `delta` is within `delta^2 / 8 max |C''|` of the curve,
+/// and `C''` is linear in `t`, largest at an end (`docs/method.md` §3; the
+/// bound of [`crate::flatten`]).
+impl<const D: usize> Flatten for CubicBez<D> {
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(Error::InvalidArgument {
+                what: "the flattening tolerance must be a positive number",
+                value: tol,
+            });
+        }
+        let norm = |v: [f64; D]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let m2 = norm(self.deriv2(0.0)).max(norm(self.deriv2(1.0)));
+        let steps = (m2 / (8.0 * tol)).sqrt().ceil().max(1.0);
+        // m2 is finite for finite control points; NaN only for non-finite ones.
+        if steps.is_nan() || steps > crate::MAX_FLATTEN_VERTICES as f64 {
+            return Err(Error::InvalidArgument {
+                what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
+                value: tol,
+            });
+        }
+        let n = steps as usize;
+        let mut coords = Vec::with_capacity((n + 1) * D);
+        let mut params = Vec::with_capacity(n + 1);
+        for i in 0..=n {
+            let t = if i == n { 1.0 } else { i as f64 / n as f64 };
+            let p = if i == n { self.p[3] } else { self.eval(t) };
+            coords.extend_from_slice(&p);
+            params.push(t);
+        }
+        Ok(Polyline::new(D, coords, params))
+    }
+}
+
+/// Per coordinate, the ends and the roots of the derivative (a quadratic)
+/// inside `(0, 1)`.
+impl<const D: usize> Bounds for CubicBez<D> {
+    fn bbox(&self) -> BBox {
+        let [p0, p1, p2, p3] = self.p;
+        let mut min = vec![0.0; D];
+        let mut max = vec![0.0; D];
+        for i in 0..D {
+            // C'(t) / 3 = a t^2 + b t + c in the power basis.
+            let a = p3[i] - 3.0 * p2[i] + 3.0 * p1[i] - p0[i];
+            let b = 2.0 * (p2[i] - 2.0 * p1[i] + p0[i]);
+            let c = p1[i] - p0[i];
+            let (mut lo, mut hi) = (p0[i].min(p3[i]), p0[i].max(p3[i]));
+            for t in quadratic_roots(a, b, c) {
+                if t > 0.0 && t < 1.0 {
+                    let v = self.eval(t)[i];
+                    lo = lo.min(v);
+                    hi = hi.max(v);
+                }
+            }
+            min[i] = lo;
+            max[i] = hi;
+        }
+        BBox { min, max }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Central differences of `eval_into` against `deriv_into` at a few
+    /// parameters inside every piece, for any of the types.
+    fn check_derivatives(c: &impl ParamCurve, params: &[f64]) {
+        let d = c.dim();
+        let (mut lo, mut hi, mut p1) = (vec![0.0; d], vec![0.0; d], vec![0.0; d]);
+        for &t in params {
+            let h = 1e-6;
+            c.eval_into(t - h, &mut lo).unwrap();
+            c.eval_into(t + h, &mut hi).unwrap();
+            c.deriv_into(t, 1, &mut p1).unwrap();
+            for i in 0..d {
+                let fd = (hi[i] - lo[i]) / (2.0 * h);
+                assert!(
+                    (fd - p1[i]).abs() < 1e-6 * (1.0 + p1[i].abs()),
+                    "t = {t}, coordinate {i}: difference {fd}, derivative {}",
+                    p1[i]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_three_types_answer_alike() {
+        let s = Spline::new(&[0.0, 1.0, 2.5, 3.0], &[1.0, -1.0, 2.0, 0.5]).unwrap();
+        check_derivatives(&s, &[0.3, 1.7, 2.9]);
+        let c = Curve::closed(&[
+            [0.0, 0.0, 1.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 2.0],
+            [0.0, 1.0, 0.0],
+        ])
+        .unwrap();
+        check_derivatives(&c, &[0.2, 1.5, 3.8]);
+        let b = c.segment::<3>(1).unwrap();
+        check_derivatives(&b, &[0.1, 0.5, 0.9]);
+        // The segment and the curve agree on the segment's span.
+        let (mut pb, mut pc) = ([0.0; 3], [0.0; 3]);
+        b.eval_into(0.25, &mut pb).unwrap();
+        c.eval_into(1.25, &mut pc).unwrap();
+        for i in 0..3 {
+            assert!((pb[i] - pc[i]).abs() < 1e-14, "{pb:?} {pc:?}");
+        }
+        // A buffer of the wrong length is refused, not a panic.
+        assert!(c.eval_into(0.5, &mut [0.0; 2]).is_err());
+        assert!(s.deriv_into(0.5, 1, &mut [0.0; 3]).is_err());
+        assert!(b.eval_into(f64::NAN, &mut pb).is_err());
+    }
+
+    #[test]
+    fn pieces_boxes_and_flattening_agree_with_the_types_own() {
+        let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
+        let mut buf = [0.0; 8];
+        assert_eq!(c.piece_count(), 3);
+        assert!(c.piece_into(1, &mut buf));
+        assert_eq!(buf.to_vec(), c.segment_points(1).unwrap());
+        assert!(!c.piece_into(3, &mut buf));
+        let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0]).unwrap();
+        assert!(s.piece_into(0, &mut buf));
+        assert_eq!(&buf[..2], &[0.0, 0.0]);
+        // The Bezier segment's exact box against dense sampling.
+        let b = c.segment::<2>(1).unwrap();
+        let bb = Bounds::bbox(&b);
+        for i in 0..=1000 {
+            let p = b.eval(f64::from(i) / 1000.0);
+            for (k, v) in p.iter().enumerate() {
+                assert!(*v >= bb.min[k] - 1e-12 && *v <= bb.max[k] + 1e-12);
+            }
+        }
+        let top = (0..=100_000)
+            .map(|i| b.eval(f64::from(i) / 100_000.0)[1])
+            .fold(f64::MIN, f64::max);
+        assert!((top - bb.max[1]).abs() < 1e-9, "{top} {}", bb.max[1]);
+        // Flattening the segment: vertices on it, chords within the tolerance
+        // of points between them.
+        let tol = 1e-4;
+        let poly = Flatten::flatten(&b, tol).unwrap();
+        let v = poly.to_arrays::<2>().unwrap();
+        assert_eq!(v[0], b.p[0]);
+        assert_eq!(v[v.len() - 1], b.p[3]);
+        for (w, t) in v.windows(2).zip(poly.params().windows(2)) {
+            let mid = b.eval(0.5 * (t[0] + t[1]));
+            let (dx, dy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
+            let dist = ((mid[0] - w[0][0]) * dy - (mid[1] - w[0][1]) * dx).abs() / dx.hypot(dy);
+            assert!(dist <= tol, "{dist}");
+        }
+    }
+}
