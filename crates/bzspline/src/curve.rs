@@ -40,6 +40,7 @@ use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::kernels;
 use crate::method::{alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::poly::{deriv_of, horner};
 use crate::polyline::Polyline;
 use crate::spline::{
     check_alphas, check_finite, check_knots, power_of_two_scale, quadratic_roots, resolve_alphas,
@@ -372,22 +373,6 @@ fn norm(v: &[f64]) -> f64 {
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-#[inline]
-fn horner(c: &[f64; 4], t: f64) -> f64 {
-    c[0] + t * (c[1] + t * (c[2] + t * c[3]))
-}
-
-#[inline]
-fn poly_deriv(c: &[f64; 4], t: f64, order: u32) -> f64 {
-    match order {
-        0 => horner(c, t),
-        1 => c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]),
-        2 => 2.0 * c[2] + 6.0 * t * c[3],
-        3 => 6.0 * c[3],
-        _ => 0.0,
-    }
 }
 
 fn check_tolerance(what: &'static str, tol: f64) -> Result<(), Error> {
@@ -1098,7 +1083,7 @@ impl Curve {
             let v = if order == 0 && t == 1.0 {
                 self.fv(j, c) + self.d[j * dim + c]
             } else {
-                poly_deriv(&self.coefs[k * dim + c], t, order)
+                deriv_of(&self.coefs[k * dim + c], t, order)
             };
             *o = v * rel;
         }
@@ -1181,7 +1166,7 @@ impl Curve {
         let h = self.knots[k + 1] - self.knots[k];
         let dim = self.dim;
         for (c, o) in out.iter_mut().enumerate() {
-            let mut v = poly_deriv(&self.coefs[k * dim + c], t, order) * self.scales[c];
+            let mut v = deriv_of(&self.coefs[k * dim + c], t, order) * self.scales[c];
             for _ in 0..order.min(4) {
                 v /= h;
             }

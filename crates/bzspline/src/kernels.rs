@@ -37,6 +37,7 @@
 //! per-interval alphas are formed again in the backward sweep.
 
 use crate::method::alpha_terms;
+use crate::poly::deriv;
 
 /// Rows between two renormalisations of the continuants: each row multiplies
 /// them by a pivot between `3 * 2^-52` and `32` (widths relative to a span
@@ -661,19 +662,6 @@ fn terms_from_inverses(a: f64, ia: f64, iu: f64) -> [f64; 4] {
     [r * r, 2.0 * ia + 1.0, 2.0 * iu + 1.0, ir * ir]
 }
 
-/// Derivative of order `O` (0..=3) in `t` of the cubic `c`, not divided by
-/// `h^O`: the arithmetic of `spline::poly_deriv`.
-#[inline(always)]
-pub(crate) fn poly<const O: u32>(c: &[f64; 4], t: f64) -> f64 {
-    match O {
-        0 => c[0] + t * (c[1] + t * (c[2] + t * c[3])),
-        1 => c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]),
-        2 => 2.0 * c[2] + 6.0 * t * c[3],
-        3 => 6.0 * c[3],
-        _ => 0.0,
-    }
-}
-
 /// `v / h^O` as `v * (1/h)^O`, the way the pointwise evaluator does it.
 #[inline(always)]
 pub(crate) fn per_h<const O: u32>(v: f64, inv: f64) -> f64 {
@@ -684,7 +672,7 @@ pub(crate) fn per_h<const O: u32>(v: f64, inv: f64) -> f64 {
     v
 }
 
-/// Whether `per_h::<O>(poly::<O>(c, t) * scale, inv)` is finite for every
+/// Whether `per_h::<O>(deriv::<O>(c, t) * scale, inv)` is finite for every
 /// `t` in `[0, 1]` (and a little past it, where rounding puts the end of a
 /// piece): the sum of the magnitudes of the terms bounds every partial sum
 /// of the Horner scheme, and the margin of a factor 4 covers its rounding.
@@ -718,7 +706,7 @@ fn walk_piece<const O: u32>(
             break;
         }
         let t = (x - k0) * inv;
-        *o = per_h::<O>(poly::<O>(&c, t) * scale, inv);
+        *o = per_h::<O>(deriv::<O>(&c, t) * scale, inv);
         j += 1;
     }
     j
@@ -1056,7 +1044,7 @@ impl Batch<'_> {
                     let (a, b) = (knots[q], knots[q + 1]);
                     let iv = 1.0 / (b - a);
                     let t = (x - a) * iv;
-                    let v = per_h::<O>(poly::<O>(&coefs[q].0, t) * scale, iv);
+                    let v = per_h::<O>(deriv::<O>(&coefs[q].0, t) * scale, iv);
                     if v.is_finite() {
                         *o = v;
                     } else {

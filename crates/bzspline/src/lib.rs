@@ -84,6 +84,7 @@ mod kernels;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
 pub(crate) mod method;
+mod poly;
 mod polyline;
 pub mod spline;
 mod traits;

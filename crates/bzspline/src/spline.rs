@@ -17,6 +17,7 @@ use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::kernels::{self, Batch, Piece};
 use crate::method::{piece_coefs, OpenSystem};
+use crate::poly::{deriv_of, horner};
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
 /// literal `0.3333333333333333` parses to it).
@@ -343,24 +344,6 @@ fn quick_check(
         summary.formed();
     }
     ok.then_some(m)
-}
-
-#[inline]
-fn horner(c: &[f64; 4], t: f64) -> f64 {
-    c[0] + t * (c[1] + t * (c[2] + t * c[3]))
-}
-
-/// Derivative of order `order` (0..=3) of the cubic `c` in `t`, not yet divided by
-/// `h^order`.
-#[inline]
-fn poly_deriv(c: &[f64; 4], t: f64, order: u32) -> f64 {
-    match order {
-        0 => horner(c, t),
-        1 => c[1] + t * (2.0 * c[2] + 3.0 * t * c[3]),
-        2 => 2.0 * c[2] + 6.0 * t * c[3],
-        3 => 6.0 * c[3],
-        _ => 0.0,
-    }
 }
 
 /// Where a query falls.
@@ -769,7 +752,7 @@ impl Spline {
             }
             Locus::Piece(k, t, inv) => {
                 let c = &self.coefs[k].0;
-                let mut v = poly_deriv(c, t, order) * self.scale;
+                let mut v = deriv_of(c, t, order) * self.scale;
                 if order == 0 && v.is_infinite() && (0.0..=1.0).contains(&t) {
                     // Rounding above f64::MAX inside the hull: the true value is
                     // within the control values, which are finite.
@@ -1040,7 +1023,7 @@ impl Spline {
                 // Inside the hull the true value is finite; rounding above
                 // f64::MAX is held at it, as in `eval`.
                 let y = (horner(c, t) * self.scale).clamp(-f64::MAX, f64::MAX);
-                let curv = poly_deriv(c, t, 2);
+                let curv = deriv_of(c, t, 2);
                 let kind = if curv > 0.0 {
                     ExtremumKind::Minimum
                 } else if curv < 0.0 {
@@ -1171,7 +1154,7 @@ pub(crate) mod tests {
                 let c = &s.coefs[k].0;
                 let t = (x - EX1_X[k]) / (EX1_X[k + 1] - EX1_X[k]);
                 let y = horner(c, t) * s.scale;
-                let dy = poly_deriv(c, t, 1) * s.scale;
+                let dy = deriv_of(c, t, 1) * s.scale;
                 assert!(close(y, f, 1e-13), "S(x_{k}): want {f}, got {y}");
                 let slope = s.leg_slope(k).unwrap();
                 assert!(close(dy, slope, 1e-13), "S'(x_{k}): want {slope}, got {dy}");
@@ -1180,7 +1163,7 @@ pub(crate) mod tests {
                 let l = &s.coefs[k - 1].0;
                 let r = &s.coefs[k].0;
                 assert!(close(horner(l, 1.0), horner(r, 0.0), 1e-13));
-                assert!(close(poly_deriv(l, 1.0, 1), poly_deriv(r, 0.0, 1), 1e-13));
+                assert!(close(deriv_of(l, 1.0, 1), deriv_of(r, 0.0, 1), 1e-13));
             }
             assert_eq!(s.eval(1.0).unwrap(), 1.0);
             assert_eq!(s.eval(11.0).unwrap(), 1.5);
@@ -1386,7 +1369,7 @@ pub(crate) mod tests {
         let k = s.piece_index(x);
         let h = s.knots[k + 1] - s.knots[k];
         let t = (x - s.knots[k]) / h;
-        let mut v = poly_deriv(&s.coefs[k].0, t, order) * s.scale;
+        let mut v = deriv_of(&s.coefs[k].0, t, order) * s.scale;
         for _ in 0..order {
             v /= h;
         }
