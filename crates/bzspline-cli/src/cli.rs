@@ -38,6 +38,7 @@ pub enum Command {
     /// coverage: shared borders smoothed once, valid polygons kept valid.
     Smooth(SmoothArgs),
     /// Serve an interactive editor over HTTP.
+    #[cfg(feature = "serve")]
     Serve(crate::serve::ServeArgs),
 }
 

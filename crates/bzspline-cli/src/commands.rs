@@ -28,6 +28,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Sample(a) => sample(&a),
         Command::Plot(a) => crate::plot::run(&a),
         Command::Smooth(a) => smooth(&a),
+        #[cfg(feature = "serve")]
         Command::Serve(a) => crate::serve::run(&a),
     }
 }

@@ -9,6 +9,7 @@ mod input;
 mod model;
 mod output;
 mod plot;
+#[cfg(feature = "serve")]
 mod serve;
 mod smooth;
 mod topojson;

@@ -421,7 +421,7 @@ mod tests {
     use super::*;
 
     fn example1() -> FitSpec<'static> {
-        let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+        let f = crate::input::EXAMPLE1;
         FitSpec {
             points: f
                 .iter()

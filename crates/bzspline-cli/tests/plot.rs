@@ -43,6 +43,7 @@ fn without_input_it_draws_example_1() {
 }
 
 #[test]
+#[cfg(feature = "png")]
 fn png_by_extension_and_closed_curves() {
     let dir = tempfile::tempdir().unwrap();
     let pts = dir.path().join("pentagon.csv");

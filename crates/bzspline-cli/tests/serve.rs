@@ -1,6 +1,7 @@
 //! `bzspline serve` over real HTTP: the binary is started with `--port 0`, the
 //! printed address is read, and requests go through a plain TCP socket so that
 //! every header (Host, Origin, Content-Length) is under the test's control.
+#![cfg(feature = "serve")]
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;

@@ -67,7 +67,7 @@ mod tests {
 
     #[test]
     fn hull_of_example_1_and_degenerate_input() {
-        let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
+        let f = crate::input::EXAMPLE1;
         let pts: Vec<[f64; 2]> = f
             .iter()
             .enumerate()

@@ -1,8 +1,11 @@
 //! The figure as a PNG: the SVG rasterised by resvg.
 
+#[cfg(feature = "png")]
 use std::sync::Arc;
 
-use anyhow::{anyhow, Context as _};
+use anyhow::anyhow;
+#[cfg(feature = "png")]
+use anyhow::Context as _;
 
 use super::{render_svg, PlotData, PlotOptions};
 
@@ -24,6 +27,19 @@ pub fn render_png(data: &[PlotData], opts: &PlotOptions) -> anyhow::Result<Vec<u
 /// # Errors
 ///
 /// As [`render_png`].
+#[cfg(not(feature = "png"))]
+pub fn svg_to_png(_svg: &str, _scale: f32) -> anyhow::Result<Vec<u8>> {
+    Err(anyhow!(
+        "this bzspline was built without PNG output (cargo feature `png`); write SVG instead"
+    ))
+}
+
+/// Rasterises an SVG document at `scale` pixels per SVG pixel.
+///
+/// # Errors
+///
+/// As [`render_png`].
+#[cfg(feature = "png")]
 pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
     use resvg::{tiny_skia, usvg};
     if !(scale.is_finite() && scale > 0.0 && scale <= 16.0) {
@@ -59,7 +75,7 @@ pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
     pixmap.encode_png().context("encoding the PNG")
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "png"))]
 mod tests {
     use super::*;
     use crate::plot::tests::example;
