@@ -39,7 +39,7 @@ use std::borrow::Cow;
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::kernels;
-use crate::method::{alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::method::{self, alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
 use crate::poly::{deriv_of, horner};
 use crate::polyline::Polyline;
 use crate::spline::{
@@ -107,6 +107,7 @@ pub struct CurveBuilder<'a> {
     alpha: f64,
     alphas: Option<Vec<f64>>,
     repeats: Repeats,
+    through: bool,
 }
 
 impl<'a> CurveBuilder<'a> {
@@ -121,6 +122,7 @@ impl<'a> CurveBuilder<'a> {
             alpha: DEFAULT_ALPHA,
             alphas: None,
             repeats: Repeats::Reject,
+            through: false,
         }
     }
 
@@ -168,6 +170,30 @@ impl<'a> CurveBuilder<'a> {
     #[must_use]
     pub fn repeats(mut self, repeats: Repeats) -> Self {
         self.repeats = repeats;
+        self
+    }
+
+    /// Through the points (`true`) instead of touching the legs of their
+    /// polygon (`false`, the default): the interpolating variant
+    /// (`docs/method.md` §11). The curve passes through every point at its
+    /// parameter, is C1, and touches every leg of the solved control polygon,
+    /// which [`Curve::points`] returns; the parameters are chosen from the
+    /// points given. Everything the default refuses is refused the same way.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, Param};
+    /// let pts = [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0]];
+    /// let c = Curve::builder_from(&pts).param(Param::Chordal).through(true).build()?;
+    /// for (k, p) in c.knot_points().iter().enumerate() {
+    ///     assert!((p[0] - pts[k][0]).abs() < 1e-14 && (p[1] - pts[k][1]).abs() < 1e-14);
+    /// }
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    #[must_use]
+    pub fn through(mut self, through: bool) -> Self {
+        self.through = through;
         self
     }
 
@@ -530,7 +556,33 @@ impl Curve {
 
     /// Validates the builder's inputs and solves into `target`, which changes
     /// only on success.
+    /// The interpolating variant (§11): the curve of the data validates them
+    /// and gives the parameters, alphas and points after dropping repeats; the
+    /// control points come from the variant's system; the curve is built on
+    /// them with the data's parameters.
+    fn build_through(mut b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
+        b.through = false;
+        let (dim, closed) = (b.dim, b.closed);
+        let data = b.build()?;
+        let widths: Vec<f64> = data.knots.windows(2).map(|w| w[1] - w[0]).collect();
+        let controls = method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
+            .ok_or(Error::Overflow {
+            what: "a solved control point",
+        })?;
+        let mut c = CurveBuilder::new(&controls, dim)
+            .closed(closed)
+            .param(Param::Given(data.knots.clone()))
+            .alphas(&data.alphas)
+            .build()?;
+        c.dropped = data.dropped;
+        *target = c;
+        Ok(())
+    }
+
     fn build_from(b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
+        if b.through {
+            return Self::build_through(b, target);
+        }
         let dim = b.dim;
         if dim == 0 {
             return Err(Error::InvalidArgument {

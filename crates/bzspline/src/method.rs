@@ -50,9 +50,30 @@
 //! `phi_{k+1} - h S'(tau_{k+1}-0)/3`, `phi_{k+1}`.
 //!
 //! A closed polygon (§7) has the same row at every knot, indices taken
-//! cyclically, and no deviation fixed: [`ClosedSystem`].
+//! cyclically, and no deviation fixed: [`ClosedSystem`]. The interpolating
+//! variant (§11) solves `(T + K) d = K P` with the same right-hand side and
+//! takes `G = P - d` as control values: [`OpenSystem::through`],
+//! [`ClosedSystem::through`], [`through_controls`].
 
 use crate::tridiag::{CyclicThomas, Thomas};
+
+/// A power of two close to `max |v|` (1 for an all-zero input), so that values
+/// divided by it lie in `[-2, 2]` and the division is exact.
+pub(crate) fn power_of_two_scale<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {
+    let m = values.into_iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    scale_for_max(m)
+}
+
+/// [`power_of_two_scale`] of values whose largest magnitude is `m`.
+pub(crate) fn scale_for_max(m: f64) -> f64 {
+    if m == 0.0 || !m.is_finite() {
+        return 1.0;
+    }
+    let e = m.log2().floor().clamp(-1022.0, 1023.0);
+    // powi cannot reach 2^-1022 through 2.0f64.powi on all platforms exactly, so
+    // build the double from its exponent bits.
+    f64::from_bits(((e as i64 + 1023) as u64) << 52)
+}
 
 /// The factored continuity system of an open spline: depends on the widths and
 /// alphas only, so one factorization serves every coordinate of a curve.
@@ -88,6 +109,17 @@ pub(crate) fn neighbour_weights(hl: f64, hr: f64) -> (f64, f64) {
 impl OpenSystem {
     /// Builds and factors the row-scaled system (16) for interior knots.
     pub(crate) fn new(widths: &[f64], alphas: &[f64]) -> Self {
+        Self::assemble(widths, alphas, false)
+    }
+
+    /// The system of the interpolating variant (`docs/method.md` §11): the rows
+    /// of (16) plus those of the slope jumps, `(T + K) d = K P`, whose solution
+    /// gives control values `G = P - d` with knot values `P`.
+    pub(crate) fn through(widths: &[f64], alphas: &[f64]) -> Self {
+        Self::assemble(widths, alphas, true)
+    }
+
+    fn assemble(widths: &[f64], alphas: &[f64], through: bool) -> Self {
         let n = widths.len() + 1;
         let m = n.saturating_sub(2);
         let mut p_all = Vec::with_capacity(m);
@@ -109,7 +141,11 @@ impl OpenSystem {
             let [_, _, b2, cr] = right;
             left = right;
             p_all.push(p);
-            (-p * al, p * b1 + q * b2, -q * cr)
+            if through {
+                through_row(p, q, al, b1, b2, cr)
+            } else {
+                (-p * al, p * b1 + q * b2, -q * cr)
+            }
         })
         .unwrap_or_default();
         OpenSystem { p: p_all, thomas }
@@ -156,6 +192,14 @@ pub(crate) fn piece_coefs_with(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 
     ]
 }
 
+/// The row-scaled row of `T + K` (§11) from the terms of (16): `p (1 - A')`,
+/// `p B1' + q B2' - 1` (which is `2p/a + 2q/(1-b)`), `q (1 - C')`, with the signs
+/// of [`row`]; diagonally dominant on `[1/3, 2/3]`, diagonal at alpha = 1/2.
+#[inline]
+fn through_row(p: f64, q: f64, al: f64, b1: f64, b2: f64, cr: f64) -> (f64, f64, f64) {
+    (p * (1.0 - al), p * b1 + q * b2 - 1.0, q * (1.0 - cr))
+}
+
 /// Row `i` of the row-scaled continuity system for the knot between legs of
 /// widths `hl`, `hr` and alphas `al`, `ar`: `(lower, diag, upper, p)`.
 #[inline]
@@ -174,6 +218,15 @@ pub(crate) struct ClosedSystem {
 
 impl ClosedSystem {
     pub(crate) fn new(widths: &[f64], alphas: &[f64]) -> Self {
+        Self::assemble(widths, alphas, false)
+    }
+
+    /// The cyclic system of the interpolating variant (§11).
+    pub(crate) fn through(widths: &[f64], alphas: &[f64]) -> Self {
+        Self::assemble(widths, alphas, true)
+    }
+
+    fn assemble(widths: &[f64], alphas: &[f64], through: bool) -> Self {
         let n = widths.len();
         let (mut lower, mut diag, mut upper, mut ps) = (
             Vec::with_capacity(n),
@@ -183,7 +236,15 @@ impl ClosedSystem {
         );
         for i in 0..n {
             let l = (i + n - 1) % n;
-            let (lo, di, up, p) = row(widths[l], widths[i], alphas[l], alphas[i]);
+            let (lo, di, up, p) = if through {
+                let (p, q) = neighbour_weights(widths[l], widths[i]);
+                let [al, b1, _, _] = alpha_terms(alphas[l]);
+                let [_, _, b2, cr] = alpha_terms(alphas[i]);
+                let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
+                (lo, di, up, p)
+            } else {
+                row(widths[l], widths[i], alphas[l], alphas[i])
+            };
             lower.push(lo);
             diag.push(di);
             upper.push(up);
@@ -213,6 +274,52 @@ impl ClosedSystem {
             None => d.iter_mut().for_each(|v| *v = 0.0),
         }
     }
+}
+
+/// The control values of the interpolating variant (§11) for `points` (`dim`
+/// coordinates a point, flat) on the grid of `widths`, open or `closed`: one
+/// factorisation for every coordinate, each coordinate scaled by a power of
+/// two while it is solved. `None` when a control value leaves the range of a
+/// double.
+pub(crate) fn through_controls(
+    widths: &[f64],
+    alphas: &[f64],
+    points: &[f64],
+    dim: usize,
+    closed: bool,
+) -> Option<Vec<f64>> {
+    let n = points.len() / dim.max(1);
+    let mut out = vec![0.0; points.len()];
+    enum System {
+        Open(OpenSystem),
+        Closed(ClosedSystem),
+    }
+    let system = if closed {
+        System::Closed(ClosedSystem::through(widths, alphas))
+    } else {
+        System::Open(OpenSystem::through(widths, alphas))
+    };
+    let mut f = vec![0.0; n];
+    let mut d = vec![0.0; n];
+    for c in 0..dim {
+        let scale = power_of_two_scale((0..n).map(|i| &points[i * dim + c]));
+        let inv = 1.0 / scale;
+        for (i, v) in f.iter_mut().enumerate() {
+            *v = points[i * dim + c] * inv;
+        }
+        match &system {
+            System::Open(s) => s.solve(&f, &mut d),
+            System::Closed(s) => s.solve(&f, &mut d),
+        }
+        for i in 0..n {
+            let g = (f[i] - d[i]) * scale;
+            if !g.is_finite() {
+                return None;
+            }
+            out[i * dim + c] = g;
+        }
+    }
+    Some(out)
 }
 
 #[cfg(test)]

@@ -16,7 +16,8 @@
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::kernels::{self, Batch, Piece};
-use crate::method::{piece_coefs, OpenSystem};
+use crate::method::{self, piece_coefs, OpenSystem};
+pub(crate) use crate::method::{power_of_two_scale, scale_for_max};
 use crate::poly::{deriv_of, horner};
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
@@ -246,24 +247,6 @@ pub(crate) fn check_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<(), E
     Ok(())
 }
 
-/// A power of two close to `max |v|` (1 for an all-zero input), so that values
-/// divided by it lie in `[-2, 2]` and the division is exact.
-pub(crate) fn power_of_two_scale<'a>(values: impl IntoIterator<Item = &'a f64>) -> f64 {
-    let m = values.into_iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    scale_for_max(m)
-}
-
-/// [`power_of_two_scale`] of values whose largest magnitude is `m`.
-pub(crate) fn scale_for_max(m: f64) -> f64 {
-    if m == 0.0 || !m.is_finite() {
-        return 1.0;
-    }
-    let e = m.log2().floor().clamp(-1022.0, 1023.0);
-    // powi cannot reach 2^-1022 through 2.0f64.powi on all platforms exactly, so
-    // build the double from its exponent bits.
-    f64::from_bits(((e as i64 + 1023) as u64) << 52)
-}
-
 /// Every check of [`Spline::build`] in one branch-free pass: `Some(max |F|)`
 /// when the input is valid, `None` when something is wrong (the step-by-step
 /// validation then finds what). A finite positive span and widths that are
@@ -411,6 +394,53 @@ impl Spline {
         };
         s.rebuild(knots, values, alphas)?;
         Ok(s)
+    }
+
+    /// The spline through the points `(knots[k], values[k])`: the
+    /// interpolating variant (`docs/method.md` §11). Its knot values are
+    /// `values` (to rounding) and it touches every leg of its solved control
+    /// polygon, whose values [`Spline::values`] returns; it is C1 like every
+    /// spline here and passes through the data, but it is not confined to the
+    /// hull of `values` (it swings far less than the interpolating cubic spline).
+    /// Every capability of a spline works on it.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::build`]; [`Error::Overflow`] when a solved control value
+    /// leaves the range of a double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Alphas, Spline};
+    /// let x = [0.0, 1.0, 2.0, 3.0];
+    /// let y = [0.0, 2.0, 1.0, 3.0];
+    /// let s = Spline::through(&x, &y, Alphas::default())?;
+    /// for (k, v) in s.knot_values().iter().enumerate() {
+    ///     assert!((v - y[k]).abs() < 1e-14);
+    /// }
+    /// // It touches the legs of its control polygon, not of the data.
+    /// let g = s.values();
+    /// assert!((s.eval(0.5)? - (g[0] + g[1]) / 2.0).abs() < 1e-14);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn through(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
+        let widths = validate_knots(knots)?;
+        if values.len() != knots.len() {
+            return Err(Error::LengthMismatch {
+                field: Field::Value,
+                expected: knots.len(),
+                found: values.len(),
+            });
+        }
+        check_finite(Field::Value, values)?;
+        let resolved = resolve_alphas(alphas, widths.len())?;
+        let g = method::through_controls(&widths, &resolved, values, 1, false).ok_or(
+            Error::Overflow {
+                what: "a solved control value",
+            },
+        )?;
+        Self::build(knots, &g, alphas)
     }
 
     /// Rebuilds this spline in place from new data, reusing its allocations
