@@ -122,6 +122,11 @@ pub struct ShapeArgs {
     /// Curve parameters: uniform (tau = 0, 1, ...), chordal or centripetal.
     #[arg(long, value_enum, value_name = "KIND", default_value_t = ParamArg::Uniform)]
     pub param: ParamArg,
+    /// Pass through every point instead of touching the legs of their polygon
+    /// (the interpolating variant): the points are then the knot values, and
+    /// the solved control values are what `fit` prints as `values`.
+    #[arg(long)]
+    pub through: bool,
 }
 
 /// The `--param` choices.
@@ -279,6 +284,10 @@ pub struct SmoothArgs {
     /// sharp corner (street blocks, buildings, survey lines).
     #[arg(long, value_name = "DEG", value_parser = degrees)]
     pub keep_angle: Option<f64>,
+    /// Pass through every vertex (the interpolating variant) instead of
+    /// cutting the corners: the output keeps every input position.
+    #[arg(long)]
+    pub through: bool,
     /// Print a summary (features, rings, arcs, refinements, positions, area
     /// change) on standard error; printed anyway when it is a terminal.
     #[arg(long)]
@@ -370,6 +379,8 @@ pub struct Shape {
     pub alpha: Option<f64>,
     /// One alpha per interval.
     pub alphas: Option<Vec<f64>>,
+    /// Through the points (the interpolating variant).
+    pub through: bool,
 }
 
 impl ShapeArgs {
@@ -397,6 +408,7 @@ impl ShapeArgs {
             param: self.param.into(),
             alpha: self.alpha,
             alphas: self.alphas.clone(),
+            through: self.through,
         })
     }
 }

@@ -62,6 +62,7 @@ fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
         param: shape.param,
         alpha: shape.alpha,
         alphas: shape.alphas.clone(),
+        through: shape.through,
     }
 }
 

@@ -47,6 +47,9 @@ pub struct FitSpec<'a> {
     /// One alpha per interval (per leg of a curve, the closing leg last);
     /// takes precedence over `alpha`.
     pub alphas: Option<Vec<f64>>,
+    /// Through the points (the interpolating variant) instead of touching the
+    /// legs of their polygon.
+    pub through: bool,
 }
 
 /// A fitted spline.
@@ -84,7 +87,11 @@ pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
                 (None, Some(a)) => Alphas::Uniform(a),
                 (None, None) => Alphas::default(),
             };
-            Ok(Fitted::Function(Spline::build(&xs, &ys, alphas)?))
+            Ok(Fitted::Function(if spec.through {
+                Spline::through(&xs, &ys, alphas)?
+            } else {
+                Spline::build(&xs, &ys, alphas)?
+            }))
         }
         Mode::Curve => {
             if rows == 0 {
@@ -99,7 +106,8 @@ pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
                     ParamKind::Uniform => Param::Uniform,
                     ParamKind::Chordal => Param::Chordal,
                     ParamKind::Centripetal => Param::Centripetal,
-                });
+                })
+                .through(spec.through);
             if let Some(a) = &spec.alphas {
                 b = b.alphas(a);
             } else if let Some(a) = spec.alpha {
@@ -434,6 +442,7 @@ mod tests {
             param: ParamKind::Uniform,
             alpha: None,
             alphas: None,
+            through: false,
         }
     }
 

@@ -1066,3 +1066,57 @@ fn smooth_real_country_outlines() {
     }
     assert_eq!(rings_checked, 17, "every ring of the seven countries");
 }
+
+#[test]
+fn through_passes_the_curve_through_the_points() {
+    // fit: `values` are the solved controls, `knot_values` the data.
+    let v: Value = serde_json::from_str(&ok(&["fit", "--example", "1", "--through"])).unwrap();
+    let knot_values = numbers(&v["knot_values"]);
+    for (k, (got, want)) in knot_values.iter().zip(input_example1()).enumerate() {
+        assert!(
+            (got - want).abs() < 1e-13 * 10.0,
+            "knot {k}: {got} against {want}"
+        );
+    }
+    let s = bzspline::Spline::through(
+        &(1..=11).map(f64::from).collect::<Vec<_>>(),
+        &input_example1(),
+        bzspline::Alphas::default(),
+    )
+    .unwrap();
+    assert_eq!(numbers(&v["values"]), s.values());
+    // eval at the knots gives the data; a curve, open and closed, too.
+    let text = ok(&["eval", "--example", "1", "--through", "--at", "1,2,6,11"]);
+    let ys: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    for (y, want) in ys.iter().zip([1.0, 3.0, 7.0, 1.5]) {
+        assert!((y - want).abs() < 1e-12, "{y} against {want}");
+    }
+    let v: Value =
+        serde_json::from_str(&ok(&["fit", "square.csv", "--closed", "--through"])).unwrap();
+    let pts = points(&v["knot_values"]);
+    let want = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]];
+    for (p, w) in pts.iter().zip(want) {
+        assert!(
+            (p[0] - w[0]).abs() < 1e-14 && (p[1] - w[1]).abs() < 1e-14,
+            "{p:?} against {w:?}"
+        );
+    }
+    // The fit reads back as input: the solved controls give the same curve.
+    let first = ok(&["fit", "--example", "1", "--through"]);
+    let o = run(&["fit", "--input-format", "json"], Some(first.as_bytes()));
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let back: Value = serde_json::from_str(&o.stdout).unwrap();
+    let again: Value = serde_json::from_str(&first).unwrap();
+    assert_eq!(back["segments"], again["segments"]);
+    // The figure names the solved polygon and the points passed through.
+    let svg = ok(&["plot", "--example", "1", "--through"]);
+    assert!(svg.contains("solved control polygon") && svg.contains("points (passed through)"));
+}
+
+fn input_example1() -> Vec<f64> {
+    vec![1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5]
+}

@@ -361,3 +361,34 @@ fn bad_topojson_names_the_object_and_the_arc() {
         assert_data_error(&["smooth", p], None, &want);
     }
 }
+
+#[test]
+fn through_keeps_every_position_and_every_border() {
+    let input = input_features();
+    for extra in [&[][..], &["--independent"][..]] {
+        let mut args = vec![
+            "smooth",
+            "mosaic.geojson",
+            "--tolerance",
+            "0.001",
+            "--through",
+        ];
+        args.extend_from_slice(extra);
+        let out = features(&ok(&args));
+        for (i, o) in input.iter().zip(&out) {
+            let kept: HashSet<(u64, u64)> =
+                chains(&o["geometry"]).iter().flatten().map(bits).collect();
+            for p in chains(&i["geometry"]).iter().flatten() {
+                assert!(kept.contains(&bits(p)), "{extra:?}: {p} lost");
+            }
+        }
+        if extra.is_empty() {
+            for (a, b) in neighbours(&input) {
+                assert!(
+                    !segments(&out[a]["geometry"]).is_disjoint(&segments(&out[b]["geometry"])),
+                    "features {a} and {b} lost their border"
+                );
+            }
+        }
+    }
+}

@@ -20,7 +20,7 @@
 
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use bzspline::{CurveBuilder, Param, Polyline};
+use bzspline::{CurveBuilder, Param};
 use geo_types::Coord;
 
 use crate::crossings::{key, Lines, SegId};
@@ -57,6 +57,10 @@ pub struct SmoothOptions {
     /// Positions where the polyline turns by more than this many degrees stay
     /// where they are, as corners.
     pub keep_angle: Option<f64>,
+    /// Pass through every position (the interpolating variant,
+    /// `docs/method.md` §11) instead of cutting the corners: the output keeps
+    /// every position of the input.
+    pub through: bool,
 }
 
 impl Default for SmoothOptions {
@@ -66,6 +70,7 @@ impl Default for SmoothOptions {
             alpha: bzspline::DEFAULT_ALPHA,
             param: Param::Centripetal,
             keep_angle: None,
+            through: false,
         }
     }
 }
@@ -89,6 +94,14 @@ impl SmoothOptions {
     #[must_use]
     pub fn param(mut self, param: Param) -> Self {
         self.param = param;
+        self
+    }
+
+    /// Passes through every position (`true`) or cuts the corners (`false`, the
+    /// default).
+    #[must_use]
+    pub fn through(mut self, through: bool) -> Self {
+        self.through = through;
         self
     }
 
@@ -698,7 +711,7 @@ fn smooth_arc(
             let all: Vec<usize> = (0..=n_legs).collect();
             let (ctrl, leg_of) = refine(arc, &all, levels, true);
             match curve_polyline(&ctrl, true, opts, tol, plan.min_out).map_err(spline_err)? {
-                Some((poly, knots)) => collect(&poly, &knots, &leg_of, &mut out, &mut segs),
+                Some(flat) => collect(&flat, &leg_of, &mut out, &mut segs),
                 None => {
                     kept += 1;
                     keep(arc, &all, &mut out, &mut segs);
@@ -726,9 +739,9 @@ fn smooth_arc(
         let (ctrl, leg_of) = refine(arc, piece, levels, false);
         let min = if single_piece { plan.min_out } else { 2 };
         match curve_polyline(&ctrl, false, opts, tol, min).map_err(spline_err)? {
-            Some((poly, knots)) => {
+            Some(flat) => {
                 let joint = out.len().checked_sub(1);
-                collect(&poly, &knots, &leg_of, &mut out, &mut segs);
+                collect(&flat, &leg_of, &mut out, &mut segs);
                 // The piece ends exactly at its cut positions.
                 out[joint.unwrap_or(0)] = arc[piece[0]];
                 let last = out.len() - 1;
@@ -804,9 +817,11 @@ fn refine(arc: &[Coord], walk: &[usize], levels: &[u8], closed: bool) -> (Vec<f6
 }
 
 /// The flattened curve of the control points `ctrl` (at least `min`
-/// positions, sampled evenly in the parameter when flattening gives fewer),
-/// with the curve's knots; `None` when no curve can be built on them (points
-/// too close for the parametrisation, say).
+/// positions, sampled evenly in the parameter when flattening gives fewer):
+/// its vertices' parameters and coordinates, and the curve's knots; `None`
+/// when no curve can be built on them (points too close for the
+/// parametrisation, say). Through the points, every control point is a
+/// vertex, with its coordinates exactly.
 ///
 /// # Errors
 ///
@@ -817,31 +832,59 @@ fn curve_polyline(
     opts: &SmoothOptions,
     tol: f64,
     min: usize,
-) -> Result<Option<(Polyline, Vec<f64>)>, bzspline::Error> {
+) -> Result<Option<Flat>, bzspline::Error> {
     let Ok(curve) = CurveBuilder::new(ctrl, 2)
         .closed(closed)
         .param(opts.param.clone())
         .alpha(opts.alpha)
+        .through(opts.through)
         .build()
     else {
         return Ok(None);
     };
-    let mut poly = curve.flatten(tol)?;
+    let mut poly = if opts.through {
+        curve.flatten_with_knots(tol)?
+    } else {
+        curve.flatten(tol)?
+    };
     if poly.len() < min {
         poly = curve.sample(min)?;
     }
-    Ok(Some((poly, curve.knots().to_vec())))
+    let knots = curve.knots().to_vec();
+    let params = poly.params().to_vec();
+    let mut coords = poly.coords().to_vec();
+    if opts.through {
+        let n = ctrl.len() / 2;
+        let mut k = 0;
+        for (i, &t) in params.iter().enumerate() {
+            while k < knots.len() && knots[k] < t {
+                k += 1;
+            }
+            if k < knots.len() && knots[k] == t {
+                let j = k % n;
+                coords[2 * i] = ctrl[2 * j];
+                coords[2 * i + 1] = ctrl[2 * j + 1];
+            }
+        }
+    }
+    Ok(Some(Flat {
+        params,
+        coords,
+        knots,
+    }))
+}
+
+/// A flattened piece: vertex parameters, coordinates (flat), the knots.
+struct Flat {
+    params: Vec<f64>,
+    coords: Vec<f64>,
+    knots: Vec<f64>,
 }
 
 /// Appends the polyline's vertices (after the first when `out` already
 /// ends at it) and its segments' legs.
-fn collect(
-    poly: &Polyline,
-    knots: &[f64],
-    leg_of: &[u32],
-    out: &mut Vec<Coord>,
-    segs: &mut Vec<Seg>,
-) {
+fn collect(flat: &Flat, leg_of: &[u32], out: &mut Vec<Coord>, segs: &mut Vec<Seg>) {
+    let knots = &flat.knots;
     let nint = knots.len() - 1;
     // The interval a parameter starts (or, `right`, ends) a segment in.
     let interval = |p: f64, right: bool| -> usize {
@@ -852,8 +895,8 @@ fn collect(
         };
         k.saturating_sub(1).min(nint - 1)
     };
-    let params = poly.params();
-    let coords = poly.coords();
+    let params = &flat.params;
+    let coords = &flat.coords;
     out.reserve(params.len());
     segs.reserve(params.len());
     let mut prev = params[0];

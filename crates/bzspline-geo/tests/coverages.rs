@@ -315,6 +315,32 @@ fn keep_angle_keeps_sharp_corners() {
     check_all(&input, &out);
 }
 
+#[test]
+fn through_the_points_keeps_every_position() {
+    let input = wiggly_grid(4, 3, 4, 0.15, 0.1, 21);
+    for tol in [1e-3, 0.05] {
+        let (out, stats) = smooth(
+            &input,
+            &SmoothOptions::default().tolerance(tol).through(true),
+        );
+        check_all(&input, &out);
+        for (i, o) in input.iter().zip(&out) {
+            let kept: std::collections::HashSet<(u64, u64)> = polygons(o)[0]
+                .exterior()
+                .0
+                .iter()
+                .map(|c| (c.x.to_bits(), c.y.to_bits()))
+                .collect();
+            for c in &polygons(i)[0].exterior().0 {
+                assert!(
+                    kept.contains(&(c.x.to_bits(), c.y.to_bits())),
+                    "{c:?} lost at tolerance {tol}"
+                );
+            }
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
 
@@ -329,9 +355,13 @@ proptest! {
         tol_exp in -4i32..0,
         alpha in (1.0f64 / 3.0)..(2.0 / 3.0),
         keep in prop::option::of(10.0f64..90.0),
+        through in any::<bool>(),
     ) {
         let input = wiggly_grid(nx, ny, m, jitter, amp, seed);
-        let mut opts = SmoothOptions::default().tolerance(10f64.powi(tol_exp)).alpha(alpha);
+        let mut opts = SmoothOptions::default()
+            .tolerance(10f64.powi(tol_exp))
+            .alpha(alpha)
+            .through(through);
         if let Some(k) = keep {
             opts = opts.keep_angle(k);
         }

@@ -78,6 +78,51 @@ fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
 }
 
 impl Curve {
+    /// [`Curve::flatten`] with every knot point a vertex too (a knot that
+    /// the flattening's chords passed over is inserted, at its parameter), so
+    /// that a curve through its points ([`crate::CurveBuilder::through`]) keeps
+    /// them all. Inserting a point of the curve into a chord keeps every
+    /// point of the curve within `tol` of the polyline.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::flatten`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])?;
+    /// assert_eq!(line.flatten(1e-9)?.len(), 2);
+    /// assert_eq!(line.flatten_with_knots(1e-9)?.params(), &[0.0, 1.0, 2.0, 3.0]);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn flatten_with_knots(&self, tol: f64) -> Result<Polyline, Error> {
+        let p = self.flatten(tol)?;
+        let dim = self.dim();
+        let knots = self.knots();
+        let mut coords = Vec::with_capacity(p.coords().len() + knots.len() * dim);
+        let mut params = Vec::with_capacity(p.len() + knots.len());
+        let mut k = 0;
+        let mut point = vec![0.0; dim];
+        for (i, &t) in p.params().iter().enumerate() {
+            while k < knots.len() && knots[k] < t {
+                if params.last().is_none_or(|&last| last < knots[k]) {
+                    self.eval_into(knots[k], &mut point)?;
+                    coords.extend_from_slice(&point);
+                    params.push(knots[k]);
+                }
+                k += 1;
+            }
+            if k < knots.len() && knots[k] == t {
+                k += 1;
+            }
+            coords.extend_from_slice(&p.coords()[i * dim..(i + 1) * dim]);
+            params.push(t);
+        }
+        Ok(Polyline::new(dim, coords, params))
+    }
+
     /// A polyline whose distance from the curve is at most `tol` everywhere,
     /// with few vertices (see [`crate::flatten`]): each segment gets the fewest
     /// equal parameter steps that the bound on its second derivative allows,

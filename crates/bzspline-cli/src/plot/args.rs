@@ -69,6 +69,7 @@ impl FigureArgs {
             show_range: self.data_range,
             equal_aspect: self.equal_aspect,
             png_scale: self.scale,
+            through: false,
         }
     }
 }

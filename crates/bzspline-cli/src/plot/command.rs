@@ -63,6 +63,9 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     let mut opts = a.figure.options();
     // A curve's shape is only right with one unit as long on both axes.
     opts.equal_aspect |= shape.mode == Mode::Curve;
+    // Through the points, the knot points are the data: always shown.
+    opts.through = shape.through;
+    opts.show_knots |= shape.through;
     let out = a.output.output.as_deref();
     let is_png = out
         .and_then(|p| p.extension())

@@ -168,6 +168,9 @@ pub struct PlotOptions {
     pub equal_aspect: bool,
     /// Pixels of the PNG per SVG pixel.
     pub png_scale: f32,
+    /// The curves pass through the points (the interpolating variant): the
+    /// knot points are the data and the control polygon is the solved one.
+    pub through: bool,
 }
 
 impl Default for PlotOptions {
@@ -185,6 +188,7 @@ impl Default for PlotOptions {
             show_range: false,
             equal_aspect: false,
             png_scale: 1.0,
+            through: false,
         }
     }
 }

@@ -137,15 +137,16 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
 
     // Legend entries, then the layout (margins from the text they hold).
     let mut keys: Vec<(Key, String)> = Vec::new();
+    let solved = if opts.through { "solved " } else { "" };
     if opts.show_control && !all_control.is_empty() {
-        keys.push((Key::Dot, "control points".into()));
+        keys.push((Key::Dot, format!("{solved}control points")));
         keys.push((
             Key::Line {
                 color: POLYGON.into(),
                 dash: Some("6 4"),
                 width: 1.3,
             },
-            "control polygon".into(),
+            format!("{solved}control polygon"),
         ));
     }
     for (i, d) in data.iter().enumerate() {
@@ -170,7 +171,12 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         keys.push((Key::Ring(tangent_color.into()), "tangent points".into()));
     }
     if opts.show_knots && data.iter().any(|d| !d.knot_points.is_empty()) {
-        keys.push((Key::Square(tangent_color.into()), "knot points".into()));
+        let name = if opts.through {
+            "points (passed through)"
+        } else {
+            "knot points"
+        };
+        keys.push((Key::Square(tangent_color.into()), name.into()));
     }
     if opts.show_hull && all_control.len() >= 3 {
         keys.push((Key::Area, "convex hull".into()));

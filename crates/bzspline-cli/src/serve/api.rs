@@ -62,6 +62,9 @@ struct RawRequest {
     alphas: Option<Vec<Value>>,
     #[serde(default)]
     samples: Option<usize>,
+    /// Through the points (the interpolating variant).
+    #[serde(default)]
+    through: Option<bool>,
 }
 
 /// A validated request.
@@ -188,6 +191,7 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
             param,
             alpha,
             alphas,
+            through: raw.through.unwrap_or(false),
         },
         samples,
     })

@@ -27,6 +27,8 @@ pub struct Options {
     pub tolerance: f64,
     /// Input limits (positions per line).
     pub limits: input::Limits,
+    /// Through every vertex (the interpolating variant), keeping them all.
+    pub through: bool,
 }
 
 /// Smooths every feature of a document; errors name `where_` and the feature
@@ -159,14 +161,33 @@ fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Po
         .param(opts.param.clone())
         .alpha(opts.alpha)
         .repeats(Repeats::Drop)
+        .through(opts.through)
         .build()
         .map_err(|e| anyhow!("{e}"))?;
-    let poly = curve.flatten(opts.tolerance).map_err(|e| anyhow!("{e}"))?;
+    let poly = if opts.through {
+        curve.flatten_with_knots(opts.tolerance)
+    } else {
+        curve.flatten(opts.tolerance)
+    }
+    .map_err(|e| anyhow!("{e}"))?;
     let mut out: Vec<Position> = poly
         .coords()
         .chunks(dim)
         .map(|c| Position::from(c.to_vec()))
         .collect();
+    if opts.through {
+        // Every vertex is a knot point: put back its exact position.
+        let knots = curve.knots();
+        let mut k = 0;
+        for (o, &t) in out.iter_mut().zip(poly.params()) {
+            while k < knots.len() && knots[k] < t {
+                k += 1;
+            }
+            if k < knots.len() && knots[k] == t {
+                *o = Position::from(distinct[k % distinct.len()].to_vec());
+            }
+        }
+    }
     if !out
         .iter()
         .all(|p| p.as_slice().iter().all(|v| v.is_finite()))
@@ -204,6 +225,7 @@ mod tests {
             param: Param::Centripetal,
             tolerance: tol,
             limits: input::Limits::DEFAULT,
+            through: false,
         }
     }
 

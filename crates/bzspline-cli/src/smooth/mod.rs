@@ -60,6 +60,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     let mut lib = SmoothOptions::default().alpha(alpha).param(param);
     lib.tolerance = a.tolerance;
     lib.keep_angle = a.keep_angle;
+    lib.through = a.through;
     let out_path = a.output.output.as_deref();
     let output = a.output_format.unwrap_or_else(|| {
         match out_path.and_then(Path::extension).and_then(|e| e.to_str()) {
@@ -186,6 +187,7 @@ impl Job<'_> {
                 param: self.lib.param.clone(),
                 tolerance,
                 limits: self.limits,
+                through: self.args.through,
             };
             let positions_in = positions(&doc);
             let (rings, lines) = chains(&doc);
