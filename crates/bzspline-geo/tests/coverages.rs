@@ -319,7 +319,7 @@ fn keep_angle_keeps_sharp_corners() {
 fn through_the_points_keeps_every_position() {
     let input = wiggly_grid(4, 3, 4, 0.15, 0.1, 21);
     for tol in [1e-3, 0.05] {
-        let (out, stats) = smooth(
+        let (out, _) = smooth(
             &input,
             &SmoothOptions::default().tolerance(tol).through(true),
         );
