@@ -49,6 +49,13 @@ fn main() {
         let mut keep = Vec::new();
         f_median(r, &mut keep, || Spline::new(&knots, &values))
     };
+    // The interpolating variant, fresh like the build above.
+    let through_fresh = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || {
+            Spline::through(&knots, &values, Alphas::default())
+        })
+    };
     let mut s = match Spline::new(&knots, &values) {
         Ok(s) => s,
         Err(e) => {
@@ -175,6 +182,7 @@ fn main() {
         "{{\"n\": {n}, \"m\": {m}, \"m_random\": {mr}, \"repeats\": {r}, \
          \"construct_ns_per_point\": {}, \"construct_fresh_ns_per_point\": {}, \
          \"construct_per_interval_alphas_ns_per_point\": {}, \
+         \"construct_through_fresh_ns_per_point\": {}, \
          \"eval_sorted_ns_per_point\": {}, \"eval_random_ns_per_point\": {}, \
          \"eval_random_first_ns_per_point\": {}, \
          \"deriv1_sorted_ns_per_point\": {}, \"deriv2_sorted_ns_per_point\": {}, \
@@ -188,6 +196,7 @@ fn main() {
         num(reuse / n as f64),
         num(fresh_only / n as f64),
         num(per_interval / n as f64),
+        num(through_fresh / n as f64),
         num(sorted0),
         num(random0),
         num(random_first),

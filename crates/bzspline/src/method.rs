@@ -196,7 +196,7 @@ pub(crate) fn piece_coefs_with(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 
 /// `p B1' + q B2' - 1` (which is `2p/a + 2q/(1-b)`), `q (1 - C')`, with the signs
 /// of [`row`]; diagonally dominant on `[1/3, 2/3]`, diagonal at alpha = 1/2.
 #[inline]
-fn through_row(p: f64, q: f64, al: f64, b1: f64, b2: f64, cr: f64) -> (f64, f64, f64) {
+pub(crate) fn through_row(p: f64, q: f64, al: f64, b1: f64, b2: f64, cr: f64) -> (f64, f64, f64) {
     (p * (1.0 - al), p * b1 + q * b2 - 1.0, q * (1.0 - cr))
 }
 
