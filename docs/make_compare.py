@@ -30,8 +30,9 @@ TAU = [float(i) for i in range(1, 12)]
 F = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5]
 
 
-def ensure_numpy_scipy():
-    """Re-run this script inside docs/.venv, creating it first if needed."""
+def ensure_numpy_scipy(script=__file__):
+    """Re-run `script` (this one by default) inside docs/.venv, creating it
+    first if needed."""
     try:
         import numpy  # noqa: F401
         import scipy  # noqa: F401
@@ -48,7 +49,7 @@ def ensure_numpy_scipy():
             [str(VENV_PY), "-m", "pip", "install", "--quiet", "numpy>=1.24", "scipy>=1.10"],
             check=True,
         )
-    os.execv(str(VENV_PY), [str(VENV_PY), str(Path(__file__).resolve()), *sys.argv[1:]])
+    os.execv(str(VENV_PY), [str(VENV_PY), str(Path(script).resolve()), *sys.argv[1:]])
 
 
 def d3_basis_segments(points):

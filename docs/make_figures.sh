@@ -15,3 +15,4 @@ for ext in svg png; do
 done
 python3 docs/make_compare.py
 python3 docs/make_coverage.py   # coverage.png needs rsvg-convert (apt-get install librsvg2-bin)
+python3 docs/make_through.py    # through.* and step.*: curves through the points (docs/.venv)

@@ -181,12 +181,21 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
     if opts.show_hull && all_control.len() >= 3 {
         keys.push((Key::Area, "convex hull".into()));
     }
-    let range = if opts.show_range && !all_control.is_empty() {
-        let lo = all_control
+    // The data's range: the control ordinates, or through the points the knot
+    // points (the solved controls are not the data).
+    let data_points: Vec<[f64; 2]> = if opts.through {
+        data.iter()
+            .flat_map(|d| d.knot_points.iter().copied())
+            .collect()
+    } else {
+        all_control.clone()
+    };
+    let range = if opts.show_range && !data_points.is_empty() {
+        let lo = data_points
             .iter()
             .map(|p| p[1])
             .fold(f64::INFINITY, f64::min);
-        let hi = all_control
+        let hi = data_points
             .iter()
             .map(|p| p[1])
             .fold(f64::NEG_INFINITY, f64::max);
