@@ -25,6 +25,7 @@
     mode: 'function',
     closed: false,
     param: 'uniform',
+    through: false,
   };
   state.alphas = state.points.slice(1).map(() => 0.5);
   let fit = null; // the last successful response
@@ -94,6 +95,7 @@
       mode: state.mode,
       closed: state.mode === 'curve' && state.closed,
       param: state.param,
+      through: state.through,
       alphas: state.alphas,
       samples: $('show-comb').checked ? COMB_SAMPLES : 0,
     };
@@ -218,6 +220,13 @@
     return f.knot_values.map((v, i) => (Array.isArray(v) ? v : [f.knots[i], v]));
   }
 
+  // The polygon whose legs the curve touches: the points, or through the
+  // points the solved control polygon of the last fit.
+  function legPoints() {
+    if (!state.through || !fit || !fit.values) return state.points;
+    return fit.values.map((v, i) => (Array.isArray(v) ? v : [fit.knots[i], v]));
+  }
+
   function draw() {
     const pts = state.points;
     const closed = state.mode === 'curve' && state.closed;
@@ -227,7 +236,9 @@
       el.hull.setAttribute('d', 'M' + hull(pts).map((p) => toScreen(p).join(' ')).join(' L') + ' Z');
     } else el.hull.setAttribute('d', '');
     // control polygon
-    el.polygon.setAttribute('d', pts.length ? 'M' + pts.map((p) => toScreen(p).join(' ')).join(' L') + (closed ? ' Z' : '') : '');
+    const legs = legPoints();
+    el.polygon.setAttribute('d', legs.length ? 'M' + legs.map((p) => toScreen(p).join(' ')).join(' L') + (closed ? ' Z' : '') : '');
+    el.polygon.classList.toggle('solved', state.through);
     // the spline: exact cubic segments in data coordinates under the view transform
     el.curveLayer.setAttribute('transform', `matrix(${view.sx} 0 0 ${-view.sx} ${view.tx} ${view.ty})`);
     el.curve.setAttribute('d', fit ? fit.svg_path : '');
@@ -392,9 +403,10 @@
       state.points[i] = [kept, y];
     } else {
       const k = drag.index;
-      const n = state.points.length;
-      const a = toScreen(state.points[k]);
-      const b = toScreen(state.points[(k + 1) % n]);
+      const legs = legPoints();
+      const n = legs.length;
+      const a = toScreen(legs[k]);
+      const b = toScreen(legs[(k + 1) % n]);
       const dx = b[0] - a[0], dy = b[1] - a[1];
       const l2 = dx * dx + dy * dy;
       const s = l2 > 0 ? ((sx - a[0]) * dx + (sy - a[1]) * dy) / l2 : 0.5;
@@ -493,6 +505,7 @@
   function syncControls() {
     $('mode').value = state.mode;
     $('closed').checked = state.closed;
+    $('through').checked = state.through;
     $('param').value = state.param;
     for (const n of document.querySelectorAll('.curve-only')) {
       n.classList.toggle('disabled', state.mode !== 'curve');
@@ -523,6 +536,14 @@
     syncControls();
     requestFit();
   });
+  $('through').addEventListener('change', (e) => {
+    remember();
+    state.through = e.target.checked;
+    say(state.through
+      ? 'Through the points: drag the points the curve passes through; the solved control polygon is faint.'
+      : 'Touching the legs of the control polygon.');
+    requestFit();
+  });
   $('param').addEventListener('change', (e) => {
     remember();
     state.param = e.target.value;
@@ -536,6 +557,7 @@
   $('reset').addEventListener('click', () => {
     remember();
     state.param = 'uniform';
+    state.through = false;
     loadPoints(EXAMPLE_1, 'function', false);
     say("The paper's Example 1.");
   });

@@ -287,6 +287,40 @@ test('a 1,000-point polygon is fitted on every move (timing reported, not assert
   for (const line of serverLog.slice(-3)) console.log(`server log: ${line}`);
 });
 
+test('through the points: the curve passes through the dragged points; the solved polygon is faint', async () => {
+  let n = await fits();
+  await page.click('#reset');
+  await settled(n);
+  n = await fits();
+  await page.check('#through');
+  await settled(n);
+  const points = await page.evaluate(() => window.bzEditor.state.points);
+  const alphas = await page.evaluate(() => window.bzEditor.state.alphas);
+  let shown = await shownFit();
+  shown.knot_values.forEach((v, i) => assert.ok(Math.abs(v - points[i][1]) < 1e-12, `knot ${i}: ${v} vs ${points[i][1]}`));
+  const direct = await apiFit({ points, alphas, through: true });
+  assert.deepEqual(shown.values, direct.values);
+  assert.equal(await curvePath(), direct.svg_path);
+  assert.match(await page.locator('#polygon').getAttribute('class'), /solved/);
+  // The drawn polygon runs through the solved controls, not the points.
+  const d = await page.locator('#polygon').getAttribute('d');
+  const drawn = d.slice(1).split(' L').map((p) => p.split(' ').map(Number));
+  assert.equal(drawn.length, direct.values.length);
+  // Drag a point: the curve still passes through it.
+  n = await fits();
+  const [x, y] = await centre('.pt[data-index="5"]');
+  await drag([x, y], [x, y + 80]);
+  await page.mouse.up();
+  await settled(n);
+  const moved = await page.evaluate(() => window.bzEditor.state.points);
+  shown = await shownFit();
+  assert.ok(Math.abs(shown.knot_values[5] - moved[5][1]) < 1e-12, `${shown.knot_values[5]} vs ${moved[5][1]}`);
+  n = await fits();
+  await page.uncheck('#through');
+  await settled(n);
+  assert.doesNotMatch((await page.locator('#polygon').getAttribute('class')) ?? '', /solved/);
+});
+
 test('screenshot of the editor', async () => {
   const n = await fits();
   await page.click('#reset');
