@@ -204,6 +204,27 @@ pub(crate) fn check_finite(field: Field, xs: &[f64]) -> Result<(), Error> {
 }
 
 /// Expands and checks the shape parameters for `intervals` intervals.
+/// Every check of a spline's input, one at a time so that the first fault is
+/// named: the knots (giving the widths), the values' length and finiteness, the
+/// alphas (giving one per interval).
+fn validate_step_by_step(
+    knots: &[f64],
+    values: &[f64],
+    alphas: Alphas<'_>,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let widths = validate_knots(knots)?;
+    if values.len() != knots.len() {
+        return Err(Error::LengthMismatch {
+            field: Field::Value,
+            expected: knots.len(),
+            found: values.len(),
+        });
+    }
+    check_finite(Field::Value, values)?;
+    let resolved = resolve_alphas(alphas, widths.len())?;
+    Ok((widths, resolved))
+}
+
 pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec<f64>, Error> {
     check_alphas(alphas, intervals)?;
     Ok(match alphas {
@@ -436,16 +457,7 @@ impl Spline {
         values: &[f64],
         alphas: Alphas<'_>,
     ) -> Result<Self, Error> {
-        let widths = validate_knots(knots)?;
-        if values.len() != knots.len() {
-            return Err(Error::LengthMismatch {
-                field: Field::Value,
-                expected: knots.len(),
-                found: values.len(),
-            });
-        }
-        check_finite(Field::Value, values)?;
-        let resolved = resolve_alphas(alphas, widths.len())?;
+        let (widths, resolved) = validate_step_by_step(knots, values, alphas)?;
         let g = method::through_controls(&widths, &resolved, values, 1, false).ok_or(
             Error::Overflow {
                 what: "a solved control value",
@@ -590,17 +602,8 @@ impl Spline {
         values: &[f64],
         alphas: Alphas<'_>,
     ) -> Result<Self, Error> {
-        let widths = validate_knots(knots)?;
-        if values.len() != knots.len() {
-            return Err(Error::LengthMismatch {
-                field: Field::Value,
-                expected: knots.len(),
-                found: values.len(),
-            });
-        }
-        check_finite(Field::Value, values)?;
         let given = alphas;
-        let alphas = resolve_alphas(alphas, widths.len())?;
+        let (widths, alphas) = validate_step_by_step(knots, values, given)?;
         let scale = power_of_two_scale(values);
         let inv = 1.0 / scale;
         let f: Vec<f64> = values.iter().map(|v| v * inv).collect();

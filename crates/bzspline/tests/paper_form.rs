@@ -10,47 +10,7 @@
 mod common;
 
 use bzspline::{Spline, ALPHA_MAX, ALPHA_MIN};
-use common::{ex2_x, max_abs, Rng, EX1_F, EX1_X, EX2_F, SAMPLE_ALPHAS};
-
-/// Solves `a x = b` (row-major `n x n`) by Gaussian elimination with partial
-/// pivoting. `None` when a pivot is exactly zero.
-fn gauss_solve(mut a: Vec<f64>, mut b: Vec<f64>) -> Option<Vec<f64>> {
-    let n = b.len();
-    assert_eq!(a.len(), n * n, "matrix size");
-    for col in 0..n {
-        let pivot =
-            (col..n).max_by(|&i, &j| a[i * n + col].abs().total_cmp(&a[j * n + col].abs()))?;
-        if a[pivot * n + col] == 0.0 {
-            return None;
-        }
-        if pivot != col {
-            for j in 0..n {
-                a.swap(pivot * n + j, col * n + j);
-            }
-            b.swap(pivot, col);
-        }
-        let p = a[col * n + col];
-        for i in col + 1..n {
-            let factor = a[i * n + col] / p;
-            if factor == 0.0 {
-                continue;
-            }
-            for j in col..n {
-                a[i * n + j] -= factor * a[col * n + j];
-            }
-            b[i] -= factor * b[col];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for i in (0..n).rev() {
-        let mut s = b[i];
-        for j in i + 1..n {
-            s -= a[i * n + j] * x[j];
-        }
-        x[i] = s / a[i * n + i];
-    }
-    Some(x)
-}
+use common::{ex2_x, gauss_solve, max_abs, Rng, EX1_F, EX1_X, EX2_F, SAMPLE_ALPHAS};
 
 /// The pieces `S_k(x) = sum_j c[k][j] (x - tau_k)^j` of the C1 cubic that takes
 /// the value `tangent_value[k]` and the slope of leg `k` at

@@ -6,12 +6,13 @@
 mod common;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Param, Spline};
-use common::{max_abs, Rng, EX1_F, EX1_X};
+use common::{gauss_solve, max_abs, Rng, EX1_F, EX1_X};
 
 /// `(T + K) G = T P` with `G_0 = P_0`, `G_{N-1} = P_{N-1}`: `T` the rows of
 /// (16) (`-A`, `B1 + B2`, `-C`, widths in the coefficients), `K` the slope
 /// jumps (`1/h_{k-1}`, `-(1/h_{k-1} + 1/h_k)`, `1/h_k`), the unknowns the
-/// interior control values; dense Gaussian elimination with partial pivoting.
+/// interior control values; dense Gaussian elimination with partial pivoting
+/// (`common::gauss_solve`).
 fn dense_controls(x: &[f64], p: &[f64], alphas: &[f64]) -> Vec<f64> {
     let n = x.len();
     let m = n - 2;
@@ -47,27 +48,7 @@ fn dense_controls(x: &[f64], p: &[f64], alphas: &[f64]) -> Vec<f64> {
             mat[i * m + j] = a[i][j + 1];
         }
     }
-    for col in 0..m {
-        let piv = (col..m)
-            .max_by(|&r, &s| mat[r * m + col].abs().total_cmp(&mat[s * m + col].abs()))
-            .unwrap();
-        for j in 0..m {
-            mat.swap(piv * m + j, col * m + j);
-        }
-        rhs.swap(piv, col);
-        for r in col + 1..m {
-            let f = mat[r * m + col] / mat[col * m + col];
-            for j in col..m {
-                mat[r * m + j] -= f * mat[col * m + j];
-            }
-            rhs[r] -= f * rhs[col];
-        }
-    }
-    let mut g = vec![0.0; m];
-    for r in (0..m).rev() {
-        let tail: f64 = (r + 1..m).map(|j| mat[r * m + j] * g[j]).sum();
-        g[r] = (rhs[r] - tail) / mat[r * m + r];
-    }
+    let g = gauss_solve(mat, rhs).expect("the system is non-singular");
     let mut out = vec![p[0]];
     out.extend(g);
     out.push(p[n - 1]);
