@@ -1,10 +1,12 @@
 //! Building a spline from arbitrary knots, values and alphas: refusals are
 //! typed errors, never panics; accepted input gives a finite C1 spline that
 //! touches every leg and stays within the values' range (checked loosely,
-//! relative to the largest value).
+//! relative to the largest value). The interpolating variant on the same
+//! input refuses it alike, or passes through the values (or says that a
+//! solved control value overflows).
 #![no_main]
 
-use bzspline::{Error, Spline, ALPHA_MAX, ALPHA_MIN};
+use bzspline::{Alphas, Error, Spline, ALPHA_MAX, ALPHA_MIN};
 use bzspline_fuzz::{cubic, cubic_deriv, Data, Reader};
 use libfuzzer_sys::fuzz_target;
 
@@ -18,14 +20,33 @@ fuzz_target!(|bytes: &[u8]| {
     } else {
         Spline::with_alphas(&d.knots, &d.values, &d.alphas)
     };
+    let alphas = if d.alphas.len() == 1 && d.knots.len() != 2 {
+        Alphas::Uniform(d.alphas[0])
+    } else {
+        Alphas::PerInterval(&d.alphas)
+    };
+    let through = Spline::through(&d.knots, &d.values, alphas);
     let s = match built {
         Ok(s) => s,
         Err(e) => {
             check_refusal(&d, &e);
+            // Everything the method refuses, the variant refuses alike.
+            assert_eq!(through.err().map(|t| t.to_string()), Some(e.to_string()));
             return;
         }
     };
     check_accepted(&d, &s);
+    match through {
+        Ok(t) => {
+            let big = d.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (k, (v, w)) in t.knot_values().iter().zip(&d.values).enumerate() {
+                assert!(v.is_finite(), "through: knot value {k} is {v}");
+                assert!((v - w).abs() <= 1e-9 * big, "through: knot {k} is {v}, the value {w}");
+            }
+        }
+        Err(Error::Overflow { .. }) => {}
+        Err(e) => panic!("the method accepts what the variant refuses: {e}"),
+    }
 });
 
 /// A refusal must be justified by the input.
