@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Result};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::model::{Mode, ParamKind};
+use crate::model::Mode;
 
 /// Fit, evaluate, sample and plot the third-degree Bezier-type spline of Stelia,
 /// Potapenko and Sirenko: a C1 cubic that touches every leg of the control polygon.
@@ -374,7 +374,7 @@ pub struct Shape {
     /// Closed curve.
     pub closed: bool,
     /// Parametrisation of a curve.
-    pub param: ParamKind,
+    pub param: bzspline::Param,
     /// One alpha for all intervals.
     pub alpha: Option<f64>,
     /// One alpha per interval.
@@ -424,12 +424,12 @@ pub fn check_alpha(name: &str, a: f64) -> Result<()> {
     Ok(())
 }
 
-impl From<ParamArg> for ParamKind {
+impl From<ParamArg> for bzspline::Param {
     fn from(p: ParamArg) -> Self {
         match p {
-            ParamArg::Uniform => ParamKind::Uniform,
-            ParamArg::Chordal => ParamKind::Chordal,
-            ParamArg::Centripetal => ParamKind::Centripetal,
+            ParamArg::Uniform => bzspline::Param::Uniform,
+            ParamArg::Chordal => bzspline::Param::Chordal,
+            ParamArg::Centripetal => bzspline::Param::Centripetal,
         }
     }
 }

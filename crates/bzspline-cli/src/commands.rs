@@ -59,7 +59,7 @@ fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
         dim: points.width,
         mode: shape.mode,
         closed: shape.closed,
-        param: shape.param,
+        param: shape.param.clone(),
         alpha: shape.alpha,
         alphas: shape.alphas.clone(),
         through: shape.through,

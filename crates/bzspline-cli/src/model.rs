@@ -18,17 +18,6 @@ pub enum Mode {
     Curve,
 }
 
-/// How curve parameters (knots) are chosen from the control points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ParamKind {
-    /// `tau_i = i`.
-    Uniform,
-    /// `h_i = |P_i - P_{i-1}|`.
-    Chordal,
-    /// `h_i = |P_i - P_{i-1}|^(1/2)`.
-    Centripetal,
-}
-
 /// Everything needed to build a spline.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitSpec<'a> {
@@ -41,7 +30,7 @@ pub struct FitSpec<'a> {
     /// Closed curve (ignored for functions).
     pub closed: bool,
     /// Curve parametrisation (ignored for functions).
-    pub param: ParamKind,
+    pub param: Param,
     /// One alpha for every interval (default 1/2).
     pub alpha: Option<f64>,
     /// One alpha per interval (per leg of a curve, the closing leg last);
@@ -102,11 +91,7 @@ pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
             }
             let mut b = CurveBuilder::new(&spec.points, spec.dim)
                 .closed(spec.closed)
-                .param(match spec.param {
-                    ParamKind::Uniform => Param::Uniform,
-                    ParamKind::Chordal => Param::Chordal,
-                    ParamKind::Centripetal => Param::Centripetal,
-                })
+                .param(spec.param.clone())
                 .through(spec.through);
             if let Some(a) = &spec.alphas {
                 b = b.alphas(a);
@@ -439,7 +424,7 @@ mod tests {
             dim: 2,
             mode: Mode::Function,
             closed: false,
-            param: ParamKind::Uniform,
+            param: Param::Uniform,
             alpha: None,
             alphas: None,
             through: false,

@@ -3,7 +3,9 @@
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use crate::model::{self, FitSpec, Mode, ParamKind};
+use bzspline::Param;
+
+use crate::model::{self, FitSpec, Mode};
 use bzspline::CubicBez;
 
 /// A refused request: the HTTP status and a message for the JSON body.
@@ -147,9 +149,9 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
         }
     };
     let param = match raw.param.as_deref() {
-        None | Some("uniform") => ParamKind::Uniform,
-        Some("chordal") => ParamKind::Chordal,
-        Some("centripetal") => ParamKind::Centripetal,
+        None | Some("uniform") => Param::Uniform,
+        Some("chordal") => Param::Chordal,
+        Some("centripetal") => Param::Centripetal,
         Some(other) => {
             return Err(ApiError::new(
                 422,

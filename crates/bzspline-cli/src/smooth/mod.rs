@@ -21,7 +21,7 @@ use bzspline_geo::{SmoothOptions, Stats, DEFAULT_TOLERANCE_FRACTION};
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 use serde_json::Value;
 
-use crate::cli::{InputFormat, ParamArg, SmoothArgs, SmoothFormat, UsageError};
+use crate::cli::{InputFormat, SmoothArgs, SmoothFormat, UsageError};
 use crate::input;
 use crate::output::Sink;
 use crate::topojson;
@@ -52,12 +52,9 @@ struct Job<'a> {
 pub fn run(a: &SmoothArgs) -> Result<()> {
     let alpha = a.alpha.unwrap_or(bzspline::DEFAULT_ALPHA);
     crate::cli::check_alpha("--alpha", alpha)?;
-    let param = match a.param {
-        ParamArg::Uniform => Param::Uniform,
-        ParamArg::Chordal => Param::Chordal,
-        ParamArg::Centripetal => Param::Centripetal,
-    };
-    let mut lib = SmoothOptions::default().alpha(alpha).param(param);
+    let mut lib = SmoothOptions::default()
+        .alpha(alpha)
+        .param(Param::from(a.param));
     lib.tolerance = a.tolerance;
     lib.keep_angle = a.keep_angle;
     lib.through = a.through;
