@@ -146,24 +146,13 @@ pub fn write_svg<W: std::io::Write>(f: &Fitted, w: &mut W) -> std::io::Result<bo
 }
 
 /// The SVG path (`M x y C ...`) of a function's segments, formed while it is
-/// written.
+/// written (by the library's [`bzspline::write_svg_path`]).
 struct FunctionPath<'a>(&'a Spline);
 
 impl fmt::Display for FunctionPath<'_> {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for k in 0..self.0.len() {
-            let Some(b) = self.0.segment(k) else { break };
-            let [p0, p1, p2, p3] = b.p;
-            if k == 0 {
-                write!(out, "M {} {}", p0[0], p0[1])?;
-            }
-            write!(
-                out,
-                " C {} {} {} {} {} {}",
-                p1[0], p1[1], p2[0], p2[1], p3[0], p3[1]
-            )?;
-        }
-        Ok(())
+        // A fit is checked finite before it is written.
+        bzspline::write_svg_path(self.0, false, out).map(|_| ())
     }
 }
 

@@ -1524,7 +1524,6 @@ impl Curve {
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn to_svg_path(&self) -> Result<String, Error> {
-        use std::fmt::Write;
         if self.dim != 2 {
             return Err(Error::InvalidArgument {
                 what: "an SVG path needs a planar curve; dimension",
@@ -1532,26 +1531,13 @@ impl Curve {
             });
         }
         let mut out = String::new();
-        for k in 0..self.len() {
-            let p = self.segment_points(k).unwrap_or_default();
-            if p.iter().any(|v| !v.is_finite()) {
-                return Err(Error::Overflow {
-                    what: "a Bezier control point",
-                });
-            }
-            if k == 0 {
-                let _ = write!(out, "M {} {}", p[0], p[1]);
-            }
-            let _ = write!(
-                out,
-                " C {} {} {} {} {} {}",
-                p[2], p[3], p[4], p[5], p[6], p[7]
-            );
+        // Writing into a String cannot fail; `false` is a non-finite point.
+        match crate::traits::write_svg_path(self, self.closed, &mut out) {
+            Ok(true) => Ok(out),
+            _ => Err(Error::Overflow {
+                what: "a Bezier control point",
+            }),
         }
-        if self.closed {
-            out.push_str(" Z");
-        }
-        Ok(out)
     }
 }
 

@@ -98,5 +98,5 @@ pub use spline::{
     Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
     MIN_RELATIVE_INTERVAL,
 };
-pub use traits::{BezierPieces, Bounds, Flatten, ParamCurve};
+pub use traits::{write_svg_path, BezierPieces, Bounds, Flatten, ParamCurve};
 pub use tridiag::{CyclicThomas, Thomas};

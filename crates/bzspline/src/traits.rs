@@ -99,6 +99,53 @@ pub trait Bounds {
     fn bbox(&self) -> BBox;
 }
 
+/// Writes the SVG path data of a planar curve's pieces into `out`, formed while
+/// it is written: `M x0 y0` and one `C x1 y1 x2 y2 x3 y3` a piece, each number
+/// in Rust's shortest round-trip form, and ` Z` when `closed`. Returns
+/// `Ok(false)`, having written the pieces before it, at the first piece with a
+/// control point that is not finite (near `f64::MAX` the inner control points
+/// can overflow; [`Curve::to_svg_path`] reports that as an error), and for a
+/// curve that is not planar.
+///
+/// # Errors
+///
+/// `out`'s write errors.
+///
+/// # Examples
+///
+/// ```
+/// use bzspline::{write_svg_path, Spline};
+/// let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+/// let mut d = String::new();
+/// assert!(write_svg_path(&s, false, &mut d).unwrap());
+/// assert!(d.starts_with("M 0 0 C ") && d.matches(" C ").count() == 2);
+/// # Ok::<(), bzspline::Error>(())
+/// ```
+pub fn write_svg_path<W: std::fmt::Write>(
+    c: &impl BezierPieces,
+    closed: bool,
+    out: &mut W,
+) -> Result<bool, std::fmt::Error> {
+    let mut p = [0.0; 8];
+    for k in 0..c.piece_count() {
+        if !c.piece_into(k, &mut p) || p.iter().any(|v| !v.is_finite()) {
+            return Ok(false);
+        }
+        if k == 0 {
+            write!(out, "M {} {}", p[0], p[1])?;
+        }
+        write!(
+            out,
+            " C {} {} {} {} {} {}",
+            p[2], p[3], p[4], p[5], p[6], p[7]
+        )?;
+    }
+    if closed {
+        out.write_str(" Z")?;
+    }
+    Ok(true)
+}
+
 impl ParamCurve for Curve {
     fn dim(&self) -> usize {
         Curve::dim(self)
