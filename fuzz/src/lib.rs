@@ -28,10 +28,16 @@ pub mod topojson;
 #[path = "../../crates/bzspline-cli/src/serve/api.rs"]
 pub mod serve_api;
 
-/// The two types of the command's `cli` module that the readers name, with
-/// the same names and variants (the rest of that module is argument parsing).
+/// The types and the two defaults of the command's `cli` module that the
+/// readers name, with the same names and variants (the rest of that module is
+/// argument parsing).
 pub mod cli {
     use std::path::PathBuf;
+
+    /// The default of `--max-points`.
+    pub const DEFAULT_MAX_POINTS: usize = 20_000_000;
+    /// The default of `--max-bytes`.
+    pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 
     /// Where the control points come from.
     #[derive(Debug, Clone, Default)]

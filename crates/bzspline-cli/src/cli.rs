@@ -42,6 +42,11 @@ pub enum Command {
     Serve(crate::serve::ServeArgs),
 }
 
+/// The default of `--max-points`.
+pub const DEFAULT_MAX_POINTS: usize = 20_000_000;
+/// The default of `--max-bytes`.
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+
 /// Where the control points come from.
 #[derive(Debug, Clone, Args)]
 pub struct InputArgs {
@@ -60,7 +65,7 @@ pub struct InputArgs {
     #[arg(
         long,
         value_name = "N",
-        default_value_t = crate::input::Limits::DEFAULT.max_points as u64,
+        default_value_t = DEFAULT_MAX_POINTS as u64,
         value_parser = clap::value_parser!(u64).range(2..)
     )]
     pub max_points: u64,
@@ -70,7 +75,7 @@ pub struct InputArgs {
     #[arg(
         long,
         value_name = "BYTES",
-        default_value_t = crate::input::Limits::DEFAULT.max_bytes,
+        default_value_t = DEFAULT_MAX_BYTES,
         value_parser = clap::value_parser!(u64).range(1..)
     )]
     pub max_bytes: u64,

@@ -221,9 +221,10 @@ pub struct Limits {
 
 impl Limits {
     /// The command's defaults (see `--max-points` and `--max-bytes`).
+    #[cfg(test)]
     pub const DEFAULT: Limits = Limits {
-        max_points: 20_000_000,
-        max_bytes: 1 << 30,
+        max_points: crate::cli::DEFAULT_MAX_POINTS,
+        max_bytes: crate::cli::DEFAULT_MAX_BYTES,
     };
 
     /// The limits the input arguments set.
