@@ -10,7 +10,7 @@ use bzspline::{ALPHA_MAX, ALPHA_MIN};
 
 /// The command's input readers, compiled from their source file: the command
 /// is a binary crate, and this keeps it so without copying its code.
-#[path = "../../crates/bzspline-cli/src/input.rs"]
+#[path = "../../crates/bzspline-cli/src/input/mod.rs"]
 pub mod input;
 
 /// The command's model of a fit (what `fit` prints and `serve` answers),
