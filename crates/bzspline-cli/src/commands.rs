@@ -118,10 +118,7 @@ fn fit(a: &FitArgs) -> Result<()> {
     match a.format {
         FitFormat::Json => model::write_fit_json(&fitted, &mut sink).context("writing output")?,
         FitFormat::Csv => {
-            let dim = match &fitted {
-                Fitted::Function(_) => 2,
-                Fitted::Curve(c) => c.dim(),
-            };
+            let dim = fitted.curve().dim();
             writeln!(sink, "{}", ["x", "y", "z", "w"][..dim.min(4)].join(","))
                 .context("writing output")?;
             for seg in model::segments(&fitted) {
@@ -354,10 +351,7 @@ fn sample(a: &SampleArgs) -> Result<()> {
     let points = input::load(&a.input)?;
     let fitted = fit_points(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
-    let (lo, hi) = match &fitted {
-        Fitted::Function(s) => s.domain(),
-        Fitted::Curve(c) => c.domain(),
-    };
+    let (lo, hi) = fitted.curve().domain();
     let params: Vec<f64> = if let Some(n) = a.n {
         (0..n)
             .map(|i| {
@@ -369,11 +363,12 @@ fn sample(a: &SampleArgs) -> Result<()> {
             })
             .collect()
     } else if let Some(t) = a.tolerance {
-        let poly = match &fitted {
-            Fitted::Function(s) => s.flatten(t),
-            Fitted::Curve(c) => c.flatten(t),
-        };
-        poly.map_err(lib)?.params().to_vec()
+        fitted
+            .flattening()
+            .flatten(t)
+            .map_err(lib)?
+            .params()
+            .to_vec()
     } else if let Some(step) = a.step {
         match &fitted {
             Fitted::Function(s) => params_by_step(&graph_curve(s).map_err(lib)?, step),

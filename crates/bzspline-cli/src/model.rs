@@ -5,7 +5,7 @@
 use std::borrow::Cow;
 use std::fmt;
 
-use bzspline::{Alphas, CubicBez, Curve, CurveBuilder, Param, Spline};
+use bzspline::{Alphas, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Spline};
 use serde::Serialize;
 use serde_json::Value;
 
@@ -103,29 +103,63 @@ pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
     }
 }
 
-/// The Bezier segments of a fit, each as four control points.
-#[must_use]
-pub fn segments(f: &Fitted) -> Vec<Vec<Vec<f64>>> {
-    match f {
-        Fitted::Function(s) => s.segments().iter().map(bez_points).collect(),
-        Fitted::Curve(c) => (0..c.len())
-            .filter_map(|k| c.segment_points(k))
-            .map(|flat| flat.chunks(c.dim()).map(<[f64]>::to_vec).collect())
-            .collect(),
+impl Fitted {
+    /// The fit as a curve: a function as its graph `x -> (x, S(x))`.
+    #[must_use]
+    pub fn curve(&self) -> &dyn ParamCurve {
+        match self {
+            Fitted::Function(s) => s,
+            Fitted::Curve(c) => c,
+        }
+    }
+
+    /// Its pieces, as cubic Bezier segments.
+    #[must_use]
+    pub fn pieces(&self) -> &dyn BezierPieces {
+        match self {
+            Fitted::Function(s) => s,
+            Fitted::Curve(c) => c,
+        }
+    }
+
+    /// Its flattening (a function's keeps every knot as a vertex).
+    #[must_use]
+    pub fn flattening(&self) -> &dyn Flatten {
+        match self {
+            Fitted::Function(s) => s,
+            Fitted::Curve(c) => c,
+        }
+    }
+
+    /// Whether it closes (a closed curve's path ends with `Z`).
+    #[must_use]
+    pub fn closed(&self) -> bool {
+        matches!(self, Fitted::Curve(c) if c.is_closed())
     }
 }
 
-fn bez_points<const D: usize>(b: &CubicBez<D>) -> Vec<Vec<f64>> {
-    b.p.iter().map(|p| p.to_vec()).collect()
+/// The Bezier segments of a fit, each as four control points.
+#[must_use]
+pub fn segments(f: &Fitted) -> Vec<Vec<Vec<f64>>> {
+    let (pieces, dim) = (f.pieces(), f.curve().dim());
+    let mut buf = vec![0.0; 4 * dim];
+    (0..pieces.piece_count())
+        .filter_map(|k| {
+            pieces
+                .piece_into(k, &mut buf)
+                .then(|| buf.chunks(dim).map(<[f64]>::to_vec).collect())
+        })
+        .collect()
 }
 
-/// The SVG path of a planar fit (a closed curve's ends with `Z`); `None` in 3D.
+/// The SVG path of a planar fit (a closed curve's ends with `Z`); `None` in 3D
+/// or when a control point is not finite.
 #[must_use]
 pub fn svg(f: &Fitted) -> Option<String> {
-    match f {
-        Fitted::Function(s) => Some(FunctionPath(s).to_string()),
-        Fitted::Curve(c) if c.dim() == 2 => c.to_svg_path().ok(),
-        Fitted::Curve(_) => None,
+    let mut out = String::new();
+    match bzspline::write_svg_path(f.pieces(), f.closed(), &mut out) {
+        Ok(true) => Some(out),
+        _ => None,
     }
 }
 

@@ -122,7 +122,7 @@ pub trait Bounds {
 /// # Ok::<(), bzspline::Error>(())
 /// ```
 pub fn write_svg_path<W: std::fmt::Write>(
-    c: &impl BezierPieces,
+    c: &(impl BezierPieces + ?Sized),
     closed: bool,
     out: &mut W,
 ) -> Result<bool, std::fmt::Error> {
