@@ -143,13 +143,13 @@ impl Fitted {
 pub fn segments(f: &Fitted) -> Vec<Vec<Vec<f64>>> {
     let (pieces, dim) = (f.pieces(), f.curve().dim());
     let mut buf = vec![0.0; 4 * dim];
-    (0..pieces.piece_count())
-        .filter_map(|k| {
-            pieces
-                .piece_into(k, &mut buf)
-                .then(|| buf.chunks(dim).map(<[f64]>::to_vec).collect())
-        })
-        .collect()
+    let mut out = Vec::with_capacity(pieces.piece_count());
+    for k in 0..pieces.piece_count() {
+        if pieces.piece_into(k, &mut buf) {
+            out.push(buf.chunks(dim).map(<[f64]>::to_vec).collect());
+        }
+    }
+    out
 }
 
 /// The SVG path of a planar fit (a closed curve's ends with `Z`); `None` in 3D
