@@ -38,7 +38,7 @@ use std::borrow::Cow;
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
-use crate::kernels;
+use crate::fast;
 use crate::method::{self, alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
 use crate::poly::{deriv_of, horner};
 use crate::polyline::Polyline;
@@ -921,14 +921,14 @@ impl Curve {
         self.points.len() / self.dim
     }
 
-    /// [`kernels::build_open_curve`] in `D` dimensions, which also writes the
+    /// [`fast::sweep::build_open_curve`] in `D` dimensions, which also writes the
     /// copy of the points as it goes.
     fn solve_fused<const D: usize>(&mut self, points: &[f64], uniform: Option<f64>) {
         let span =
             self.knots.last().copied().unwrap_or(0.0) - self.knots.first().copied().unwrap_or(0.0);
-        let ws = kernels::inverse_power_of_two(span);
+        let ws = fast::inverse_power_of_two(span);
         let inv = core::array::from_fn(|c| self.inv_scales.get(c).copied().unwrap_or(1.0));
-        kernels::build_open_curve::<D>(
+        fast::sweep::build_open_curve::<D>(
             &self.knots,
             points,
             inv,

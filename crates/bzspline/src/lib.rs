@@ -79,8 +79,8 @@
 mod bezier;
 pub mod curve;
 mod error;
+mod fast;
 pub mod flatten;
-mod kernels;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
 pub(crate) mod method;

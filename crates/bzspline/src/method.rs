@@ -1,6 +1,6 @@
 //! The method of Stelia, Potapenko and Sirenko in one place: the rows of the
 //! paper's system (16) for open and closed polygons, the pieces they give, and
-//! the straightforward assembly that the fast sweeps of [`crate::kernels`] are
+//! the straightforward assembly that the fast sweeps of [`crate::fast::sweep`] are
 //! tested against. `docs/method.md` derives every formula here (sections cited
 //! as §N) and lists the paper's misprints that this crate does not copy.
 //!

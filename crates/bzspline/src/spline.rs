@@ -15,7 +15,9 @@
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
-use crate::kernels::{self, Batch, Piece};
+use crate::fast::batch::Batch;
+use crate::fast::search::{Summary, STRIDE};
+use crate::fast::{sweep, Piece};
 use crate::method::{self, piece_coefs, OpenSystem};
 pub(crate) use crate::method::{power_of_two_scale, scale_for_max};
 use crate::poly::{deriv_of, horner};
@@ -122,7 +124,7 @@ pub struct Spline {
     /// by `scale`. `coefs[k][0]` is the knot value `phi_k / scale`.
     coefs: Vec<Piece>,
     /// Every 16th knot and an index of them, for the batch search.
-    summary: kernels::Summary,
+    summary: Summary,
     /// The one alpha of every interval, when a uniform build set them.
     uniform: UniformHint,
     scale: f64,
@@ -274,14 +276,14 @@ pub(crate) fn check_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<(), E
 /// positive and at least `span * MIN_RELATIVE_INTERVAL` imply finite,
 /// strictly increasing knots.
 ///
-/// As it reads the knots it puts every [`kernels::STRIDE`]-th into `summary`
-/// (see [`kernels::Summary`]), which then needs no pass over them of its
+/// As it reads the knots it puts every [`STRIDE`]-th into `summary`
+/// (see [`Summary`]), which then needs no pass over them of its
 /// own; when it returns `None` the summary may be partly written.
 fn quick_check(
     knots: &[f64],
     values: &[f64],
     alphas: Alphas<'_>,
-    summary: &mut kernels::Summary,
+    summary: &mut Summary,
 ) -> Option<f64> {
     let n = knots.len();
     if n < 2 || values.len() != n {
@@ -294,7 +296,6 @@ fn quick_check(
     let thr = span * MIN_RELATIVE_INTERVAL;
     // Widths in four lanes, so that the loop vectorises; a stretch of
     // `STRIDE` knots at a time, whose first goes into the summary.
-    const STRIDE: usize = kernels::STRIDE;
     let every = &mut summary.every;
     every.clear();
     every.reserve(n.div_ceil(STRIDE));
@@ -407,7 +408,7 @@ impl Spline {
             values: Vec::new(),
             alphas: Vec::new(),
             coefs: Vec::new(),
-            summary: kernels::Summary::default(),
+            summary: Summary::default(),
             uniform: UniformHint(None),
             scale: 1.0,
             pre: 1.0,
@@ -471,7 +472,7 @@ impl Spline {
     /// the build's one-pass check; anything the check does not pass goes the
     /// step-by-step way, which names the fault.
     fn through_fast(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
-        let mut summary = kernels::Summary::default();
+        let mut summary = Summary::default();
         let Some(max_abs) = quick_check(knots, values, alphas, &mut summary) else {
             return Self::through_checked(knots, values, alphas);
         };
@@ -576,18 +577,18 @@ impl Spline {
             }
         };
         self.uniform = UniformHint(uniform);
-        kernels::build(
+        sweep::build(
             knots,
             values,
             &self.alphas,
             uniform,
             1.0 / scale,
-            kernels::inverse_power_of_two(span),
+            crate::fast::inverse_power_of_two(span),
             (&mut self.coefs, &mut self.knots, &mut self.values),
         );
         self.scale = scale;
         self.pre = if span < TINY_SPAN {
-            kernels::inverse_power_of_two(span)
+            crate::fast::inverse_power_of_two(span)
         } else {
             1.0
         };
@@ -614,7 +615,7 @@ impl Spline {
             .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
             .collect();
         let span = knots[knots.len() - 1] - knots[0];
-        let mut summary = kernels::Summary::default();
+        let mut summary = Summary::default();
         summary.of(knots);
         let uniform = match given {
             Alphas::Uniform(a) => UniformHint(Some(a)),
@@ -629,7 +630,7 @@ impl Spline {
             uniform,
             scale,
             pre: if span < TINY_SPAN {
-                kernels::inverse_power_of_two(span)
+                crate::fast::inverse_power_of_two(span)
             } else {
                 1.0
             },
@@ -1526,7 +1527,7 @@ pub(crate) mod tests {
             let (x, f, a) = random_data(&mut rng, n, 1.0);
             for alphas in [Alphas::Uniform(0.5), Alphas::PerInterval(&a)] {
                 s.rebuild(&x, &f, alphas).unwrap();
-                let mut want = kernels::Summary::default();
+                let mut want = Summary::default();
                 want.of(&x);
                 assert_eq!(s.summary, want, "n {n}");
                 let q: Vec<f64> = (0..64)

@@ -1,0 +1,671 @@
+//! The fused construction sweeps: one forward and one backward pass over a
+//! validated spline or open curve, writing every piece once.
+//!
+//! Everything here computes the same quantities as the straightforward path of
+//! `spline.rs` (`OpenSystem`, `piece_coefs`) in another order of operations, so
+//! results agree to rounding (a few units in the last place), not bit for bit.
+//!
+//! # Construction
+//!
+//! Row `k` of the system (16), multiplied by `h_{k-1} + h_k` instead of the
+//! `h_{k-1} h_k / (h_{k-1} + h_k)` of `spline.rs`, reads (widths `h` already
+//! multiplied by a power of two that brings the span near 1, values scaled):
+//!
+//! ```text
+//! l_k = -h_k A'    D_k = h_k B1' + h_{k-1} B2'    u_k = -h_{k-1} C'
+//! r_k = h_{k-1} dF_k - h_k dF_{k-1}
+//! ```
+//!
+//! so assembling a row needs no division. The Thomas pivots
+//! `piv_k = D_k - l_k u_{k-1} / piv_{k-1}` are ratios `P_k / P_{k-1}` of the
+//! continuants `P_k = D_k P_{k-1} - l_k u_{k-1} P_{k-2}`, a recurrence of
+//! multiplications and subtractions only: the one division per row,
+//! `1 / piv_k = P_{k-1} / P_k`, is off the chain of dependent operations. The
+//! continuants are renormalised by an exact power of two every
+//! [`RENORM`] rows. Diagonal dominance bounds every pivot ratio (for alphas in
+//! `[1/3, 2/3]`, `piv_k >= 3 min(h_{k-1} + h_k)` and `<= 8 max(...)`), so the
+//! continuants stay far from overflow and underflow between renormalisations.
+//!
+//! The forward sweep keeps its two numbers per row (`u_k / piv_k` and the
+//! swept right-hand side, `D + 1` numbers for `D` coordinates) in the slots of
+//! two outputs of length `n` that the backward sweep writes anyway after it
+//! has read them: a spline's copies of knot `k` and value `k`, a curve's copy of
+//! point `k` and its deviation (the copies from the input, which the backward
+//! sweep reads). The pieces are then written once, by the backward sweep, and
+//! nothing else holds the rows: no scratch vector. The alpha inverses of
+//! per-interval alphas are formed again in the backward sweep.
+
+use super::Piece;
+use crate::method::alpha_terms;
+
+/// Rows between two renormalisations of the continuants: each row multiplies
+/// them by a pivot between `3 * 2^-52` and `32` (widths relative to a span
+/// near 1), so in 8 rows they stay within `2^-400 .. 2^40` of `[1, 2)`, and a
+/// product of two of them far inside a double.
+const RENORM: usize = 8;
+
+/// Multiplies `p` and `q` by the power of two that brings `p` into `[1, 2)`.
+/// `p` is positive and normal.
+#[inline]
+fn renormalise(p: &mut f64, q: &mut f64) {
+    let e = (p.to_bits() >> 52) & 0x7ff;
+    // 2^(1023 - e): the exponent field 2046 - e lies in [1, 2045] for normal p.
+    let m = f64::from_bits((2046u64.saturating_sub(e)).max(1) << 52);
+    *p *= m;
+    *q *= m;
+}
+
+/// `A', B1', B2', C'` of one alpha with one division: `1/a = (1-a) / (a (1-a))`,
+/// `1/(1-a) = a / (a (1-a))`. Agrees with [`alpha_terms`] to a few units in the
+/// last place.
+#[cfg(test)]
+fn alpha_terms_one_division(a: f64) -> [f64; 4] {
+    let u = 1.0 - a;
+    let iau = 1.0 / (a * u);
+    terms_from_inverses(a, u * iau, a * iau)
+}
+
+/// The alpha terms a piece needs: `B2'` and `C'` for its first slope, and the
+/// weights of `d0`, `d1` in its `t^2` and `t^3` coefficients.
+#[inline(always)]
+fn piece_terms(terms: [f64; 4]) -> [f64; 6] {
+    let [al, b1, b2, cr] = terms;
+    [
+        b2,
+        cr,
+        2.0 * b2 + al - 3.0,
+        3.0 - 2.0 * cr - b1,
+        2.0 - b2 - al,
+        cr + b1 - 2.0,
+    ]
+}
+
+/// Coefficients of a piece from its scaled values, deviations and
+/// [`piece_terms`]: the coefficients of `spline::piece_coefs`,
+/// `c2 = 3 rise - 2 s0 - s1` and `c3 = s0 + s1 - 2 rise` with the value step
+/// cancelled out beforehand (it drops out of both exactly).
+#[inline(always)]
+fn piece(f0: f64, f1: f64, d0: f64, d1: f64, pt: [f64; 6]) -> [f64; 4] {
+    let [b2, cr, c2d0, c2d1, c3d0, c3d1] = pt;
+    [
+        f0 + d0,
+        (f1 - f0) + (d1 * cr - d0 * b2),
+        d0 * c2d0 + d1 * c2d1,
+        d0 * c3d0 + d1 * c3d1,
+    ]
+}
+
+/// Leg `k` of a sweep's output: the `D` pieces (one per coordinate).
+pub(crate) trait Leg<const D: usize>: Copy {
+    /// Stores the pieces.
+    fn put_pieces(&mut self, pieces: [[f64; 4]; D]);
+}
+
+impl Leg<1> for Piece {
+    #[inline(always)]
+    fn put_pieces(&mut self, pieces: [[f64; 4]; 1]) {
+        self.0 = pieces[0];
+    }
+}
+
+/// The `D` pieces of a curve's segment, one per coordinate.
+impl<const D: usize> Leg<D> for [[f64; 4]; D] {
+    #[inline(always)]
+    fn put_pieces(&mut self, pieces: [[f64; 4]; D]) {
+        *self = pieces;
+    }
+}
+
+/// Builds the pieces of a validated spline into `coefs` (resized to one piece
+/// per interval; its allocation is reused).
+///
+/// `knots` are strictly increasing with a finite span, `values` finite and of
+/// the same length (at least 2), `alphas` one per interval and in range;
+/// `uniform` is `Some(a)` when every alpha is `a` (the exact [`alpha_terms`] are
+/// then used throughout). `inv_scale` is the exact power of two that scales the
+/// values, `wscale` the power of two that brings the span near 1.
+pub(crate) fn build(
+    knots: &[f64],
+    values: &[f64],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    inv_scale: f64,
+    wscale: f64,
+    (coefs, knots_out, values_out): (&mut Vec<Piece>, &mut Vec<f64>, &mut Vec<f64>),
+) {
+    let n = knots.len();
+    if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        // Not reached: the caller has validated the lengths.
+        coefs.clear();
+        for (out, v) in [(&mut *knots_out, knots), (&mut *values_out, values)] {
+            out.clear();
+            out.extend_from_slice(v);
+        }
+        return;
+    }
+    // Every piece and copy is overwritten below (the copies of the knots and
+    // values by the backward sweep, after the forward one kept its rows in
+    // them): keep the old contents rather than clearing them first (no pass
+    // over the memory when the size is unchanged).
+    coefs.truncate(n - 1);
+    coefs.resize(n - 1, Piece::default());
+    for out in [&mut *knots_out, &mut *values_out] {
+        out.truncate(n);
+        out.resize(n, 0.0);
+    }
+    let input = Sweep::new(
+        knots,
+        values.as_chunks().0,
+        [inv_scale],
+        alphas,
+        uniform,
+        wscale,
+    );
+    let (kn, vs) = (
+        knots_out.as_chunks_mut::<1>().0,
+        values_out.as_chunks_mut::<1>().0,
+    );
+    let Some((head, rows)) = coefs.split_first_mut() else {
+        return;
+    };
+    let head = core::slice::from_mut(head);
+    if uniform.is_some() {
+        input.run::<false, true, _>(head, rows, kn, vs);
+    } else {
+        input.run::<true, true, _>(head, rows, kn, vs);
+    }
+}
+
+/// Builds the segments of a validated open curve in `D` dimensions: `coefs`
+/// gets the curve's layout (`D` pieces per leg, coordinate fastest), `dev`
+/// the scaled deviations of every point (zero at both ends) and `points_out`
+/// a copy of `points`. Lengths: `points` `n D` (scaled by `inv_scale`,
+/// coordinate by coordinate, as they are read), `knots` `n >= 2`, `alphas`
+/// `n - 1`; `coefs`, `dev` and `points_out` are resized.
+///
+/// The forward sweep keeps row `k` in `points_out[k]` and `dev[k]` (`2 D` slots
+/// for `D + 1` numbers), which the backward sweep then overwrites with the copy
+/// of point `k` and its deviation: the legs' memory is written once, by the
+/// backward sweep, rather than once with the rows and again with the pieces.
+#[allow(clippy::too_many_arguments)] // the parts of a curve, validated
+pub(crate) fn build_open_curve<const D: usize>(
+    knots: &[f64],
+    points: &[f64],
+    inv_scale: [f64; D],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    wscale: f64,
+    coefs: &mut Vec<[f64; 4]>,
+    dev: &mut Vec<f64>,
+    points_out: &mut Vec<f64>,
+) {
+    let n = knots.len();
+    coefs.truncate((n.max(1) - 1) * D);
+    coefs.resize((n.max(1) - 1) * D, [0.0; 4]);
+    // Every slot is overwritten below: no pass to clear them first.
+    for v in [&mut *dev, &mut *points_out] {
+        v.truncate(n * D);
+        v.resize(n * D, 0.0);
+    }
+    let (values, _) = points.as_chunks::<D>();
+    if n < 2 || values.len() != n || alphas.len() != n - 1 {
+        // Not reached: the caller has validated the lengths.
+        points_out.clear();
+        points_out.extend_from_slice(points);
+        return;
+    }
+    let (legs, _) = coefs.as_chunks_mut::<D>();
+    let Some((head, rows)) = legs.split_first_mut() else {
+        return;
+    };
+    let head = core::slice::from_mut(head);
+    let (dev, pts) = (
+        dev.as_chunks_mut::<D>().0,
+        points_out.as_chunks_mut::<D>().0,
+    );
+    let input = Sweep::new(knots, values, inv_scale, alphas, uniform, wscale);
+    if uniform.is_some() {
+        input.run::<false, false, _>(head, rows, dev, pts);
+    } else {
+        input.run::<true, false, _>(head, rows, dev, pts);
+    }
+}
+
+/// `(1/a, 1/(1-a))` with one division.
+#[inline(always)]
+fn inverses(a: f64) -> (f64, f64) {
+    let u = 1.0 - a;
+    let iau = 1.0 / (a * u);
+    (u * iau, a * iau)
+}
+
+/// [`inverses`] of `a` when the alphas differ (`PER`), for the sweeps; not
+/// formed (and not read) otherwise.
+#[inline(always)]
+fn inv_of<const PER: bool>(a: f64) -> (f64, f64) {
+    if PER {
+        inverses(a)
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+/// `a - b` coordinate by coordinate.
+#[inline(always)]
+fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
+    core::array::from_fn(|c| a[c] - b[c])
+}
+
+/// The input of the fused sweeps: `D` right-hand sides (the coordinates of
+/// the points, `values[k][c] * inv_scale[c]`) on one matrix.
+struct Sweep<'a, const D: usize> {
+    knots: &'a [f64],
+    values: &'a [[f64; D]],
+    inv_scale: [f64; D],
+    alphas: &'a [f64],
+    /// The terms of every alpha when they are all one (`PER` false).
+    uniform: [f64; 4],
+    /// Their [`piece_terms`].
+    uniform_piece: [f64; 6],
+    /// The power of two the widths are multiplied by.
+    ws: f64,
+}
+
+impl<'a, const D: usize> Sweep<'a, D> {
+    /// The input, with the alpha terms of `uniform` (the one alpha of every
+    /// interval, when there is one) formed once.
+    fn new(
+        knots: &'a [f64],
+        values: &'a [[f64; D]],
+        inv_scale: [f64; D],
+        alphas: &'a [f64],
+        uniform: Option<f64>,
+        ws: f64,
+    ) -> Self {
+        let terms = uniform.map_or([0.0; 4], alpha_terms);
+        Sweep {
+            knots,
+            values,
+            inv_scale,
+            alphas,
+            uniform: terms,
+            uniform_piece: piece_terms(terms),
+            ws,
+        }
+    }
+
+    #[inline(always)]
+    fn scaled(&self, v: [f64; D]) -> [f64; D] {
+        core::array::from_fn(|c| v[c] * self.inv_scale[c])
+    }
+
+    /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
+    /// alphas differ (their terms are then formed per interval, else
+    /// `uniform` serves every interval). `head` and `rows` are leg 0 and the
+    /// rest (`n - 1` legs in all). The forward sweep keeps row `k` in
+    /// `second[k]` and `first[k]` (`2 D` slots for `D + 1` numbers; `n` of
+    /// each), which the backward sweep then overwrites with `values[k]` (in
+    /// `first`) and the deviation (in `second`), or with `KNOT` the knot (in
+    /// `second[k][0]`, for `D = 1`): a spline's copies of its knots and
+    /// values, a curve's deviations and copy of its points. The pieces are
+    /// written once, by the backward sweep.
+    #[inline(always)]
+    fn run<const PER: bool, const KNOT: bool, L: Leg<D>>(
+        &self,
+        head: &mut [L],
+        rows: &mut [L],
+        second: &mut [[f64; D]],
+        first: &mut [[f64; D]],
+    ) {
+        let m = rows.len() + 1;
+        let (Some(dev), Some(pts)) = (second.get_mut(..=m), first.get_mut(..=m)) else {
+            return;
+        };
+        let (values, rows_d, rows_p) = (self.values, &mut dev[1..m], &mut pts[1..m]);
+        {
+            let (pd, ld) = rows_d.as_chunks_mut::<2>();
+            let (pp, lp) = rows_p.as_chunks_mut::<2>();
+            let pairs = pd
+                .iter_mut()
+                .zip(pp)
+                .map(|([d0, d1], [p0, p1])| [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]);
+            let last = ld
+                .first_mut()
+                .zip(lp.first_mut())
+                .map(|(d, p)| Aside { p, d });
+            self.forward::<PER>(pairs, last);
+        }
+        let (fd, pd) = rows_d.as_rchunks_mut::<2>();
+        let (fp, pp) = rows_p.as_rchunks_mut::<2>();
+        let (fl, pl) = rows.as_rchunks_mut::<2>();
+        let pairs = pl
+            .iter_mut()
+            .zip(pd)
+            .zip(pp)
+            .rev()
+            .map(|(([l0, l1], [d0, d1]), [p0, p1])| {
+                [
+                    AsideBack::<L, D, KNOT> {
+                        leg: l0,
+                        at: Aside { p: p0, d: d0 },
+                    },
+                    AsideBack {
+                        leg: l1,
+                        at: Aside { p: p1, d: d1 },
+                    },
+                ]
+            });
+        let first = match (fl.first_mut(), fd.first_mut(), fp.first_mut()) {
+            (Some(leg), Some(d), Some(p)) => Some(AsideBack {
+                leg,
+                at: Aside { p, d },
+            }),
+            _ => None,
+        };
+        self.backward::<PER, L, KNOT>(pairs, first, head);
+        // The end points: their copies, and deviation zero (or the knot).
+        for i in [0, m] {
+            if let (Some(d), Some(p), Some(v), Some(&k)) = (
+                dev.get_mut(i),
+                pts.get_mut(i),
+                values.get(i),
+                self.knots.get(i),
+            ) {
+                *p = *v;
+                if KNOT {
+                    d[0] = k;
+                } else {
+                    *d = [0.0; D];
+                }
+            }
+        }
+    }
+
+    /// The forward sweep over rows `k = 1 .. n - 2`, two at a time (`pairs`,
+    /// then `last` when their number is odd), kept in their slots.
+    #[inline(always)]
+    fn forward<'s, const PER: bool>(
+        &self,
+        pairs: impl Iterator<Item = [Aside<'s, D>; 2]>,
+        last: Option<Aside<'s, D>>,
+    ) {
+        let (knots, values, alphas) = (self.knots, self.values, self.alphas);
+        let ws = self.ws;
+        let m = knots.len().saturating_sub(1);
+        let terms = |a: f64, (ia, iu): (f64, f64)| {
+            if PER {
+                terms_from_inverses(a, ia, iu)
+            } else {
+                self.uniform
+            }
+        };
+        let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
+            knots.first(),
+            knots.get(1),
+            values.first(),
+            values.get(1),
+            alphas.first(),
+        ) else {
+            return;
+        };
+        let v0 = self.scaled(v0);
+
+        let mut p_prev2 = 1.0; // P_{k-2}
+        let mut p_prev = 1.0; // P_{k-1}
+        let mut y_prev = [0.0; D];
+        let mut u_prev = 0.0;
+        let mut kc = k1; // knots[k]
+        let mut hl = (k1 - k0) * ws;
+        let mut fc = self.scaled(v1);
+        let mut df_l = sub(fc, v0); // F_k - F_{k-1}, scaled
+        let mut terms_l = terms(a0, inv_of::<PER>(a0));
+        let mut since = 0;
+        let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
+        let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
+        let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
+        for (((slots, kn), vs), al) in pairs.zip(kn).zip(vs).zip(al) {
+            // Rows k and k + 1.
+            let h1 = (kn[0] - kc) * ws;
+            let h2 = (kn[1] - kn[0]) * ws;
+            kc = kn[1];
+            let (f1, f2) = (self.scaled(vs[0]), self.scaled(vs[1]));
+            let (i1, i2) = (inv_of::<PER>(al[0]), inv_of::<PER>(al[1]));
+            let (t1, t2) = (terms(al[0], i1), terms(al[1], i2));
+            let l1 = -h1 * terms_l[0];
+            let d1 = h1 * terms_l[1] + hl * t1[2];
+            let u1 = -hl * t1[3];
+            let (df1, df2) = (sub(f1, fc), sub(f2, f1));
+            let l2 = -h2 * t1[0];
+            let d2 = h2 * t1[1] + h1 * t2[2];
+            let u2 = -h1 * t2[3];
+            let e1 = l1 * u_prev;
+            let e2 = l2 * u1;
+            // P_k and P_{k+1} both from P_{k-1}, P_{k-2}: one multiply-subtract
+            // on the chain for two rows.
+            let p1 = d1 * p_prev - e1 * p_prev2;
+            let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
+            // One division for both pivots' reciprocals.
+            let rr = 1.0 / (p1 * p2);
+            let inv1 = p_prev * p2 * rr;
+            let inv2 = p1 * p1 * rr;
+            let (m1, m2) = (l1 * inv1, l2 * inv2);
+            let mut y1 = [0.0; D];
+            let mut y2 = [0.0; D];
+            for c in 0..D {
+                let g1 = (hl * df1[c] - h1 * df_l[c]) * inv1;
+                let g2 = (h1 * df2[c] - h2 * df1[c]) * inv2;
+                y1[c] = g1 - m1 * y_prev[c];
+                y2[c] = (g2 - m2 * g1) + (m2 * m1) * y_prev[c];
+            }
+            let [mut s1, mut s2] = slots;
+            s1.put(u1 * inv1, y1);
+            s2.put(u2 * inv2, y2);
+            p_prev2 = p1;
+            p_prev = p2;
+            since += 2;
+            if since >= RENORM {
+                renormalise(&mut p_prev, &mut p_prev2);
+                since = 0;
+            }
+            y_prev = y2;
+            u_prev = u2;
+            hl = h2;
+            df_l = df2;
+            fc = f2;
+            terms_l = t2;
+        }
+        let done = 1 + 2 * ((m - 1) / 2);
+        if let (Some(mut slot), Some(&kr), Some(&vr), Some(&ar)) = (
+            last,
+            knots.get(done + 1),
+            values.get(done + 1),
+            alphas.get(done),
+        ) {
+            // The last row when their number is odd.
+            let hr = (kr - kc) * ws;
+            let fr = self.scaled(vr);
+            let ir = inv_of::<PER>(ar);
+            let terms_r = terms(ar, ir);
+            let l = -hr * terms_l[0];
+            let d = hr * terms_l[1] + hl * terms_r[2];
+            let u = -hl * terms_r[3];
+            let p = d * p_prev - (l * u_prev) * p_prev2;
+            let inv = p_prev / p;
+            let y = core::array::from_fn(|c| {
+                (hl * (fr[c] - fc[c]) - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
+            });
+            slot.put(u * inv, y);
+        }
+    }
+
+    /// The backward sweep: `d_k` from `d_{k+1}`, two rows at a time from the
+    /// end (`pairs`: rows `k - 2, k - 1`; then `first`, row 1, when their
+    /// number is odd), then the pieces; `head` is leg 0.
+    #[inline(always)]
+    fn backward<'s, const PER: bool, L: Leg<D> + 's, const KNOT: bool>(
+        &self,
+        pairs: impl Iterator<Item = [AsideBack<'s, L, D, KNOT>; 2]>,
+        first: Option<AsideBack<'s, L, D, KNOT>>,
+        head: &mut [L],
+    ) {
+        let (values, alphas) = (self.values, self.alphas);
+        let m = self.knots.len().saturating_sub(1);
+        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64, inv| {
+            let pt = if PER {
+                let (ia, iu) = inv;
+                piece_terms(terms_from_inverses(a, ia, iu))
+            } else {
+                self.uniform_piece
+            };
+            core::array::from_fn(|c| piece(f0[c], f1[c], d0[c], d1[c], pt))
+        };
+        let (Some(&v0), Some(&a0)) = (values.first(), alphas.first()) else {
+            return;
+        };
+        let mut d_next = [0.0; D];
+        let mut f_next = self.scaled(values.get(m).copied().unwrap_or([0.0; D]));
+        let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
+        let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
+        let kn = self.knots.get(1..m).unwrap_or_default().rchunks_exact(2);
+        for (((pair, vs), al), kn) in pairs.zip(vs).zip(al).zip(kn) {
+            // Rows k - 2 and k - 1.
+            let [mut a, mut b] = pair;
+            let (ma, ya) = a.row();
+            let (mb, yb) = b.row();
+            let mut d_k = [0.0; D];
+            let mut d_km1 = [0.0; D];
+            for c in 0..D {
+                d_k[c] = yb[c] - mb * d_next[c];
+                // d_{k-1} from d_{k+1}: one multiply-add on the chain for two rows.
+                d_km1[c] = (ya[c] - ma * yb[c]) + (ma * mb) * d_next[c];
+            }
+            let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
+            // The alpha inverses, formed again.
+            let (ia, ib) = (inv_of::<PER>(al[0]), inv_of::<PER>(al[1]));
+            b.finish(
+                pieces(fk, f_next, d_k, d_next, al[1], ib),
+                vs[1],
+                d_k,
+                kn[1],
+            );
+            a.finish(pieces(fkm1, fk, d_km1, d_k, al[0], ia), vs[0], d_km1, kn[0]);
+            d_next = d_km1;
+            f_next = fkm1;
+        }
+        if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) =
+            (first, values.get(1), alphas.get(1), self.knots.get(1))
+        {
+            // Row 1 when the number of rows is odd.
+            let (mb, yb) = slot.row();
+            let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
+            let f1 = self.scaled(v);
+            slot.finish(pieces(f1, f_next, d, d_next, a, inv_of::<PER>(a)), v, d, kv);
+            d_next = d;
+            f_next = f1;
+        }
+        if let Some(slot) = head.first_mut() {
+            let v0 = self.scaled(v0);
+            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, a0, inv_of::<PER>(a0)));
+        }
+    }
+}
+
+/// Row `k` of a sweep in the `2 D` slots `p` and `d` (a spline's copies of
+/// value and knot `k`, a curve's copy of point `k` and its deviation):
+/// `u_k / piv_k`, then the `D` swept right-hand sides.
+struct Aside<'a, const D: usize> {
+    p: &'a mut [f64; D],
+    d: &'a mut [f64; D],
+}
+
+impl<const D: usize> Aside<'_, D> {
+    #[inline(always)]
+    fn get(&self, i: usize) -> f64 {
+        if i < D {
+            self.p[i]
+        } else {
+            self.d[i - D]
+        }
+    }
+
+    /// Stores the row.
+    #[inline(always)]
+    fn put(&mut self, m: f64, y: [f64; D]) {
+        self.p[0] = m;
+        for (c, &v) in y.iter().enumerate() {
+            if c + 1 < D {
+                self.p[c + 1] = v;
+            } else {
+                self.d[c + 1 - D] = v;
+            }
+        }
+    }
+}
+
+/// Leg `k` with the slots of row `k` ([`Aside`]); `KNOT`: the second slot
+/// takes knot `k` (a spline's copy of its knots) rather than the deviation.
+struct AsideBack<'a, L, const D: usize, const KNOT: bool> {
+    leg: &'a mut L,
+    at: Aside<'a, D>,
+}
+
+impl<const D: usize, L: Leg<D>, const KNOT: bool> AsideBack<'_, L, D, KNOT> {
+    /// The row as [`Aside::put`] stored it.
+    #[inline(always)]
+    fn row(&self) -> (f64, [f64; D]) {
+        (self.at.get(0), core::array::from_fn(|c| self.at.get(c + 1)))
+    }
+
+    /// Stores leg `k`'s pieces, the copy of value or point `k` (`value`,
+    /// unscaled), and the deviation `d` or the `knot`.
+    #[inline(always)]
+    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D], knot: f64) {
+        self.leg.put_pieces(pieces);
+        *self.at.p = value;
+        if KNOT {
+            self.at.d[0] = knot;
+        } else {
+            *self.at.d = d;
+        }
+    }
+}
+
+/// `A', B1', B2', C'` from `a`, `1/a` and `1/(1-a)`.
+#[inline(always)]
+fn terms_from_inverses(a: f64, ia: f64, iu: f64) -> [f64; 4] {
+    let r = a * iu;
+    let ir = (1.0 - a) * ia;
+    [r * r, 2.0 * ia + 1.0, 2.0 * iu + 1.0, ir * ir]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_division_terms_match() {
+        for i in 0..=100 {
+            let a = 1.0 / 3.0 + f64::from(i) / 300.0;
+            let want = alpha_terms(a);
+            let got = alpha_terms_one_division(a);
+            for j in 0..4 {
+                assert!(
+                    (want[j] - got[j]).abs() <= 4.0 * f64::EPSILON * want[j].abs(),
+                    "alpha {a} term {j}: want {}, got {}",
+                    want[j],
+                    got[j]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn renormalise_lands_in_one_two() {
+        for p in [1e-300, 3.5, 1e300, f64::MIN_POSITIVE] {
+            let (mut a, mut b) = (p, p / 4.0);
+            renormalise(&mut a, &mut b);
+            assert!((1.0..2.0).contains(&a), "{p} -> {a}");
+            assert_eq!(a / b, 4.0);
+        }
+    }
+}
