@@ -84,6 +84,7 @@ pub mod flatten;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
 pub(crate) mod method;
+mod pieces;
 mod poly;
 mod polyline;
 pub mod spline;

@@ -15,11 +15,11 @@
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
-use crate::fast::batch::Batch;
 use crate::fast::search::{Summary, STRIDE};
 use crate::fast::{sweep, Piece};
 use crate::method::{self, piece_coefs, OpenSystem};
 pub(crate) use crate::method::{power_of_two_scale, scale_for_max};
+use crate::pieces::Pieces;
 use crate::poly::{deriv_of, horner};
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
@@ -117,17 +117,14 @@ pub struct Extremum {
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spline {
-    knots: Vec<f64>,
+    /// The knots, the pieces in `t = (x - tau_k) / h_k` and their one scale
+    /// (a power of two near the largest value); piece `k`'s first
+    /// coefficient is the scaled knot value `phi_k / scale`.
+    pieces: Pieces,
     values: Vec<f64>,
     alphas: Vec<f64>,
-    /// Power-basis coefficients of piece `k` in `t = (x - tau_k) / h_k`, divided
-    /// by `scale`. `coefs[k][0]` is the knot value `phi_k / scale`.
-    coefs: Vec<Piece>,
-    /// Every 16th knot and an index of them, for the batch search.
-    summary: Summary,
     /// The one alpha of every interval, when a uniform build set them.
     uniform: UniformHint,
-    scale: f64,
     /// A power of two that keeps `1 / (h pre)` finite: 1 unless the whole span
     /// is below [`TINY_SPAN`], where `1 / h` could overflow.
     pre: f64,
@@ -403,19 +400,21 @@ impl Spline {
     ///
     /// See [`Spline::with_alphas`].
     pub fn build(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
-        let mut s = Spline {
-            knots: Vec::new(),
-            values: Vec::new(),
-            alphas: Vec::new(),
-            coefs: Vec::new(),
-            summary: Summary::default(),
-            uniform: UniformHint(None),
-            scale: 1.0,
-            pre: 1.0,
-            extrapolate: Extrapolate::default(),
-        };
+        let mut s = Self::empty();
         s.rebuild(knots, values, alphas)?;
         Ok(s)
+    }
+
+    /// A spline with nothing in it, to build into.
+    fn empty() -> Self {
+        Spline {
+            pieces: Pieces::default(),
+            values: Vec::new(),
+            alphas: Vec::new(),
+            uniform: UniformHint(None),
+            pre: 1.0,
+            extrapolate: Extrapolate::default(),
+        }
     }
 
     /// The spline through the points `(knots[k], values[k])`: the
@@ -472,8 +471,8 @@ impl Spline {
     /// the build's one-pass check; anything the check does not pass goes the
     /// step-by-step way, which names the fault.
     fn through_fast(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
-        let mut summary = Summary::default();
-        let Some(max_abs) = quick_check(knots, values, alphas, &mut summary) else {
+        let mut s = Self::empty();
+        let Some(max_abs) = quick_check(knots, values, alphas, s.pieces.parts_mut().summary) else {
             return Self::through_checked(knots, values, alphas);
         };
         let n = knots.len();
@@ -509,6 +508,8 @@ impl Spline {
         // Backward: d_k = r'_k - c'_k d_{k+1}, then G_k = P_k - d_k.
         let mut next = 0.0;
         g[n - 1] = values[n - 1];
+        g[0] = values[0];
+        let mut max_g = values[0].abs().max(values[n - 1].abs());
         for k in (1..n.saturating_sub(1)).rev() {
             let d = g[k] - c[k] * next;
             next = d;
@@ -518,9 +519,13 @@ impl Spline {
                     what: "a solved control value",
                 });
             }
+            max_g = max_g.max(g[k].abs());
         }
-        g[0] = values[0];
-        Self::build(knots, &g, alphas)
+        // The knots and alphas passed the check above and every control value
+        // is finite: the build needs no second check (and the summary of the
+        // knots is formed).
+        s.fill(knots, &g, alphas, max_g);
+        Ok(s)
     }
 
     /// Rebuilds this spline in place from new data, reusing its allocations
@@ -549,16 +554,25 @@ impl Spline {
         values: &[f64],
         alphas: Alphas<'_>,
     ) -> Result<(), Error> {
-        let Some(max_abs) = quick_check(knots, values, alphas, &mut self.summary) else {
+        let Some(max_abs) = quick_check(knots, values, alphas, self.pieces.parts_mut().summary)
+        else {
             // Something is wrong (or on an edge the quick check does not
             // decide): the step-by-step validation names it. The summary of
             // the knots held first, which the check may have overwritten.
-            self.summary.of(&self.knots);
+            self.pieces.knots_changed();
             let reference = Self::build_reference(knots, values, alphas)?;
             let policy = self.extrapolate;
             *self = reference.with_extrapolation(policy);
             return Ok(());
         };
+        self.fill(knots, values, alphas, max_abs);
+        Ok(())
+    }
+
+    /// The build after the check: `knots`, `values` and `alphas` are valid,
+    /// `max_abs` is the largest `|values[k]|`, and the summary is that of
+    /// `knots`.
+    fn fill(&mut self, knots: &[f64], values: &[f64], alphas: Alphas<'_>, max_abs: f64) {
         let n = knots.len();
         let scale = scale_for_max(max_abs);
         let span = knots[n - 1] - knots[0];
@@ -577,6 +591,7 @@ impl Spline {
             }
         };
         self.uniform = UniformHint(uniform);
+        let parts = self.pieces.parts_mut();
         sweep::build(
             knots,
             values,
@@ -584,15 +599,17 @@ impl Spline {
             uniform,
             1.0 / scale,
             crate::fast::inverse_power_of_two(span),
-            (&mut self.coefs, &mut self.knots, &mut self.values),
+            (parts.coefs, parts.knots, &mut self.values),
         );
-        self.scale = scale;
+        match parts.scales.as_mut_slice() {
+            [one] => *one = scale,
+            _ => *parts.scales = vec![scale],
+        }
         self.pre = if span < TINY_SPAN {
             crate::fast::inverse_power_of_two(span)
         } else {
             1.0
         };
-        Ok(())
     }
 
     /// The straightforward construction: validate step by step, assemble and
@@ -615,20 +632,15 @@ impl Spline {
             .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
             .collect();
         let span = knots[knots.len() - 1] - knots[0];
-        let mut summary = Summary::default();
-        summary.of(knots);
         let uniform = match given {
             Alphas::Uniform(a) => UniformHint(Some(a)),
             Alphas::PerInterval(_) => UniformHint(None),
         };
         Ok(Spline {
-            knots: knots.to_vec(),
+            pieces: Pieces::from_parts(knots.to_vec(), coefs, vec![scale]),
             values: values.to_vec(),
             alphas,
-            coefs,
-            summary,
             uniform,
-            scale,
             pre: if span < TINY_SPAN {
                 crate::fast::inverse_power_of_two(span)
             } else {
@@ -643,10 +655,8 @@ impl Spline {
     /// of random-order queries has formed the search index.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        let f = core::mem::size_of::<f64>();
-        (self.knots.capacity() + self.values.capacity() + self.alphas.capacity()) * f
-            + self.summary.heap_bytes()
-            + self.coefs.capacity() * core::mem::size_of::<Piece>()
+        (self.values.capacity() + self.alphas.capacity()) * core::mem::size_of::<f64>()
+            + self.pieces.heap_bytes()
     }
 
     /// Returns the spline with another extrapolation policy.
@@ -665,7 +675,7 @@ impl Spline {
     /// The knots `tau`.
     #[must_use]
     pub fn knots(&self) -> &[f64] {
-        &self.knots
+        &self.pieces.knots()
     }
 
     /// The control values `F`.
@@ -683,28 +693,34 @@ impl Spline {
     /// Number of pieces (intervals), one fewer than knots.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.coefs.len()
+        self.pieces.len()
     }
 
     /// Always false: a spline has at least one piece.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.coefs.is_empty()
+        self.pieces.coefs().is_empty()
     }
 
     /// The domain `[tau_0, tau_{N-1}]`.
     #[must_use]
     pub fn domain(&self) -> (f64, f64) {
-        (self.knots[0], self.knots[self.knots.len() - 1])
+        self.pieces.domain()
     }
 
     /// The knot values `phi_k = S(tau_k)`; `phi_0 = F_0` and `phi_{N-1} = F_{N-1}`.
     #[must_use]
     pub fn knot_values(&self) -> Vec<f64> {
         // The end values are the end control values by construction (d = 0).
-        let mut v = Vec::with_capacity(self.knots.len());
+        let mut v = Vec::with_capacity(self.pieces.knots().len());
         v.push(self.values[0]);
-        v.extend(self.coefs.iter().skip(1).map(|c| c.0[0] * self.scale));
+        v.extend(
+            self.pieces
+                .coefs()
+                .iter()
+                .skip(1)
+                .map(|c| c.0[0] * self.scale()),
+        );
         v.push(self.values[self.len()]);
         v
     }
@@ -714,14 +730,14 @@ impl Spline {
     /// `f_k = alpha_k F_k + (1 - alpha_k) F_{k+1}` (docs/method.md §9, misprint 1).
     #[must_use]
     pub fn tangent_points(&self) -> Vec<(f64, f64)> {
-        let inv = 1.0 / self.scale;
+        let inv = 1.0 / self.scale();
         (0..self.len())
             .map(|k| {
                 let a = self.alphas[k];
-                let h = self.knots[k + 1] - self.knots[k];
-                let x = self.knots[k + 1] - a * h;
+                let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
+                let x = self.pieces.knots()[k + 1] - a * h;
                 let f = (a * (self.values[k] * inv) + (1.0 - a) * (self.values[k + 1] * inv))
-                    * self.scale;
+                    * self.scale();
                 (x, f)
             })
             .collect()
@@ -730,9 +746,9 @@ impl Spline {
     /// The slope `s_k = (F_{k+1} - F_k) / h_k` of leg `k`.
     #[must_use]
     pub fn leg_slope(&self, k: usize) -> Option<f64> {
-        let h = self.knots.get(k + 1)? - self.knots[k];
-        let inv = 1.0 / self.scale;
-        Some((self.values[k + 1] * inv - self.values[k] * inv) * self.scale / h)
+        let h = self.pieces.knots().get(k + 1)? - self.pieces.knots()[k];
+        let inv = 1.0 / self.scale();
+        Some((self.values[k + 1] * inv - self.values[k] * inv) * self.scale() / h)
     }
 
     /// Piece `k` as a cubic Bezier segment in the plane: control points at
@@ -741,10 +757,10 @@ impl Spline {
     /// when the values come near `f64::MAX`.
     #[must_use]
     pub fn segment(&self, k: usize) -> Option<CubicBez<2>> {
-        let c = &self.coefs.get(k)?.0;
-        let (x0, x1) = (self.knots[k], self.knots[k + 1]);
+        let c = &self.pieces.coefs().get(k)?.0;
+        let (x0, x1) = (self.pieces.knots()[k], self.pieces.knots()[k + 1]);
         let h = x1 - x0;
-        let s = self.scale;
+        let s = self.scale();
         let b0 = c[0];
         let b3 = self.phi(k + 1);
         let s0 = c[1];
@@ -777,9 +793,9 @@ impl Spline {
     /// itself does not use this form.
     #[must_use]
     pub fn power_coefficients(&self, k: usize) -> Option<[f64; 4]> {
-        let c = &self.coefs.get(k)?.0;
-        let h = self.knots[k + 1] - self.knots[k];
-        let s = self.scale;
+        let c = &self.pieces.coefs().get(k)?.0;
+        let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
+        let s = self.scale();
         Some([
             c[0] * s,
             c[1] * s / h,
@@ -791,22 +807,28 @@ impl Spline {
     /// Coefficients of piece `k` in `t = (x - tau_k) / h_k`, `t` in `[0, 1]`.
     #[must_use]
     pub fn unit_coefficients(&self, k: usize) -> Option<[f64; 4]> {
-        let c = &self.coefs.get(k)?.0;
-        Some(c.map(|v| v * self.scale))
+        let c = &self.pieces.coefs().get(k)?.0;
+        Some(c.map(|v| v * self.scale()))
     }
 
     /// Index of the piece that answers at `x` inside the domain (see the module
     /// docs for the convention at knots); queries outside map to the end pieces.
     #[must_use]
     pub fn piece_index(&self, x: f64) -> usize {
-        self.summary.locate(&self.knots, x).min(self.len() - 1)
+        self.pieces.locate(x)
+    }
+
+    /// The one scale of the values (see [`Pieces`]).
+    #[inline]
+    fn scale(&self) -> f64 {
+        self.pieces.scale(0)
     }
 
     /// The scaled knot value `phi_k / scale`.
     fn phi(&self, k: usize) -> f64 {
-        match self.coefs.get(k) {
+        match self.pieces.coefs().get(k) {
             Some(c) => c.0[0],
-            None => self.values[self.len()] / self.scale,
+            None => self.values[self.len()] / self.scale(),
         }
     }
 
@@ -832,8 +854,8 @@ impl Spline {
             return Ok(Locus::End);
         }
         // The batch evaluators compute t and 1/h the same way (pre = 1 there).
-        let inv = 1.0 / ((self.knots[k + 1] - self.knots[k]) * self.pre);
-        let t = ((x - self.knots[k]) * self.pre) * inv;
+        let inv = 1.0 / ((self.pieces.knots()[k + 1] - self.pieces.knots()[k]) * self.pre);
+        let t = ((x - self.pieces.knots()[k]) * self.pre) * inv;
         Ok(Locus::Piece(k, t, inv))
     }
 
@@ -843,7 +865,7 @@ impl Spline {
             Locus::End if order == 0 => Ok(self.values[self.len()]),
             Locus::End => {
                 let k = self.len() - 1;
-                let inv = 1.0 / ((self.knots[k + 1] - self.knots[k]) * self.pre);
+                let inv = 1.0 / ((self.pieces.knots()[k + 1] - self.pieces.knots()[k]) * self.pre);
                 self.eval_locus(Locus::Piece(k, 1.0, inv), order)
             }
             Locus::Piece(0, t, _) if order == 0 && t == 0.0 => {
@@ -852,8 +874,7 @@ impl Spline {
                 Ok(self.values[0])
             }
             Locus::Piece(k, t, inv) => {
-                let c = &self.coefs[k].0;
-                let mut v = deriv_of(c, t, order) * self.scale;
+                let mut v = self.pieces.value(k, 0, t, order);
                 if order == 0 && v.is_infinite() && (0.0..=1.0).contains(&t) {
                     // Rounding above f64::MAX inside the hull: the true value is
                     // within the control values, which are finite.
@@ -950,21 +971,17 @@ impl Spline {
         // value underflowed in scaling (values spanning some 600 decades) only
         // the one-by-one path returns it exactly.
         let first_exact = self
-            .coefs
+            .pieces
+            .coefs()
             .first()
-            .is_none_or(|c| c.0[0] * self.scale == self.values[0]);
+            .is_none_or(|c| c.0[0] * self.scale() == self.values[0]);
         if self.pre != 1.0 || order > 3 || (order == 0 && !first_exact) {
             for (i, (&x, o)) in xs.iter().zip(out.iter_mut()).enumerate() {
                 slow(i, x, o)?;
             }
             return Ok(());
         }
-        let batch = Batch {
-            knots: &self.knots,
-            summary: &self.summary,
-            coefs: &self.coefs,
-            scale: self.scale,
-        };
+        let batch = self.pieces.batch();
         match order {
             0 => batch.run::<0, _>(xs, out, slow),
             1 => batch.run::<1, _>(xs, out, slow),
@@ -1058,14 +1075,14 @@ impl Spline {
         if a < lo {
             let end = b.min(lo);
             total += match self.extrapolate {
-                Extrapolate::Clamp => (end - a) * (self.values[0] / self.scale),
+                Extrapolate::Clamp => (end - a) * (self.values[0] / self.scale()),
                 _ => self.piece_integral(0, a, end),
             };
         }
         if b > hi {
             let start = a.max(hi);
             total += match self.extrapolate {
-                Extrapolate::Clamp => (b - start) * (self.values[self.len()] / self.scale),
+                Extrapolate::Clamp => (b - start) * (self.values[self.len()] / self.scale()),
                 _ => self.piece_integral(self.len() - 1, start, b),
             };
         }
@@ -1073,14 +1090,14 @@ impl Spline {
         if ca < cb {
             let (ka, kb) = (self.piece_index(ca), self.piece_index(cb));
             for k in ka..=kb {
-                let x0 = ca.max(self.knots[k]);
-                let x1 = cb.min(self.knots[k + 1]);
+                let x0 = ca.max(self.pieces.knots()[k]);
+                let x1 = cb.min(self.pieces.knots()[k + 1]);
                 if x0 < x1 {
                     total += self.piece_integral(k, x0, x1);
                 }
             }
         }
-        let v = total * self.scale;
+        let v = total * self.scale();
         if v.is_finite() {
             Ok(v)
         } else {
@@ -1092,11 +1109,11 @@ impl Spline {
 
     /// Integral of piece `k`'s cubic (scaled) from `x0` to `x1`.
     fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
-        let c = &self.coefs[k].0;
-        let h = self.knots[k + 1] - self.knots[k];
+        let c = &self.pieces.coefs()[k].0;
+        let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
         let prim = |t: f64| t * (c[0] + t * (c[1] / 2.0 + t * (c[2] / 3.0 + t * c[3] / 4.0)));
-        let t0 = (x0 - self.knots[k]) / h;
-        let t1 = (x1 - self.knots[k]) / h;
+        let t0 = (x0 - self.pieces.knots()[k]) / h;
+        let t1 = (x1 - self.pieces.knots()[k]) / h;
         (prim(t1) - prim(t0)) * h
     }
 
@@ -1105,8 +1122,8 @@ impl Spline {
     #[must_use]
     pub fn extrema(&self) -> Vec<Extremum> {
         let mut out = Vec::new();
-        for (k, Piece(c)) in self.coefs.iter().enumerate() {
-            let h = self.knots[k + 1] - self.knots[k];
+        for (k, Piece(c)) in self.pieces.coefs().iter().enumerate() {
+            let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
             let mut roots = quadratic_roots(3.0 * c[3], 2.0 * c[2], c[1]);
             roots.sort_by(f64::total_cmp);
             for t in roots {
@@ -1120,10 +1137,10 @@ impl Spline {
                 if !inside {
                     continue;
                 }
-                let x = (self.knots[k] + t * h).min(self.knots[k + 1]);
+                let x = (self.pieces.knots()[k] + t * h).min(self.pieces.knots()[k + 1]);
                 // Inside the hull the true value is finite; rounding above
                 // f64::MAX is held at it, as in `eval`.
-                let y = (horner(c, t) * self.scale).clamp(-f64::MAX, f64::MAX);
+                let y = (horner(c, t) * self.scale()).clamp(-f64::MAX, f64::MAX);
                 let curv = deriv_of(c, t, 2);
                 let kind = if curv > 0.0 {
                     ExtremumKind::Minimum
@@ -1291,17 +1308,17 @@ pub(crate) mod tests {
         for alpha in [ALPHA_MIN, 0.4, 0.5, 0.6, ALPHA_MAX] {
             let s = Spline::with_alpha(&EX1_X, &EX1_F, alpha).unwrap();
             for (k, (x, f)) in s.tangent_points().into_iter().enumerate() {
-                let c = &s.coefs[k].0;
+                let c = &s.pieces.coefs()[k].0;
                 let t = (x - EX1_X[k]) / (EX1_X[k + 1] - EX1_X[k]);
-                let y = horner(c, t) * s.scale;
-                let dy = deriv_of(c, t, 1) * s.scale;
+                let y = horner(c, t) * s.scale();
+                let dy = deriv_of(c, t, 1) * s.scale();
                 assert!(close(y, f, 1e-13), "S(x_{k}): want {f}, got {y}");
                 let slope = s.leg_slope(k).unwrap();
                 assert!(close(dy, slope, 1e-13), "S'(x_{k}): want {slope}, got {dy}");
             }
             for k in 1..s.len() {
-                let l = &s.coefs[k - 1].0;
-                let r = &s.coefs[k].0;
+                let l = &s.pieces.coefs()[k - 1].0;
+                let r = &s.pieces.coefs()[k].0;
                 assert!(close(horner(l, 1.0), horner(r, 0.0), 1e-13));
                 assert!(close(deriv_of(l, 1.0, 1), deriv_of(r, 0.0, 1), 1e-13));
             }
@@ -1507,9 +1524,9 @@ pub(crate) mod tests {
     /// Horner, division by `h` per order.
     fn reference_deriv(s: &Spline, x: f64, order: u32) -> f64 {
         let k = s.piece_index(x);
-        let h = s.knots[k + 1] - s.knots[k];
-        let t = (x - s.knots[k]) / h;
-        let mut v = deriv_of(&s.coefs[k].0, t, order) * s.scale;
+        let h = s.pieces.knots()[k + 1] - s.pieces.knots()[k];
+        let t = (x - s.pieces.knots()[k]) / h;
+        let mut v = deriv_of(&s.pieces.coefs()[k].0, t, order) * s.scale();
         for _ in 0..order {
             v /= h;
         }
@@ -1529,7 +1546,7 @@ pub(crate) mod tests {
                 s.rebuild(&x, &f, alphas).unwrap();
                 let mut want = Summary::default();
                 want.of(&x);
-                assert_eq!(s.summary, want, "n {n}");
+                assert_eq!(s.pieces.summary(), &want, "n {n}");
                 let q: Vec<f64> = (0..64)
                     .map(|_| x[0] + (x[n - 1] - x[0]) * rng.next())
                     .collect();
@@ -1574,7 +1591,7 @@ pub(crate) mod tests {
                 }
                 s.rebuild(&x, &f, Alphas::Uniform(0.5)).unwrap();
                 assert!(
-                    !s.summary.indexed(),
+                    !s.pieces.summary().indexed(),
                     "n {n} shape {shape}: a rebuild forgets it"
                 );
                 let (lo, hi) = (x[0], x[n - 1]);
@@ -1592,7 +1609,11 @@ pub(crate) mod tests {
                 // With a handful of entries even uneven knots keep theirs:
                 // it cannot cost much.
                 if n >= 300 {
-                    assert_eq!(s.summary.indexed(), shape < 2, "n {n} shape {shape}");
+                    assert_eq!(
+                        s.pieces.summary().indexed(),
+                        shape < 2,
+                        "n {n} shape {shape}"
+                    );
                 }
             }
         }
@@ -1627,7 +1648,7 @@ pub(crate) mod tests {
                     let mut out = vec![0.0; b.len()];
                     s.eval_many(&b, &mut out).unwrap();
                     // One piece: the batch only walks, and never searches.
-                    assert_eq!(s.summary.indexed(), n > 2, "n {n}");
+                    assert_eq!(s.pieces.summary().indexed(), n > 2, "n {n}");
                 }
                 for &x0 in &q {
                     let want = x.partition_point(|&k| k <= x0).saturating_sub(1).min(n - 2);
@@ -1654,8 +1675,12 @@ pub(crate) mod tests {
                     assert_eq!(fast.alphas(), slow.alphas());
                     assert_eq!(fast.knots(), slow.knots());
                     assert_eq!(fast.values(), slow.values());
-                    assert_eq!(fast.scale, slow.scale);
-                    assert_eq!(fast.summary, slow.summary, "case {case} n {n}: summary");
+                    assert_eq!(fast.scale(), slow.scale());
+                    assert_eq!(
+                        fast.pieces.summary(),
+                        slow.pieces.summary(),
+                        "case {case} n {n}: summary"
+                    );
                     let tol = 1e-13 * fmax;
                     for (k, (p, q)) in fast
                         .knot_values()
@@ -1768,7 +1793,8 @@ pub(crate) mod tests {
             .unwrap()
             .with_extrapolation(Extrapolate::Clamp);
         let bytes = s.heap_bytes();
-        assert_eq!(bytes, 500 * 8 * 3 - 8 + 499 * 32 + 32 * 8, "heap bytes");
+        // Knots, values, alphas, pieces, the summary and the one scale.
+        assert_eq!(bytes, 500 * 8 * 3 - 8 + 499 * 32 + 32 * 8 + 8, "heap bytes");
         let (x2, f2, _) = random_data(&mut rng, 400, 2.0);
         s.rebuild(&x2, &f2, Alphas::Uniform(0.4)).unwrap();
         assert_eq!(
