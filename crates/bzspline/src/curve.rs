@@ -32,14 +32,16 @@
 
 mod arclen;
 mod edit;
+mod flatten;
 mod nearest;
 
 use std::borrow::Cow;
 
 use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
-use crate::fast;
+use crate::fast::{self, Piece};
 use crate::method::{self, alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::pieces::Pieces;
 use crate::poly::{deriv_of, horner};
 use crate::polyline::Polyline;
 use crate::spline::{
@@ -290,21 +292,18 @@ enum ParamKind {
     serde(try_from = "CurveData", into = "CurveData")
 )]
 pub struct Curve {
-    dim: usize,
     closed: bool,
     kind: ParamKind,
     /// Control points, flat, `dim` per point.
     points: Vec<f64>,
     /// Indices (in the caller's array) of points dropped as repeats.
     dropped: Vec<usize>,
-    /// `n` parameters (open) or `n + 1` (closed).
-    knots: Vec<f64>,
+    /// The `n` parameters (open) or `n + 1` (closed) as knots, the segments'
+    /// pieces (`dim` per segment, scaled) and one power-of-two scale per
+    /// coordinate.
+    pieces: Pieces,
     /// One per leg.
     alphas: Vec<f64>,
-    /// Power of two per coordinate.
-    scales: Vec<f64>,
-    /// The largest of `scales`: the unit of mixed-coordinate geometry.
-    gscale: f64,
     /// The power of two chord lengths are measured in (chordal and
     /// centripetal parameters; 1 otherwise).
     chord_scale: f64,
@@ -317,9 +316,6 @@ pub struct Curve {
     inv_scales: Vec<f64>,
     /// Scaled deviations, flat: knot point `i` is `(fv + d)[i] * scale`.
     d: Vec<f64>,
-    /// Power-basis coefficients in `t` of segment `k`, coordinate `c`, at
-    /// `k * dim + c`, scaled.
-    coefs: Vec<[f64; 4]>,
 }
 
 /// The serialized form of a [`Curve`]: its inputs. Deserializing solves again
@@ -341,10 +337,10 @@ impl From<Curve> for CurveData {
             ParamKind::Uniform => Param::Uniform,
             ParamKind::Chordal => Param::Chordal,
             ParamKind::Centripetal => Param::Centripetal,
-            ParamKind::Given => Param::Given(c.knots),
+            ParamKind::Given => Param::Given(c.pieces.knots().to_vec()),
         };
         CurveData {
-            dim: c.dim,
+            dim: c.dim(),
             closed: c.closed,
             param,
             points: c.points,
@@ -537,20 +533,16 @@ impl Curve {
     /// A curve with no points, to be built into.
     fn empty() -> Self {
         Curve {
-            dim: 1,
             closed: false,
             kind: ParamKind::Uniform,
             points: Vec::new(),
             dropped: Vec::new(),
-            knots: Vec::new(),
+            pieces: Pieces::default(),
             alphas: Vec::new(),
-            scales: Vec::new(),
-            gscale: 1.0,
             chord_scale: 1.0,
             knot_unit: 1.0,
             inv_scales: Vec::new(),
             d: Vec::new(),
-            coefs: Vec::new(),
         }
     }
 
@@ -564,14 +556,14 @@ impl Curve {
         b.through = false;
         let (dim, closed) = (b.dim, b.closed);
         let data = b.build()?;
-        let widths: Vec<f64> = data.knots.windows(2).map(|w| w[1] - w[0]).collect();
+        let widths: Vec<f64> = data.knots().windows(2).map(|w| w[1] - w[0]).collect();
         let controls = method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
             .ok_or(Error::Overflow {
             what: "a solved control point",
         })?;
         let mut c = CurveBuilder::new(&controls, dim)
             .closed(closed)
-            .param(Param::Given(data.knots.clone()))
+            .param(Param::Given(data.knots().to_vec()))
             .alphas(&data.alphas)
             .build()?;
         c.dropped = data.dropped;
@@ -770,24 +762,24 @@ impl Curve {
             check_knots(k)?;
         }
         // From here on nothing fails.
+        let parts = c.pieces.parts_mut();
         match aside {
-            Some(k) => c.knots = k,
+            Some(k) => *parts.knots = k,
             None => {
-                c.knots.clear();
-                c.knots.extend((0..=legs).map(|i| i as f64));
+                parts.knots.clear();
+                parts.knots.extend((0..=legs).map(|i| i as f64));
             }
         }
+        c.pieces.knots_changed();
+        c.pieces.set_scales(maxes.iter().map(|&m| scale_for_max(m)));
         c.alphas.clear();
         match alphas {
             Alphas::Uniform(a) => c.alphas.resize(legs, a),
             Alphas::PerInterval(a) => c.alphas.extend_from_slice(a),
         }
-        c.scales.clear();
-        c.scales.extend(maxes.iter().map(|&m| scale_for_max(m)));
-        c.gscale = c.scales.iter().fold(0.0f64, |m, s| m.max(*s));
         c.inv_scales.clear();
-        c.inv_scales.extend(c.scales.iter().map(|s| 1.0 / s));
-        c.dim = dim;
+        c.inv_scales
+            .extend(c.pieces.scales().iter().map(|s| 1.0 / s));
         c.closed = closed;
         c.kind = kind;
         c.dropped = dropped;
@@ -826,7 +818,7 @@ impl Curve {
     /// rebuilds every segment; `uniform` is the one alpha of every leg when
     /// the caller knows it.
     fn solve_all(&mut self, points: &[f64], uniform: Option<f64>) {
-        let dim = self.dim;
+        let dim = self.dim();
         if !self.closed && (1..=3).contains(&dim) {
             // One fused sweep for all coordinates (the arithmetic of
             // `Spline`'s construction).
@@ -845,7 +837,12 @@ impl Curve {
         }
         self.points.clear();
         self.points.extend_from_slice(points);
-        let widths: Vec<f64> = self.knots.windows(2).map(|w| w[1] - w[0]).collect();
+        let widths: Vec<f64> = self
+            .pieces
+            .knots()
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .collect();
         self.solve_general(&widths);
     }
 
@@ -853,7 +850,7 @@ impl Curve {
     /// system: closed curves, more than three dimensions, and the reference
     /// the fused sweep is tested against.
     fn solve_general(&mut self, widths: &[f64]) {
-        let (n, dim) = (self.points.len() / self.dim, self.dim);
+        let (n, dim) = (self.points.len() / self.dim(), self.dim());
         self.d = vec![0.0; n * dim];
         let mut col = vec![0.0; n];
         let mut dev = Vec::with_capacity(n);
@@ -896,46 +893,48 @@ impl Curve {
             let (d0, d1) = (&self.d[k * dim..][..dim], &self.d[j * dim..][..dim]);
             for c in 0..dim {
                 let (f0, f1) = (self.fv(k, c), self.fv(j, c));
-                coefs.push(piece_coefs_with(f0, f1, d0[c], d1[c], terms));
+                coefs.push(Piece(piece_coefs_with(f0, f1, d0[c], d1[c], terms)));
             }
         }
-        self.coefs = coefs;
+        *self.pieces.parts_mut().coefs = coefs;
     }
 
     fn update_segment(&mut self, k: usize) {
-        let (n, dim) = (self.n_points(), self.dim);
+        let (n, dim) = (self.n_points(), self.dim());
         let j = (k + 1) % n;
         let terms = alpha_terms(self.alphas[k]);
         for c in 0..dim {
-            self.coefs[k * dim + c] = piece_coefs_with(
+            let piece = piece_coefs_with(
                 self.fv(k, c),
                 self.fv(j, c),
                 self.d[k * dim + c],
                 self.d[j * dim + c],
                 terms,
             );
+            self.pieces.parts_mut().coefs[k * dim + c] = Piece(piece);
         }
     }
 
     fn n_points(&self) -> usize {
-        self.points.len() / self.dim
+        self.points.len() / self.dim()
     }
 
     /// [`fast::sweep::build_open_curve`] in `D` dimensions, which also writes the
     /// copy of the points as it goes.
     fn solve_fused<const D: usize>(&mut self, points: &[f64], uniform: Option<f64>) {
-        let span =
-            self.knots.last().copied().unwrap_or(0.0) - self.knots.first().copied().unwrap_or(0.0);
+        let knots = self.pieces.knots();
+        let span = knots.last().copied().unwrap_or(0.0) - knots.first().copied().unwrap_or(0.0);
         let ws = fast::inverse_power_of_two(span);
         let inv = core::array::from_fn(|c| self.inv_scales.get(c).copied().unwrap_or(1.0));
+        let parts = self.pieces.parts_mut();
         fast::sweep::build_open_curve::<D>(
-            &self.knots,
+            parts.knots,
             points,
             inv,
             &self.alphas,
             uniform,
             ws,
-            &mut self.coefs,
+            parts.coefs,
             &mut self.d,
             &mut self.points,
         );
@@ -944,93 +943,26 @@ impl Curve {
     /// Coordinate `c` of knot point `i` (the curve's point at knot `i`) in the
     /// curve's units, from `f`, the scaled control point's coordinate.
     #[inline]
-    pub(crate) fn knot_coord_with(&self, f: f64, i: usize, c: usize) -> f64 {
-        ((f + self.d[i * self.dim + c]) * self.scales[c]).clamp(-f64::MAX, f64::MAX)
+    fn knot_coord_with(&self, f: f64, i: usize, c: usize) -> f64 {
+        ((f + self.d[i * self.dim() + c]) * self.pieces.scale(c)).clamp(-f64::MAX, f64::MAX)
     }
 
     /// Coordinate `c` of knot point `i` in the curve's units.
     #[inline]
-    pub(crate) fn knot_coord(&self, i: usize, c: usize) -> f64 {
+    fn knot_coord(&self, i: usize, c: usize) -> f64 {
         self.knot_coord_with(self.fv(i, c), i, c)
     }
 
     /// Coordinate `c` of control point `i`, scaled: `P / scale`.
     #[inline]
-    pub(crate) fn fv(&self, i: usize, c: usize) -> f64 {
-        self.points[i * self.dim + c] * self.inv_scales[c]
-    }
-
-    /// The unit of mixed-coordinate geometry (a power of two).
-    pub(crate) fn unit(&self) -> f64 {
-        self.gscale
-    }
-
-    /// The largest `|d^2 r / dt^2|` on segment `k`, in units of [`Self::unit`].
-    pub(crate) fn accel_bound(&self, k: usize) -> f64 {
-        // r'' = 2 c2 + 6 c3 t per coordinate: its norm at t = 0 and t = 1.
-        let dim = self.dim;
-        let (mut s0, mut s1) = (0.0f64, 0.0f64);
-        let mut big = false;
-        for c in 0..dim {
-            let q = &self.coefs[k * dim + c];
-            let rel = self.scales[c] / self.gscale;
-            let (a0, a1) = (2.0 * q[2] * rel, (2.0 * q[2] + 6.0 * q[3]) * rel);
-            s0 += a0 * a0;
-            s1 += a1 * a1;
-            big |= !(a0.abs() < 1e150 && a1.abs() < 1e150);
-        }
-        if big {
-            // Squares could overflow: the norms the careful way.
-            let mut a = vec![0.0; dim];
-            self.local(k, 0.0, 2, &mut a);
-            let m0 = norm(&a);
-            self.local(k, 1.0, 2, &mut a);
-            return m0.max(norm(&a));
-        }
-        s0.max(s1).sqrt()
-    }
-
-    /// What multiplies scaled coordinate `c` to give it in units of
-    /// [`Self::unit`] (a power of two).
-    pub(crate) fn unit_rel(&self, c: usize) -> f64 {
-        self.scales[c] / self.gscale
-    }
-
-    /// Knot point `e` (0 to [`Self::len`]; the last of a closed curve is the
-    /// first) of a planar curve in units of [`Self::unit`]: the value the
-    /// flattening's vertices take, before the multiplication by the unit.
-    #[inline(always)]
-    pub(crate) fn unit_knot_2d(&self, e: usize, rel: [f64; 2]) -> [f64; 2] {
-        let j = if e == self.len() && self.closed { 0 } else { e };
-        let d = &self.d[2 * j..2 * j + 2];
-        [
-            (self.fv(j, 0) + d[0]) * rel[0],
-            (self.fv(j, 1) + d[1]) * rel[1],
-        ]
-    }
-
-    /// The power-basis coefficients of every segment, `dim` per segment (one
-    /// per coordinate), in scaled units.
-    pub(crate) fn coefficients(&self) -> &[[f64; 4]] {
-        &self.coefs
-    }
-
-    /// Appends the point of segment `k` at local `t`, in the curve's units,
-    /// to `out`.
-    pub(crate) fn push_segment_point(&self, k: usize, t: f64, out: &mut Vec<f64>) {
-        let start = out.len();
-        out.resize(start + self.dim, 0.0);
-        let p = &mut out[start..];
-        self.local(k, t, 0, p);
-        for v in p {
-            *v = (*v * self.gscale).clamp(-f64::MAX, f64::MAX);
-        }
+    fn fv(&self, i: usize, c: usize) -> f64 {
+        self.points[i * self.dim() + c] * self.inv_scales[c]
     }
 
     /// The dimension `d` of the space.
     #[must_use]
     pub fn dim(&self) -> usize {
-        self.dim
+        self.pieces.dim()
     }
 
     /// True for a closed curve.
@@ -1042,13 +974,13 @@ impl Curve {
     /// Number of segments (legs): `n - 1` open, `n` closed.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.knots.len() - 1
+        self.pieces.knots().len() - 1
     }
 
     /// Always false: a curve has at least one segment.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.knots.len() < 2
+        self.pieces.knots().len() < 2
     }
 
     /// The control points (after dropping repeats), flat, [`Curve::dim`] per
@@ -1061,7 +993,7 @@ impl Curve {
     /// Control point `i`.
     #[must_use]
     pub fn point(&self, i: usize) -> Option<&[f64]> {
-        self.points.get(i * self.dim..(i + 1) * self.dim)
+        self.points.get(i * self.dim()..(i + 1) * self.dim())
     }
 
     /// Number of control points (after dropping repeats).
@@ -1080,7 +1012,7 @@ impl Curve {
     /// The parameters `tau`: one per point, and one more for a closed curve.
     #[must_use]
     pub fn knots(&self) -> &[f64] {
-        &self.knots
+        self.pieces.knots()
     }
 
     /// The shape parameters, one per leg.
@@ -1092,7 +1024,10 @@ impl Curve {
     /// The parameter domain `[tau_0, tau_last]`.
     #[must_use]
     pub fn domain(&self) -> (f64, f64) {
-        (self.knots[0], self.knots[self.knots.len() - 1])
+        (
+            self.pieces.knots()[0],
+            self.pieces.knots()[self.pieces.knots().len() - 1],
+        )
     }
 
     /// Segment and local parameter of `s`.
@@ -1119,23 +1054,22 @@ impl Curve {
                 s = lo;
             }
         }
-        let i = self.knots.partition_point(|&k| k <= s);
-        let k = i.saturating_sub(1).min(self.len() - 1);
-        let t = ((s - self.knots[k]) / (self.knots[k + 1] - self.knots[k])).clamp(0.0, 1.0);
+        let k = self.pieces.locate(s);
+        let t = ((s - self.pieces.knots()[k]) / self.pieces.width(k)).clamp(0.0, 1.0);
         Ok((k, t))
     }
 
     /// Derivative of order `order` in the local `t` of segment `k`, in units of
-    /// `gscale`, into `out`.
+    /// the largest scale, into `out`.
     fn local(&self, k: usize, t: f64, order: u32, out: &mut [f64]) {
-        let dim = self.dim;
+        let dim = self.dim();
         let j = (k + 1) % self.n_points();
         for (c, o) in out.iter_mut().enumerate() {
-            let rel = self.scales[c] / self.gscale;
+            let rel = self.pieces.scale(c) / self.pieces.unit();
             let v = if order == 0 && t == 1.0 {
                 self.fv(j, c) + self.d[j * dim + c]
             } else {
-                deriv_of(&self.coefs[k * dim + c], t, order)
+                deriv_of(self.pieces.piece(k, c), t, order)
             };
             *o = v * rel;
         }
@@ -1148,7 +1082,7 @@ impl Curve {
     /// [`Error::NonFinite`] for a NaN or infinite `s`; [`Error::OutOfDomain`]
     /// outside the domain of an open curve (a closed curve is periodic).
     pub fn eval(&self, s: f64) -> Result<Vec<f64>, Error> {
-        let mut out = vec![0.0; self.dim];
+        let mut out = vec![0.0; self.dim()];
         self.eval_into(s, &mut out)?;
         Ok(out)
     }
@@ -1160,9 +1094,9 @@ impl Curve {
     /// As [`Curve::eval`]; [`Error::InvalidArgument`] when `out` does not hold
     /// [`Curve::dim`] numbers.
     pub fn eval_into(&self, s: f64, out: &mut [f64]) -> Result<(), Error> {
-        check_out(out, self.dim)?;
+        check_out(out, self.dim())?;
         let (k, t) = self.locate(s)?;
-        let dim = self.dim;
+        let dim = self.dim();
         let n = self.n_points();
         let j = (k + 1) % n;
         if !self.closed && ((k == 0 && t == 0.0) || (t == 1.0 && j == n - 1)) {
@@ -1176,9 +1110,9 @@ impl Curve {
             let v = if t == 1.0 {
                 self.fv(j, c) + self.d[j * dim + c]
             } else {
-                horner(&self.coefs[k * dim + c], t)
+                horner(self.pieces.piece(k, c), t)
             };
-            let v = v * self.scales[c];
+            let v = v * self.pieces.scale(c);
             *o = if v.is_infinite() {
                 // Rounding above the largest double inside the hull.
                 f64::MAX.copysign(v)
@@ -1198,7 +1132,7 @@ impl Curve {
     /// As [`Curve::eval`]; [`Error::Overflow`] when a derivative exceeds the
     /// range of a double.
     pub fn deriv(&self, s: f64, order: u32) -> Result<Vec<f64>, Error> {
-        let mut out = vec![0.0; self.dim];
+        let mut out = vec![0.0; self.dim()];
         self.deriv_into(s, order, &mut out)?;
         Ok(out)
     }
@@ -1213,12 +1147,11 @@ impl Curve {
         if order == 0 {
             return self.eval_into(s, out);
         }
-        check_out(out, self.dim)?;
+        check_out(out, self.dim())?;
         let (k, t) = self.locate(s)?;
-        let h = self.knots[k + 1] - self.knots[k];
-        let dim = self.dim;
+        let h = self.pieces.width(k);
         for (c, o) in out.iter_mut().enumerate() {
-            let mut v = deriv_of(&self.coefs[k * dim + c], t, order) * self.scales[c];
+            let mut v = self.pieces.value(k, c, t, order);
             for _ in 0..order.min(4) {
                 v /= h;
             }
@@ -1239,7 +1172,7 @@ impl Curve {
     /// As [`Curve::eval`].
     pub fn tangent(&self, s: f64) -> Result<Vec<f64>, Error> {
         let (k, t) = self.locate(s)?;
-        let mut v = vec![0.0; self.dim];
+        let mut v = vec![0.0; self.dim()];
         self.local(k, t, 1, &mut v);
         let m = norm(&v);
         if m > 0.0 {
@@ -1258,11 +1191,11 @@ impl Curve {
     /// As [`Curve::eval`].
     pub fn normal(&self, s: f64) -> Result<Vec<f64>, Error> {
         let tan = self.tangent(s)?;
-        if self.dim == 2 {
+        if self.dim() == 2 {
             return Ok(vec![-tan[1], tan[0]]);
         }
         let (k, t) = self.locate(s)?;
-        let mut a = vec![0.0; self.dim];
+        let mut a = vec![0.0; self.dim()];
         self.local(k, t, 2, &mut a);
         let along = dot(&a, &tan);
         for (x, u) in a.iter_mut().zip(&tan) {
@@ -1295,8 +1228,8 @@ impl Curve {
     /// the curvature exceeds the range of a double.
     pub fn curvature(&self, s: f64) -> Result<f64, Error> {
         let (k, t) = self.locate(s)?;
-        let mut v = vec![0.0; self.dim];
-        let mut a = vec![0.0; self.dim];
+        let mut v = vec![0.0; self.dim()];
+        let mut a = vec![0.0; self.dim()];
         self.local(k, t, 1, &mut v);
         self.local(k, t, 2, &mut a);
         let speed = norm(&v);
@@ -1310,7 +1243,7 @@ impl Curve {
         for (x, u) in a.iter_mut().zip(&u) {
             *x -= along * u;
         }
-        let kappa = norm(&a) / speed / speed / self.gscale;
+        let kappa = norm(&a) / speed / speed / self.pieces.unit();
         if kappa.is_finite() {
             Ok(kappa)
         } else {
@@ -1320,9 +1253,9 @@ impl Curve {
         }
     }
 
-    /// `v` in `gscale` units back in the curve's units.
+    /// `v` in units of the largest scale back in the curve's units.
     fn to_units(&self, v: f64, what: &'static str) -> Result<f64, Error> {
-        let r = v * self.gscale;
+        let r = v * self.pieces.unit();
         if r.is_finite() {
             Ok(r)
         } else {
@@ -1357,7 +1290,7 @@ impl Curve {
         }
         let (lo, hi) = self.domain();
         let mut params = Vec::with_capacity(count);
-        let mut coords = Vec::with_capacity(count * self.dim);
+        let mut coords = Vec::with_capacity(count * self.dim());
         for i in 0..count {
             let s = if i + 1 == count {
                 hi
@@ -1367,7 +1300,7 @@ impl Curve {
             coords.extend(self.eval(s)?);
             params.push(s);
         }
-        Ok(Polyline::new(self.dim, coords, params))
+        Ok(Polyline::new(self.dim(), coords, params))
     }
 
     /// The exact axis-aligned bounding box: per segment and coordinate, the
@@ -1386,13 +1319,13 @@ impl Curve {
     /// ```
     #[must_use]
     pub fn bbox(&self) -> BBox {
-        let dim = self.dim;
+        let dim = self.dim();
         let mut min = vec![f64::INFINITY; dim];
         let mut max = vec![f64::NEG_INFINITY; dim];
         for k in 0..self.len() {
             let j = (k + 1) % self.n_points();
             for c in 0..dim {
-                let co = &self.coefs[k * dim + c];
+                let co = self.pieces.piece(k, c);
                 let mut vals = vec![
                     self.fv(k, c) + self.d[k * dim + c],
                     self.fv(j, c) + self.d[j * dim + c],
@@ -1403,7 +1336,7 @@ impl Curve {
                     }
                 }
                 for v in vals {
-                    let v = (v * self.scales[c]).clamp(-f64::MAX, f64::MAX);
+                    let v = (v * self.pieces.scale(c)).clamp(-f64::MAX, f64::MAX);
                     min[c] = min[c].min(v);
                     max[c] = max[c].max(v);
                 }
@@ -1416,16 +1349,16 @@ impl Curve {
     /// P_{k+1})` with `x_k = tau_{k+1} - alpha_k h_k` (docs/method.md §9, misprint 1).
     #[must_use]
     pub fn tangent_points(&self) -> Vec<(f64, Vec<f64>)> {
-        let (dim, n) = (self.dim, self.n_points());
+        let (dim, n) = (self.dim(), self.n_points());
         (0..self.len())
             .map(|k| {
                 let a = self.alphas[k];
-                let h = self.knots[k + 1] - self.knots[k];
+                let h = self.pieces.width(k);
                 let j = (k + 1) % n;
                 let p = (0..dim)
-                    .map(|c| (a * self.fv(k, c) + (1.0 - a) * self.fv(j, c)) * self.scales[c])
+                    .map(|c| (a * self.fv(k, c) + (1.0 - a) * self.fv(j, c)) * self.pieces.scale(c))
                     .collect();
-                (self.knots[k + 1] - a * h, p)
+                (self.pieces.knots()[k + 1] - a * h, p)
             })
             .collect()
     }
@@ -1434,7 +1367,7 @@ impl Curve {
     /// and last are its end control points exactly.
     #[must_use]
     pub fn knot_points(&self) -> Vec<Vec<f64>> {
-        let dim = self.dim;
+        let dim = self.dim();
         (0..self.n_points())
             .map(|i| (0..dim).map(|c| self.knot_coord(i, c)).collect())
             .collect()
@@ -1451,7 +1384,7 @@ impl Curve {
         if k >= self.len() {
             return None;
         }
-        let (dim, n) = (self.dim, self.n_points());
+        let (dim, n) = (self.dim(), self.n_points());
         let j = (k + 1) % n;
         let a = self.alphas[k];
         let [al, b1, b2, cr] = alpha_terms(a);
@@ -1463,7 +1396,7 @@ impl Curve {
             let s0 = df - d0 * b2 + d1 * cr;
             let s1 = df + d1 * b1 - d0 * al;
             let (p0, p3) = (f0 + d0, f1 + d1);
-            let s = self.scales[c];
+            let s = self.pieces.scale(c);
             ctrl[c] = p0 * s;
             ctrl[dim + c] = (p0 + s0 / 3.0) * s;
             ctrl[2 * dim + c] = (p3 - s1 / 3.0) * s;
@@ -1485,7 +1418,7 @@ impl Curve {
     /// the curve's dimension.
     #[must_use]
     pub fn segment<const D: usize>(&self, k: usize) -> Option<CubicBez<D>> {
-        if D != self.dim {
+        if D != self.dim() {
             return None;
         }
         let v = self.segment_points(k)?;
@@ -1524,10 +1457,10 @@ impl Curve {
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn to_svg_path(&self) -> Result<String, Error> {
-        if self.dim != 2 {
+        if self.dim() != 2 {
             return Err(Error::InvalidArgument {
                 what: "an SVG path needs a planar curve; dimension",
-                value: self.dim as f64,
+                value: self.dim() as f64,
             });
         }
         let mut out = String::new();
@@ -1622,7 +1555,7 @@ mod tests {
                     }
                     .build()
                     .unwrap();
-                    let widths: Vec<f64> = fast.knots.windows(2).map(|w| w[1] - w[0]).collect();
+                    let widths: Vec<f64> = fast.knots().windows(2).map(|w| w[1] - w[0]).collect();
                     let mut slow = fast.clone();
                     slow.solve_general(&widths);
                     // Scaled numbers lie in [-2, 2]: compare them absolutely.
@@ -1633,8 +1566,9 @@ mod tests {
                             "dim {dim} n {n} {param:?}: deviation {i}: want {q}, got {p}"
                         );
                     }
-                    assert_eq!(fast.coefs.len(), slow.coefs.len());
-                    for (i, (p, q)) in fast.coefs.iter().zip(&slow.coefs).enumerate() {
+                    let (fc, sc) = (fast.pieces.coefs(), slow.pieces.coefs());
+                    assert_eq!(fc.len(), sc.len());
+                    for (i, (Piece(p), Piece(q))) in fc.iter().zip(sc).enumerate() {
                         for j in 0..4 {
                             assert!(
                                 (p[j] - q[j]).abs() <= 4.0 * tol,

@@ -22,15 +22,18 @@ pub(crate) struct Pieces {
     knots: Vec<f64>,
     coefs: Vec<Piece>,
     scales: Vec<f64>,
+    /// The largest of `scales`: the unit of geometry that mixes coordinates,
+    /// and a spline's one scale.
+    unit: f64,
     summary: Summary,
 }
 
-/// The parts of [`Pieces`] a construction writes. Whoever changes `knots`
+/// The parts of [`Pieces`] a construction writes (the scales go through
+/// [`Pieces::set_scales`]). Whoever changes `knots`
 /// leaves `summary` as the summary of the new knots (see [`Summary::of`]).
 pub(crate) struct PartsMut<'a> {
     pub(crate) knots: &'a mut Vec<f64>,
     pub(crate) coefs: &'a mut Vec<Piece>,
-    pub(crate) scales: &'a mut Vec<f64>,
     pub(crate) summary: &'a mut Summary,
 }
 
@@ -41,12 +44,24 @@ impl Pieces {
         debug_assert_eq!(coefs.len(), knots.len().saturating_sub(1) * scales.len());
         let mut summary = Summary::default();
         summary.of(&knots);
-        Pieces {
+        let mut p = Pieces {
             knots,
             coefs,
-            scales,
+            scales: Vec::new(),
+            unit: 1.0,
             summary,
-        }
+        };
+        p.set_scales(scales.into_iter());
+        p
+    }
+
+    /// Makes `scales` the scales of the coordinates (their allocation is kept
+    /// when it holds them, else one of exactly their length is made).
+    pub(crate) fn set_scales(&mut self, scales: impl ExactSizeIterator<Item = f64>) {
+        self.scales.clear();
+        self.scales.reserve_exact(scales.len());
+        self.scales.extend(scales);
+        self.unit = self.scales.iter().fold(0.0f64, |m, s| m.max(*s));
     }
 
     /// The parts, for a construction that writes them in place.
@@ -54,7 +69,6 @@ impl Pieces {
         PartsMut {
             knots: &mut self.knots,
             coefs: &mut self.coefs,
-            scales: &mut self.scales,
             summary: &mut self.summary,
         }
     }
@@ -98,6 +112,12 @@ impl Pieces {
     #[inline]
     pub(crate) fn scale(&self, c: usize) -> f64 {
         self.scales[c]
+    }
+
+    /// The largest scale (for a spline, its one scale).
+    #[inline]
+    pub(crate) fn unit(&self) -> f64 {
+        self.unit
     }
 
     /// The scale of every coordinate.

@@ -601,10 +601,7 @@ impl Spline {
             crate::fast::inverse_power_of_two(span),
             (parts.coefs, parts.knots, &mut self.values),
         );
-        match parts.scales.as_mut_slice() {
-            [one] => *one = scale,
-            _ => *parts.scales = vec![scale],
-        }
+        self.pieces.set_scales([scale].into_iter());
         self.pre = if span < TINY_SPAN {
             crate::fast::inverse_power_of_two(span)
         } else {
@@ -675,7 +672,7 @@ impl Spline {
     /// The knots `tau`.
     #[must_use]
     pub fn knots(&self) -> &[f64] {
-        &self.pieces.knots()
+        self.pieces.knots()
     }
 
     /// The control values `F`.
@@ -734,7 +731,7 @@ impl Spline {
         (0..self.len())
             .map(|k| {
                 let a = self.alphas[k];
-                let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
+                let h = self.pieces.width(k);
                 let x = self.pieces.knots()[k + 1] - a * h;
                 let f = (a * (self.values[k] * inv) + (1.0 - a) * (self.values[k + 1] * inv))
                     * self.scale();
@@ -794,7 +791,7 @@ impl Spline {
     #[must_use]
     pub fn power_coefficients(&self, k: usize) -> Option<[f64; 4]> {
         let c = &self.pieces.coefs().get(k)?.0;
-        let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
+        let h = self.pieces.width(k);
         let s = self.scale();
         Some([
             c[0] * s,
@@ -821,7 +818,7 @@ impl Spline {
     /// The one scale of the values (see [`Pieces`]).
     #[inline]
     fn scale(&self) -> f64 {
-        self.pieces.scale(0)
+        self.pieces.unit()
     }
 
     /// The scaled knot value `phi_k / scale`.
@@ -854,7 +851,7 @@ impl Spline {
             return Ok(Locus::End);
         }
         // The batch evaluators compute t and 1/h the same way (pre = 1 there).
-        let inv = 1.0 / ((self.pieces.knots()[k + 1] - self.pieces.knots()[k]) * self.pre);
+        let inv = 1.0 / (self.pieces.width(k) * self.pre);
         let t = ((x - self.pieces.knots()[k]) * self.pre) * inv;
         Ok(Locus::Piece(k, t, inv))
     }
@@ -865,7 +862,7 @@ impl Spline {
             Locus::End if order == 0 => Ok(self.values[self.len()]),
             Locus::End => {
                 let k = self.len() - 1;
-                let inv = 1.0 / ((self.pieces.knots()[k + 1] - self.pieces.knots()[k]) * self.pre);
+                let inv = 1.0 / (self.pieces.width(k) * self.pre);
                 self.eval_locus(Locus::Piece(k, 1.0, inv), order)
             }
             Locus::Piece(0, t, _) if order == 0 && t == 0.0 => {
@@ -874,7 +871,7 @@ impl Spline {
                 Ok(self.values[0])
             }
             Locus::Piece(k, t, inv) => {
-                let mut v = self.pieces.value(k, 0, t, order);
+                let mut v = deriv_of(&self.pieces.coefs()[k].0, t, order) * self.scale();
                 if order == 0 && v.is_infinite() && (0.0..=1.0).contains(&t) {
                     // Rounding above f64::MAX inside the hull: the true value is
                     // within the control values, which are finite.
@@ -1110,7 +1107,7 @@ impl Spline {
     /// Integral of piece `k`'s cubic (scaled) from `x0` to `x1`.
     fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
         let c = &self.pieces.coefs()[k].0;
-        let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
+        let h = self.pieces.width(k);
         let prim = |t: f64| t * (c[0] + t * (c[1] / 2.0 + t * (c[2] / 3.0 + t * c[3] / 4.0)));
         let t0 = (x0 - self.pieces.knots()[k]) / h;
         let t1 = (x1 - self.pieces.knots()[k]) / h;
@@ -1123,7 +1120,7 @@ impl Spline {
     pub fn extrema(&self) -> Vec<Extremum> {
         let mut out = Vec::new();
         for (k, Piece(c)) in self.pieces.coefs().iter().enumerate() {
-            let h = self.pieces.knots()[k + 1] - self.pieces.knots()[k];
+            let h = self.pieces.width(k);
             let mut roots = quadratic_roots(3.0 * c[3], 2.0 * c[2], c[1]);
             roots.sort_by(f64::total_cmp);
             for t in roots {

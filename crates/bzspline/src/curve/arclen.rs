@@ -59,7 +59,7 @@ const MAX_DEPTH: u32 = 40;
 const MIN_DEPTH: u32 = 1;
 
 impl Curve {
-    /// Speed `|dr/dt|` of segment `k` at local `t`, in units of `gscale`.
+    /// Speed `|dr/dt|` of segment `k` at local `t`, in units of the largest scale.
     fn speed(&self, k: usize, t: f64, buf: &mut [f64]) -> f64 {
         self.local(k, t, 1, buf);
         norm(buf)
@@ -75,7 +75,7 @@ impl Curve {
         s * r
     }
 
-    /// Length of segment `k` from local `a` to `b`, in units of `gscale`, with
+    /// Length of segment `k` from local `a` to `b`, in units of the largest scale, with
     /// absolute error about `tol` (same units).
     /// The length of segment `k` between local parameters `a <= b`, to `tol`
     /// (in units of [`Curve::unit`]).
@@ -86,7 +86,7 @@ impl Curve {
     /// [`Curve::seg_length`] with the segment's [`Curve::seg_cuts`] given, so
     /// that repeated lengths in one segment find them once.
     fn seg_length_cut(&self, k: usize, a: f64, b: f64, tol: f64, cuts: &[f64]) -> f64 {
-        let mut buf = vec![0.0; self.dim];
+        let mut buf = vec![0.0; self.dim()];
         let inner = cuts.iter().copied().filter(|&t| t > a && t < b);
         let pieces = inner.clone().count() + 1;
         let tol = tol / pieces as f64;
@@ -112,9 +112,9 @@ impl Curve {
         let (turns, nt) = self.speed_turns(k);
         let mut cuts = Vec::new();
         let mut d = [
-            vec![0.0; self.dim],
-            vec![0.0; self.dim],
-            vec![0.0; self.dim],
+            vec![0.0; self.dim()],
+            vec![0.0; self.dim()],
+            vec![0.0; self.dim()],
         ];
         for &t in &turns[..nt] {
             cuts.push(t);
@@ -147,11 +147,11 @@ impl Curve {
     /// coordinate of `r'` is quadratic). Found by bisection on the stretches
     /// where the cubic is monotone.
     fn speed_turns(&self, k: usize) -> ([f64; 3], usize) {
-        let dim = self.dim;
+        let dim = self.dim();
         let (mut a3, mut a2, mut a1, mut a0) = (0.0, 0.0, 0.0, 0.0);
         for c in 0..dim {
-            let rel = self.scales[c] / self.gscale;
-            let [_, c1, c2, c3] = self.coefs[k * dim + c].map(|v| v * rel);
+            let rel = self.pieces.scale(c) / self.pieces.unit();
+            let [_, c1, c2, c3] = self.pieces.piece(k, c).map(|v| v * rel);
             a3 += 18.0 * c3 * c3;
             a2 += 18.0 * c2 * c3;
             a1 += 6.0 * c1 * c3 + 4.0 * c2 * c2;
@@ -224,7 +224,7 @@ impl Curve {
             + self.adapt(k, m, b, r, tol * 0.5, depth + 1, buf)
     }
 
-    /// Segment lengths in `gscale` units, each to `tol` (same units).
+    /// Segment lengths in units of the largest scale, each to `tol` (same units).
     fn seg_lengths(&self, tol: f64) -> Vec<f64> {
         (0..self.len())
             .map(|k| self.seg_length(k, 0.0, 1.0, tol))
@@ -296,7 +296,7 @@ impl Curve {
         }
         let (ka, ta) = self.locate(a)?;
         let (kb, tb) = self.locate(b)?;
-        let tol = accuracy / self.gscale / (kb - ka + 1) as f64;
+        let tol = accuracy / self.pieces.unit() / (kb - ka + 1) as f64;
         let mut total = 0.0;
         for k in ka..=kb {
             let t0 = if k == ka { ta } else { 0.0 };
@@ -309,7 +309,7 @@ impl Curve {
     }
 
     /// Local parameter in segment `k` at which the length from its start is
-    /// `target` (units of `gscale`), to `tol`.
+    /// `target` (in units of the largest scale), to `tol`.
     fn solve_length(&self, k: usize, target: f64, seg_len: f64, tol: f64) -> f64 {
         if target <= 0.0 {
             return 0.0;
@@ -317,7 +317,7 @@ impl Curve {
         if target >= seg_len {
             return 1.0;
         }
-        let mut buf = vec![0.0; self.dim];
+        let mut buf = vec![0.0; self.dim()];
         let cuts = self.seg_cuts(k);
         let (mut lo, mut hi) = (0.0f64, 1.0f64);
         let mut t = target / seg_len;
@@ -356,7 +356,7 @@ impl Curve {
     /// accuracy (a length that close past an end gives that end).
     pub fn param_at_length(&self, length: f64, accuracy: f64) -> Result<f64, Error> {
         let mut v = self.params_at_lengths(|_| vec![length], accuracy)?;
-        Ok(v.pop().unwrap_or(self.knots[0]))
+        Ok(v.pop().unwrap_or(self.pieces.knots()[0]))
     }
 
     /// Parameters at the lengths that `lengths` returns for the total length.
@@ -369,7 +369,7 @@ impl Curve {
         // The accuracy is shared: a quarter for the cumulative lengths of the
         // segments before the one found, a quarter for the partial length in
         // it (`solve_length` halves its own half), and half for the stop.
-        let tol = accuracy / self.gscale / (4 * self.len()) as f64;
+        let tol = accuracy / self.pieces.unit() / (4 * self.len()) as f64;
         let segs = self.seg_lengths(tol);
         let mut cum = Vec::with_capacity(segs.len() + 1);
         let mut acc = 0.0;
@@ -398,14 +398,19 @@ impl Curve {
                     max: total,
                 });
             }
-            let target = len.clamp(0.0, total) / self.gscale;
+            let target = len.clamp(0.0, total) / self.pieces.unit();
             let k = cum
                 .partition_point(|&c| c <= target)
                 .saturating_sub(1)
                 .min(self.len() - 1);
-            let t = self.solve_length(k, target - cum[k], segs[k], 0.5 * accuracy / self.gscale);
-            let h = self.knots[k + 1] - self.knots[k];
-            out.push((self.knots[k] + t * h).min(self.knots[k + 1]));
+            let t = self.solve_length(
+                k,
+                target - cum[k],
+                segs[k],
+                0.5 * accuracy / self.pieces.unit(),
+            );
+            let h = self.pieces.width(k);
+            out.push((self.pieces.knots()[k] + t * h).min(self.pieces.knots()[k + 1]));
         }
         Ok(out)
     }
@@ -443,11 +448,11 @@ impl Curve {
             accuracy,
         )?;
         params[count - 1] = self.domain().1;
-        let mut coords = Vec::with_capacity(count * self.dim);
+        let mut coords = Vec::with_capacity(count * self.dim());
         for &s in &params {
             coords.extend(self.eval(s)?);
         }
-        Ok(Polyline::new(self.dim, coords, params))
+        Ok(Polyline::new(self.dim(), coords, params))
     }
 }
 

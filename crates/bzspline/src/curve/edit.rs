@@ -60,7 +60,7 @@ impl Curve {
         new_point: &[f64],
         tol: f64,
     ) -> Result<Vec<usize>, Error> {
-        let (n, dim) = (self.n_points(), self.dim);
+        let (n, dim) = (self.n_points(), self.dim());
         if index >= n {
             return Err(Error::InvalidArgument {
                 what: "no control point with this index",
@@ -85,7 +85,7 @@ impl Curve {
         }
         let outgrown = new_point
             .iter()
-            .zip(&self.scales)
+            .zip(self.pieces.scales())
             .any(|(v, s)| v.abs() >= 2.0 * s);
         let chordal = matches!(self.kind, ParamKind::Chordal | ParamKind::Centripetal);
         let new_knots = if chordal && !outgrown {
@@ -102,7 +102,8 @@ impl Curve {
         // From here on nothing fails.
         let old_f: Vec<f64> = (0..dim).map(|c| self.fv(index, c)).collect();
         if let Some(k) = new_knots {
-            self.knots = k;
+            *self.pieces.parts_mut().knots = k;
+            self.pieces.knots_changed();
         }
         self.points[index * dim..(index + 1) * dim].copy_from_slice(new_point);
         let rows = self.rows_at(index);
@@ -110,7 +111,7 @@ impl Curve {
         for c in 0..dim {
             let residual: Vec<(usize, f64)> =
                 rows.iter().map(|&i| (i, self.residual(i, c))).collect();
-            let tol_c = tol * (1.0 / self.scales[c]);
+            let tol_c = tol * (1.0 / self.pieces.scale(c));
             for (i, dd) in self.local_change(index, &residual, tol_c) {
                 changes.push((i, c, dd));
             }
@@ -165,10 +166,10 @@ impl Curve {
         new_point: &[f64],
         tol: f64,
     ) -> Result<Vec<usize>, Error> {
-        let (n, dim) = (self.n_points(), self.dim);
+        let (n, dim) = (self.n_points(), self.dim());
         let mut points = self.points.clone();
         points[index * dim..(index + 1) * dim].copy_from_slice(new_point);
-        let given = (self.kind == ParamKind::Given).then_some(&self.knots[..]);
+        let given = (self.kind == ParamKind::Given).then_some(self.pieces.knots());
         let rebuilt = Self::solve_new(
             dim,
             self.closed,
@@ -190,7 +191,7 @@ impl Curve {
     /// the two legs at the point get new steps and the later parameters shift.
     /// `None` when a step is not a positive finite number.
     fn moved_knots(&self, index: usize, p: &[f64]) -> Option<Vec<f64>> {
-        let (n, dim) = (self.n_points(), self.dim);
+        let (n, dim) = (self.n_points(), self.dim());
         let legs = self.len();
         let at = |i: usize| -> &[f64] {
             if i == index {
@@ -217,9 +218,12 @@ impl Curve {
             if !(step.is_finite() && step > 0.0) {
                 return None;
             }
-            delta[slot] = (l, step - (self.knots[l + 1] - self.knots[l]));
+            delta[slot] = (
+                l,
+                step - (self.pieces.knots()[l + 1] - self.pieces.knots()[l]),
+            );
         }
-        let mut knots = self.knots.clone();
+        let mut knots = self.pieces.knots().to_vec();
         let mut shift = 0.0;
         for (j, k) in knots.iter_mut().enumerate().skip(1) {
             for &(l, dl) in &delta {
@@ -247,7 +251,7 @@ impl Curve {
     /// Residual of row `i` of the continuity system for coordinate `c` with
     /// the current parameters, points and deviations.
     fn residual(&self, i: usize, c: usize) -> f64 {
-        let (n, dim) = (self.n_points(), self.dim);
+        let (n, dim) = (self.n_points(), self.dim());
         let (prev, next) = ((i + n - 1) % n, (i + 1) % n);
         let (lo, di, up, p) = self.system_row(i);
         let q = 1.0 - p;
@@ -263,7 +267,7 @@ impl Curve {
     fn system_row(&self, i: usize) -> (f64, f64, f64, f64) {
         let n = self.n_points();
         let l = if i == 0 { n - 1 } else { i - 1 };
-        let h = |k: usize| self.knots[k + 1] - self.knots[k];
+        let h = |k: usize| self.pieces.width(k);
         row(h(l), h(i), self.alphas[l], self.alphas[i])
     }
 

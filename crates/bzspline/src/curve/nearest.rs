@@ -97,11 +97,11 @@ impl Curve {
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn nearest(&self, q: &[f64]) -> Result<Nearest, Error> {
-        check_query(q, self.dim)?;
-        let dim = self.dim;
+        check_query(q, self.dim())?;
+        let dim = self.dim();
         // One unit for the curve and the query, so that neither overflows.
-        let unit = self.gscale.max(power_of_two_scale(q));
-        let to_unit = self.gscale / unit;
+        let unit = self.pieces.unit().max(power_of_two_scale(q));
+        let to_unit = self.pieces.unit() / unit;
         let qs: Vec<f64> = q.iter().map(|v| v / unit).collect();
         let mut best = (f64::INFINITY, 0usize, 0.0f64);
         let mut diff = vec![0.0; dim];
@@ -109,8 +109,8 @@ impl Curve {
             // g(t) = (r(t) - q) . r'(t), degree 5, lowest coefficient first.
             let mut g = [0.0f64; 6];
             for (c, qc) in qs.iter().enumerate() {
-                let rel = self.scales[c] / unit;
-                let co = self.coefs[k * dim + c].map(|v| v * rel);
+                let rel = self.pieces.scale(c) / unit;
+                let co = self.pieces.piece(k, c).map(|v| v * rel);
                 let p = [co[0] - qc, co[1], co[2], co[3]];
                 let dp = [co[1], 2.0 * co[2], 3.0 * co[3]];
                 for (i, a) in p.iter().enumerate() {
@@ -134,8 +134,8 @@ impl Curve {
             }
         }
         let (dist, k, t) = best;
-        let h = self.knots[k + 1] - self.knots[k];
-        let param = (self.knots[k] + t * h).min(self.knots[k + 1]);
+        let h = self.pieces.width(k);
+        let param = (self.pieces.knots()[k] + t * h).min(self.pieces.knots()[k + 1]);
         let point = self.eval(param)?;
         let distance = dist * unit;
         if !distance.is_finite() {

@@ -109,10 +109,10 @@ impl Leg<1> for Piece {
 }
 
 /// The `D` pieces of a curve's segment, one per coordinate.
-impl<const D: usize> Leg<D> for [[f64; 4]; D] {
+impl<const D: usize> Leg<D> for [Piece; D] {
     #[inline(always)]
     fn put_pieces(&mut self, pieces: [[f64; 4]; D]) {
-        *self = pieces;
+        *self = pieces.map(Piece);
     }
 }
 
@@ -195,13 +195,13 @@ pub(crate) fn build_open_curve<const D: usize>(
     alphas: &[f64],
     uniform: Option<f64>,
     wscale: f64,
-    coefs: &mut Vec<[f64; 4]>,
+    coefs: &mut Vec<Piece>,
     dev: &mut Vec<f64>,
     points_out: &mut Vec<f64>,
 ) {
     let n = knots.len();
     coefs.truncate((n.max(1) - 1) * D);
-    coefs.resize((n.max(1) - 1) * D, [0.0; 4]);
+    coefs.resize((n.max(1) - 1) * D, Piece::default());
     // Every slot is overwritten below: no pass to clear them first.
     for v in [&mut *dev, &mut *points_out] {
         v.truncate(n * D);
