@@ -42,12 +42,14 @@ use crate::error::{Error, Field};
 use crate::fast::{self, Piece};
 use crate::method::{self, alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
 use crate::pieces::Pieces;
-use crate::poly::{deriv_of, horner};
+use crate::poly::{deriv_of, horner, quadratic_roots};
 use crate::polyline::Polyline;
 use crate::spline::{
-    check_alphas, check_finite, check_knots, power_of_two_scale, quadratic_roots, resolve_alphas,
-    scale_for_max, Alphas, DEFAULT_ALPHA,
+    check_alphas, check_finite, check_knots, power_of_two_scale, resolve_alphas, scale_for_max,
+    Alphas, DEFAULT_ALPHA,
 };
+pub use crate::traits::BBox;
+use crate::traits::{check_out, BezierPieces, Bounds, Flatten, ParamCurve};
 
 /// Default absolute accuracy of arc lengths and their inverse, in the curve's
 /// units.
@@ -361,16 +363,6 @@ impl TryFrom<CurveData> for Curve {
     }
 }
 
-/// The axis-aligned box spanned by a curve.
-#[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct BBox {
-    /// Smallest value of each coordinate.
-    pub min: Vec<f64>,
-    /// Largest value of each coordinate.
-    pub max: Vec<f64>,
-}
-
 /// The point of a curve nearest to a query point.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -484,18 +476,6 @@ fn chord_step(kind: &ParamKind, a: &[f64], b: &[f64], chord_scale: f64, buf: &mu
         len.sqrt()
     } else {
         len
-    }
-}
-
-/// Refuses an output buffer that does not hold `dim` numbers.
-pub(crate) fn check_out(out: &[f64], dim: usize) -> Result<(), Error> {
-    if out.len() == dim {
-        Ok(())
-    } else {
-        Err(Error::InvalidArgument {
-            what: "the output buffer must hold one number per coordinate; its length",
-            value: out.len() as f64,
-        })
     }
 }
 
@@ -1471,6 +1451,48 @@ impl Curve {
                 what: "a Bezier control point",
             }),
         }
+    }
+}
+
+impl ParamCurve for Curve {
+    fn dim(&self) -> usize {
+        Curve::dim(self)
+    }
+    fn domain(&self) -> (f64, f64) {
+        Curve::domain(self)
+    }
+    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
+        Curve::eval_into(self, t, out)
+    }
+    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
+        Curve::deriv_into(self, t, order, out)
+    }
+}
+
+impl BezierPieces for Curve {
+    fn piece_count(&self) -> usize {
+        self.len()
+    }
+    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
+        match self.segment_points(k) {
+            Some(p) if p.len() == out.len() => {
+                out.copy_from_slice(&p);
+                true
+            }
+            _ => false,
+        }
+    }
+}
+
+impl Flatten for Curve {
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        Curve::flatten(self, tol)
+    }
+}
+
+impl Bounds for Curve {
+    fn bbox(&self) -> BBox {
+        Curve::bbox(self)
     }
 }
 

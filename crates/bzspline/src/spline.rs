@@ -20,7 +20,9 @@ use crate::fast::{sweep, Piece};
 use crate::method::{self, piece_coefs, OpenSystem};
 pub(crate) use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
-use crate::poly::{deriv_of, horner};
+use crate::poly::{deriv_of, horner, quadratic_roots};
+use crate::polyline::Polyline;
+use crate::traits::{check_out, BBox, BezierPieces, Bounds, Flatten, ParamCurve};
 
 /// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
 /// literal `0.3333333333333333` parses to it).
@@ -1177,55 +1179,62 @@ impl Spline {
     }
 }
 
-/// Real roots of `a t^2 + b t + c` (numerically stable form); an empty vector for
-/// the zero polynomial.
-pub(crate) fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
-    let scale = a.abs().max(b.abs()).max(c.abs());
-    if scale == 0.0 || !scale.is_finite() {
-        return Vec::new();
+/// The graph `x -> (x, S(x))`, under the spline's extrapolation policy.
+impl ParamCurve for Spline {
+    fn dim(&self) -> usize {
+        2
     }
-    let (a, b, c) = (a / scale, b / scale, c / scale);
-    if a.abs() < 1e-14 {
-        if b == 0.0 {
-            return Vec::new();
-        }
-        // A nearly linear derivative: the large root of the quadratic is far
-        // outside any piece, the small one is the linear root.
-        let r = -c / b;
-        return if a == 0.0 {
-            vec![r]
-        } else {
-            refine_pair(a, b, c)
+    fn domain(&self) -> (f64, f64) {
+        Spline::domain(self)
+    }
+    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
+        check_out(out, 2)?;
+        out[1] = self.eval(t)?;
+        out[0] = t;
+        Ok(())
+    }
+    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
+        check_out(out, 2)?;
+        out[1] = self.deriv(t, order)?;
+        out[0] = match order {
+            0 => t,
+            1 => 1.0,
+            _ => 0.0,
         };
+        Ok(())
     }
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return Vec::new();
-    }
-    if disc == 0.0 {
-        return vec![-b / (2.0 * a)];
-    }
-    refine_pair(a, b, c)
 }
 
-fn refine_pair(a: f64, b: f64, c: f64) -> Vec<f64> {
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return Vec::new();
+impl BezierPieces for Spline {
+    fn piece_count(&self) -> usize {
+        self.len()
     }
-    let q = -0.5 * (b + b.signum() * disc.sqrt());
-    let mut r = Vec::with_capacity(2);
-    if q != 0.0 {
-        r.push(c / q);
+    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
+        match self.segment(k) {
+            Some(s) if out.len() == 8 => {
+                out.copy_from_slice(s.p.as_flattened());
+                true
+            }
+            _ => false,
+        }
     }
-    if a != 0.0 {
-        r.push(q / a);
+}
+
+impl Flatten for Spline {
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        Spline::flatten(self, tol)
     }
-    if q == 0.0 && a != 0.0 && r.len() == 1 {
-        // b = 0 and c = 0: a double root at 0.
-        r.push(0.0);
+}
+
+impl Bounds for Spline {
+    fn bbox(&self) -> BBox {
+        let (a, b) = self.domain();
+        let ((_, lo), (_, hi)) = self.range();
+        BBox {
+            min: vec![a, lo],
+            max: vec![b, hi],
+        }
     }
-    r
 }
 
 #[cfg(test)]
@@ -1993,19 +2002,6 @@ pub(crate) mod tests {
             let y = s.eval(e.x).unwrap();
             assert!(close(y, e.y, 1e-12), "S({}) = {y}, extremum {}", e.x, e.y);
         }
-    }
-
-    #[test]
-    fn quadratic_roots_are_stable() {
-        let mut r = quadratic_roots(1.0, -3.0, 2.0);
-        r.sort_by(f64::total_cmp);
-        assert_eq!(r.len(), 2);
-        assert!(close(r[0], 1.0, 1e-15) && close(r[1], 2.0, 1e-15), "{r:?}");
-        assert_eq!(quadratic_roots(0.0, 2.0, -1.0), vec![0.5]);
-        assert!(quadratic_roots(1.0, 0.0, 1.0).is_empty());
-        assert!(quadratic_roots(0.0, 0.0, 0.0).is_empty());
-        let r = quadratic_roots(1e-20, 1.0, -0.25);
-        assert!(r.iter().any(|t| (t - 0.25).abs() < 1e-15), "{r:?}");
     }
 
     #[test]

@@ -25,11 +25,30 @@
 //! # Ok::<(), bzspline::Error>(())
 //! ```
 
-use crate::bezier::CubicBez;
-use crate::curve::{check_out, BBox, Curve};
-use crate::error::{Error, Field};
+use crate::error::Error;
 use crate::polyline::Polyline;
-use crate::spline::{quadratic_roots, Spline};
+
+/// The axis-aligned box spanned by a curve.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct BBox {
+    /// Smallest value of each coordinate.
+    pub min: Vec<f64>,
+    /// Largest value of each coordinate.
+    pub max: Vec<f64>,
+}
+
+/// Refuses an output buffer that does not hold `dim` numbers.
+pub(crate) fn check_out(out: &[f64], dim: usize) -> Result<(), Error> {
+    if out.len() == dim {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument {
+            what: "the output buffer must hold one number per coordinate; its length",
+            value: out.len() as f64,
+        })
+    }
+}
 
 /// A curve `t -> C(t)` in `R^dim` over a parameter interval.
 pub trait ParamCurve {
@@ -146,222 +165,10 @@ pub fn write_svg_path<W: std::fmt::Write>(
     Ok(true)
 }
 
-impl ParamCurve for Curve {
-    fn dim(&self) -> usize {
-        Curve::dim(self)
-    }
-    fn domain(&self) -> (f64, f64) {
-        Curve::domain(self)
-    }
-    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
-        Curve::eval_into(self, t, out)
-    }
-    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
-        Curve::deriv_into(self, t, order, out)
-    }
-}
-
-impl BezierPieces for Curve {
-    fn piece_count(&self) -> usize {
-        self.len()
-    }
-    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
-        match self.segment_points(k) {
-            Some(p) if p.len() == out.len() => {
-                out.copy_from_slice(&p);
-                true
-            }
-            _ => false,
-        }
-    }
-}
-
-impl Flatten for Curve {
-    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
-        Curve::flatten(self, tol)
-    }
-}
-
-impl Bounds for Curve {
-    fn bbox(&self) -> BBox {
-        Curve::bbox(self)
-    }
-}
-
-/// The graph `x -> (x, S(x))`, under the spline's extrapolation policy.
-impl ParamCurve for Spline {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn domain(&self) -> (f64, f64) {
-        Spline::domain(self)
-    }
-    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
-        check_out(out, 2)?;
-        out[1] = self.eval(t)?;
-        out[0] = t;
-        Ok(())
-    }
-    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
-        check_out(out, 2)?;
-        out[1] = self.deriv(t, order)?;
-        out[0] = match order {
-            0 => t,
-            1 => 1.0,
-            _ => 0.0,
-        };
-        Ok(())
-    }
-}
-
-impl BezierPieces for Spline {
-    fn piece_count(&self) -> usize {
-        self.len()
-    }
-    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
-        match self.segment(k) {
-            Some(s) if out.len() == 8 => {
-                out.copy_from_slice(s.p.as_flattened());
-                true
-            }
-            _ => false,
-        }
-    }
-}
-
-impl Flatten for Spline {
-    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
-        Spline::flatten(self, tol)
-    }
-}
-
-impl Bounds for Spline {
-    fn bbox(&self) -> BBox {
-        let (a, b) = self.domain();
-        let ((_, lo), (_, hi)) = self.range();
-        BBox {
-            min: vec![a, lo],
-            max: vec![b, hi],
-        }
-    }
-}
-
-/// On `t` in `[0, 1]`; the polynomial is evaluated at any finite `t`.
-impl<const D: usize> ParamCurve for CubicBez<D> {
-    fn dim(&self) -> usize {
-        D
-    }
-    fn domain(&self) -> (f64, f64) {
-        (0.0, 1.0)
-    }
-    fn eval_into(&self, t: f64, out: &mut [f64]) -> Result<(), Error> {
-        self.deriv_into(t, 0, out)
-    }
-    fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
-        check_out(out, D)?;
-        if !t.is_finite() {
-            return Err(Error::NonFinite {
-                field: Field::Query,
-                index: 0,
-                value: t,
-            });
-        }
-        let [p0, p1, p2, p3] = self.p;
-        let v = match order {
-            0 => self.eval(t),
-            1 => self.deriv(t),
-            2 => self.deriv2(t),
-            3 => std::array::from_fn(|i| 6.0 * (p3[i] - 3.0 * p2[i] + 3.0 * p1[i] - p0[i])),
-            _ => [0.0; D],
-        };
-        if v.iter().any(|x| !x.is_finite()) {
-            return Err(Error::Overflow {
-                what: "the derivative",
-            });
-        }
-        out.copy_from_slice(&v);
-        Ok(())
-    }
-}
-
-impl<const D: usize> BezierPieces for CubicBez<D> {
-    fn piece_count(&self) -> usize {
-        1
-    }
-    fn piece_into(&self, k: usize, out: &mut [f64]) -> bool {
-        if k != 0 || out.len() != 4 * D {
-            return false;
-        }
-        out.copy_from_slice(self.p.as_flattened());
-        true
-    }
-}
-
-/// The fewest equal steps in `t` that keep every chord within `tol`: the
-/// chord over a step `delta` is within `delta^2 / 8 max |C''|` of the curve,
-/// and `C''` is linear in `t`, largest at an end (`docs/method.md` §3; the
-/// bound of [`crate::flatten`]).
-impl<const D: usize> Flatten for CubicBez<D> {
-    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
-        if !(tol.is_finite() && tol > 0.0) {
-            return Err(Error::InvalidArgument {
-                what: "the flattening tolerance must be a positive number",
-                value: tol,
-            });
-        }
-        let norm = |v: [f64; D]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let m2 = norm(self.deriv2(0.0)).max(norm(self.deriv2(1.0)));
-        let steps = (m2 / (8.0 * tol)).sqrt().ceil().max(1.0);
-        // m2 is finite for finite control points; NaN only for non-finite ones.
-        if steps.is_nan() || steps > crate::MAX_FLATTEN_VERTICES as f64 {
-            return Err(Error::InvalidArgument {
-                what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-                value: tol,
-            });
-        }
-        let n = steps as usize;
-        let mut coords = Vec::with_capacity((n + 1) * D);
-        let mut params = Vec::with_capacity(n + 1);
-        for i in 0..=n {
-            let t = if i == n { 1.0 } else { i as f64 / n as f64 };
-            let p = if i == n { self.p[3] } else { self.eval(t) };
-            coords.extend_from_slice(&p);
-            params.push(t);
-        }
-        Ok(Polyline::new(D, coords, params))
-    }
-}
-
-/// Per coordinate, the ends and the roots of the derivative (a quadratic)
-/// inside `(0, 1)`.
-impl<const D: usize> Bounds for CubicBez<D> {
-    fn bbox(&self) -> BBox {
-        let [p0, p1, p2, p3] = self.p;
-        let mut min = vec![0.0; D];
-        let mut max = vec![0.0; D];
-        for i in 0..D {
-            // C'(t) / 3 = a t^2 + b t + c in the power basis.
-            let a = p3[i] - 3.0 * p2[i] + 3.0 * p1[i] - p0[i];
-            let b = 2.0 * (p2[i] - 2.0 * p1[i] + p0[i]);
-            let c = p1[i] - p0[i];
-            let (mut lo, mut hi) = (p0[i].min(p3[i]), p0[i].max(p3[i]));
-            for t in quadratic_roots(a, b, c) {
-                if t > 0.0 && t < 1.0 {
-                    let v = self.eval(t)[i];
-                    lo = lo.min(v);
-                    hi = hi.max(v);
-                }
-            }
-            min[i] = lo;
-            max[i] = hi;
-        }
-        BBox { min, max }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{Curve, Spline};
 
     /// Central differences of `eval_into` against `deriv_into` at a few
     /// parameters inside every piece, for any of the types.

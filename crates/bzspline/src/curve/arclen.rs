@@ -16,8 +16,8 @@
 
 use super::{check_tolerance, dot, norm, Curve};
 use crate::error::{Error, Field};
+use crate::poly::quadratic_roots;
 use crate::polyline::Polyline;
-use crate::spline::quadratic_roots;
 use std::sync::OnceLock;
 
 /// Gauss-Legendre nodes and weights on `[-1, 1]`.
