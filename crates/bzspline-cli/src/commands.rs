@@ -5,7 +5,6 @@
 use std::io::Write as _;
 
 use anyhow::{anyhow, bail, Context, Result};
-use bzspline::Spline;
 use serde_json::{json, Value};
 
 use crate::cli::{
@@ -266,17 +265,19 @@ fn eval(a: &EvalArgs) -> Result<()> {
 /// The most points `sample --step` produces.
 const MAX_SAMPLES: f64 = 1e7;
 
-/// Parameters at arc-length steps `step` from the start of `c`, and its end.
-fn params_by_step(
-    c: &bzspline::Curve,
-    step: f64,
-) -> std::result::Result<Vec<f64>, bzspline::Error> {
+/// Parameters at arc-length steps `step` from the start of the fit, and its
+/// end.
+fn params_by_step(f: &Fitted, step: f64) -> std::result::Result<Vec<f64>, bzspline::Error> {
     // The length of a Bezier segment is at most that of its control polygon:
     // bound the work (and keep the quadrature's speeds finite) before measuring.
+    let dim = f.curve().dim().max(1);
+    let pieces = f.pieces();
+    let mut p = vec![0.0; 4 * dim];
     let mut bound = 0.0f64;
-    for k in 0..c.len() {
-        let p = c.segment_points(k).unwrap_or_default();
-        let dim = c.dim().max(1);
+    for k in 0..pieces.piece_count() {
+        if !pieces.piece_into(k, &mut p) {
+            continue;
+        }
         for j in 0..3 {
             let leg = (0..dim)
                 .map(|i| p[(j + 1) * dim + i] - p[j * dim + i])
@@ -289,49 +290,27 @@ fn params_by_step(
             what: "the length of the curve",
         });
     }
+    let too_many = || bzspline::Error::InvalidArgument {
+        what: "--step is too small for the curve's length: too many points; step",
+        value: step,
+    };
     if bound / step > MAX_SAMPLES {
-        return Err(bzspline::Error::InvalidArgument {
-            what: "--step is too small for the curve's length: too many points; step",
-            value: step,
-        });
+        return Err(too_many());
     }
     let accuracy = (step * 1e-6).max(bound * 1e-12).max(f64::MIN_POSITIVE);
-    let total = c.arclen(accuracy)?;
+    let total = f.arclen().arclen(accuracy)?;
     let count = (total / step).floor();
     if count > MAX_SAMPLES {
-        return Err(bzspline::Error::InvalidArgument {
-            what: "--step is too small for the curve's length: too many points; step",
-            value: step,
-        });
+        return Err(too_many());
     }
-    let (_, end) = c.domain();
-    let mut ts = Vec::new();
-    let mut i = 0.0;
-    while i <= count {
-        let len = i * step;
-        if total - len > accuracy {
-            ts.push(c.param_at_length(len, accuracy)?);
-        }
-        i += 1.0;
-    }
-    ts.push(end);
-    Ok(ts)
-}
-
-/// The graph `(x, S(x))` of a function as a curve with the knots as
-/// parameters: each coordinate is the paper's spline on the same grid, and the
-/// spline of the linear data `x` is `x` itself, so the curve is the graph.
-fn graph_curve(s: &Spline) -> std::result::Result<bzspline::Curve, bzspline::Error> {
-    let flat: Vec<f64> = s
-        .knots()
-        .iter()
-        .zip(s.values())
-        .flat_map(|(&x, &y)| [x, y])
+    // Every step short of the end by more than the accuracy, then the end.
+    let lengths: Vec<f64> = (0..=count as usize)
+        .map(|i| i as f64 * step)
+        .filter(|len| total - len > accuracy)
         .collect();
-    bzspline::CurveBuilder::new(&flat, 2)
-        .param(bzspline::Param::Given(s.knots().to_vec()))
-        .alphas(s.alphas())
-        .build()
+    let mut ts = f.arclen().params_at_lengths(&lengths, accuracy)?;
+    ts.push(f.curve().domain().1);
+    Ok(ts)
 }
 
 fn sample(a: &SampleArgs) -> Result<()> {
@@ -370,11 +349,7 @@ fn sample(a: &SampleArgs) -> Result<()> {
             .params()
             .to_vec()
     } else if let Some(step) = a.step {
-        match &fitted {
-            Fitted::Function(s) => params_by_step(&graph_curve(s).map_err(lib)?, step),
-            Fitted::Curve(c) => params_by_step(c, step),
-        }
-        .map_err(lib)?
+        params_by_step(&fitted, step).map_err(lib)?
     } else {
         bail!("give one of --n K, --step S or --tolerance T");
     };

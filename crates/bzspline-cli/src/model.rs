@@ -5,7 +5,9 @@
 use std::borrow::Cow;
 use std::fmt;
 
-use bzspline::{Alphas, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Spline};
+use bzspline::{
+    Alphas, Arclen, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Spline,
+};
 use serde::Serialize;
 use serde_json::Value;
 
@@ -125,6 +127,15 @@ impl Fitted {
     /// Its flattening (a function's keeps every knot as a vertex).
     #[must_use]
     pub fn flattening(&self) -> &dyn Flatten {
+        match self {
+            Fitted::Function(s) => s,
+            Fitted::Curve(c) => c,
+        }
+    }
+
+    /// Its arc length (a function's, of its graph; parameters are x).
+    #[must_use]
+    pub fn arclen(&self) -> &dyn Arclen {
         match self {
             Fitted::Function(s) => s,
             Fitted::Curve(c) => c,

@@ -41,15 +41,15 @@ use crate::bezier::CubicBez;
 use crate::error::{Error, Field};
 use crate::fast::{self, Piece};
 use crate::method::{self, alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::poly::{deriv_of, horner, quadratic_roots};
 use crate::polyline::Polyline;
-use crate::spline::{
-    check_alphas, check_finite, check_knots, power_of_two_scale, resolve_alphas, scale_for_max,
-    Alphas, DEFAULT_ALPHA,
-};
 pub use crate::traits::BBox;
-use crate::traits::{check_out, BezierPieces, Bounds, Flatten, ParamCurve};
+use crate::traits::{check_out, Arclen, BezierPieces, Bounds, Flatten, ParamCurve};
+use crate::validate::{
+    check_alphas, check_finite, check_knots, resolve_alphas, Alphas, DEFAULT_ALPHA,
+};
 
 /// Default absolute accuracy of arc lengths and their inverse, in the curve's
 /// units.
@@ -1466,6 +1466,15 @@ impl ParamCurve for Curve {
     }
     fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
         Curve::deriv_into(self, t, order, out)
+    }
+}
+
+impl Arclen for Curve {
+    fn arclen(&self, accuracy: f64) -> Result<f64, Error> {
+        Curve::arclen(self, accuracy)
+    }
+    fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
+        Curve::params_at_lengths(self, lengths, accuracy)
     }
 }
 

@@ -11,12 +11,11 @@
 //! last are the curve's ends exactly.
 //!
 //!
-//! [`Spline::flatten`] takes equal steps per piece; [`Curve::flatten`]
+//! [`Spline::flatten`](crate::Spline::flatten) takes equal steps per piece; [`Curve::flatten`]
 //! (module `curve::flatten`) adds the chord search over runs of segments of a
 //! planar curve.
 
 use crate::error::{Error, Field};
-use crate::spline::Spline;
 
 pub use crate::polyline::Polyline;
 
@@ -64,60 +63,11 @@ pub(crate) fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
     Ok(m.max(1))
 }
 
-impl Spline {
-    /// The graph `(x, S(x))` flattened to a polyline within `tol` of it; see
-    /// [`Curve::flatten`]. Vertices' parameters are their abscissas.
-    ///
-    /// # Errors
-    ///
-    /// As [`Curve::flatten`].
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use bzspline::Spline;
-    /// let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
-    /// let p = s.flatten(1e-4)?;
-    /// assert_eq!(p.point(0), Some(&[0.0, 0.0][..]));
-    /// assert_eq!(p.point(p.len() - 1), Some(&[2.0, 0.0][..]));
-    /// # Ok::<(), bzspline::Error>(())
-    /// ```
-    pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
-        check_tol(tol)?;
-        let knots = self.knots();
-        let mut coords = Vec::new();
-        let mut params = Vec::new();
-        for k in 0..self.len() {
-            let c = self.unit_coefficients(k).unwrap_or([0.0; 4]);
-            let accel = (2.0 * c[2]).abs().max((2.0 * c[2] + 6.0 * c[3]).abs());
-            let m = steps(accel, tol)?;
-            if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
-                return Err(Error::InvalidArgument {
-                    what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-                    value: tol,
-                });
-            }
-            let h = knots[k + 1] - knots[k];
-            for j in usize::from(k > 0)..=m {
-                let x = if j == m {
-                    knots[k + 1]
-                } else {
-                    knots[k] + (j as f64 / m as f64) * h
-                };
-                let y = self.eval(x)?;
-                coords.push(x);
-                coords.push(y);
-                params.push(x);
-            }
-        }
-        Ok(Polyline::new(2, coords, params))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::curve::Curve;
+    use crate::spline::Spline;
 
     /// Distance from `p` to the segment `a`-`b`.
     fn seg_dist(p: &[f64], a: &[f64], b: &[f64]) -> f64 {
@@ -134,27 +84,6 @@ mod tests {
             .map(|(v, u)| (v - t * u) * (v - t * u))
             .sum::<f64>()
             .sqrt()
-    }
-
-    #[test]
-    fn spline_flattening_stays_within_tolerance() {
-        let x = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
-        let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0];
-        let s = Spline::new(&x, &f).unwrap();
-        let tol = 1e-3;
-        let p = s.flatten(tol).unwrap();
-        assert_eq!(p.point(0).unwrap(), &[1.0, 1.0]);
-        assert_eq!(p.point(p.len() - 1).unwrap(), &[6.0, 7.0]);
-        for i in 0..=5000 {
-            let xq = 1.0 + 5.0 * i as f64 / 5000.0;
-            let q = [xq, s.eval(xq).unwrap()];
-            let j = p
-                .params()
-                .partition_point(|&v| v <= xq)
-                .clamp(1, p.len() - 1);
-            let d = seg_dist(&q, p.point(j - 1).unwrap(), p.point(j).unwrap());
-            assert!(d <= tol, "at x = {xq}: {d}");
-        }
     }
 
     #[test]
@@ -179,5 +108,26 @@ mod tests {
         assert_eq!(line.flatten(1e-9).unwrap().len(), 2);
         let line = Curve::open(&[[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]).unwrap();
         assert_eq!(line.flatten(1e-9).unwrap().len(), 3);
+    }
+
+    #[test]
+    fn spline_flattening_stays_within_tolerance() {
+        let x = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+        let f = [1.0, 3.0, 3.0, 1.0, 2.0, 7.0];
+        let s = Spline::new(&x, &f).unwrap();
+        let tol = 1e-3;
+        let p = s.flatten(tol).unwrap();
+        assert_eq!(p.point(0).unwrap(), &[1.0, 1.0]);
+        assert_eq!(p.point(p.len() - 1).unwrap(), &[6.0, 7.0]);
+        for i in 0..=5000 {
+            let xq = 1.0 + 5.0 * i as f64 / 5000.0;
+            let q = [xq, s.eval(xq).unwrap()];
+            let j = p
+                .params()
+                .partition_point(|&v| v <= xq)
+                .clamp(1, p.len() - 1);
+            let d = seg_dist(&q, p.point(j - 1).unwrap(), p.point(j).unwrap());
+            assert!(d <= tol, "at x = {xq}: {d}");
+        }
     }
 }

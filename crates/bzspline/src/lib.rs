@@ -90,6 +90,7 @@ mod polyline;
 pub mod spline;
 mod traits;
 mod tridiag;
+mod validate;
 
 pub use bezier::CubicBez;
 pub use curve::{BBox, Curve, CurveBuilder, Nearest, Param, Repeats, DEFAULT_ACCURACY};
@@ -99,5 +100,5 @@ pub use spline::{
     Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
     MIN_RELATIVE_INTERVAL,
 };
-pub use traits::{write_svg_path, BezierPieces, Bounds, Flatten, ParamCurve};
+pub use traits::{write_svg_path, Arclen, BezierPieces, Bounds, Flatten, ParamCurve};
 pub use tridiag::{CyclicThomas, Thomas};

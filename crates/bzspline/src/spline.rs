@@ -14,28 +14,19 @@
 //!   is [`Extrapolate::Error`].
 
 use crate::bezier::CubicBez;
+use crate::curve::{Curve, CurveBuilder, Param};
 use crate::error::{Error, Field};
 use crate::fast::search::{Summary, STRIDE};
 use crate::fast::{sweep, Piece};
+use crate::flatten::{check_tol, steps, MAX_FLATTEN_VERTICES};
 use crate::method::{self, piece_coefs, OpenSystem};
-pub(crate) use crate::method::{power_of_two_scale, scale_for_max};
+use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::poly::{deriv_of, horner, quadratic_roots};
 use crate::polyline::Polyline;
-use crate::traits::{check_out, BBox, BezierPieces, Bounds, Flatten, ParamCurve};
-
-/// Smallest accepted shape parameter: the double nearest to 1/3 (the decimal
-/// literal `0.3333333333333333` parses to it).
-pub const ALPHA_MIN: f64 = 0.333_333_333_333_333_3;
-/// Largest accepted shape parameter: the double that the decimal literal
-/// `0.6666666666666667` parses to, one step above the double nearest to 2/3.
-pub const ALPHA_MAX: f64 = 0.666_666_666_666_666_7;
-/// The default shape parameter: each leg is touched at its middle.
-pub const DEFAULT_ALPHA: f64 = 0.5;
-/// An interval narrower than this fraction of the whole span is refused: it is
-/// below one unit in the last place of the span, so the knots' own rounding
-/// would decide the shape.
-pub const MIN_RELATIVE_INTERVAL: f64 = f64::EPSILON;
+use crate::traits::{check_out, Arclen, BBox, BezierPieces, Bounds, Flatten, ParamCurve};
+use crate::validate::{check_finite, resolve_alphas, validate_knots};
+pub use crate::validate::{Alphas, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL};
 
 /// What evaluation does outside `[tau_0, tau_{N-1}]`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -49,21 +40,6 @@ pub enum Extrapolate {
     Clamp,
     /// Continue the end pieces' cubics.
     Extend,
-}
-
-/// One shape parameter for every interval, or one each.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Alphas<'a> {
-    /// The same alpha on every interval.
-    Uniform(f64),
-    /// `alphas[k]` for interval `k`; there must be one fewer than knots.
-    PerInterval(&'a [f64]),
-}
-
-impl Default for Alphas<'_> {
-    fn default() -> Self {
-        Alphas::Uniform(DEFAULT_ALPHA)
-    }
 }
 
 /// Kind of a critical point of `S`.
@@ -150,61 +126,6 @@ impl PartialEq for UniformHint {
 /// least `1e-270 * f64::EPSILON`, whose reciprocal is finite.
 const TINY_SPAN: f64 = 1e-270;
 
-/// Checks knots: at least two, finite, strictly increasing, a finite span and no
-/// interval narrower than [`MIN_RELATIVE_INTERVAL`] of it. Returns the widths.
-pub(crate) fn validate_knots(knots: &[f64]) -> Result<Vec<f64>, Error> {
-    check_knots(knots)?;
-    Ok(knots.windows(2).map(|w| w[1] - w[0]).collect())
-}
-
-/// The checks of [`validate_knots`], without forming the widths.
-pub(crate) fn check_knots(knots: &[f64]) -> Result<(), Error> {
-    if knots.len() < 2 {
-        return Err(Error::TooFewPoints {
-            found: knots.len(),
-            min: 2,
-        });
-    }
-    check_finite(Field::Knot, knots)?;
-    for i in 1..knots.len() {
-        if knots[i] <= knots[i - 1] {
-            return Err(Error::NotIncreasing {
-                index: i,
-                previous: knots[i - 1],
-                value: knots[i],
-            });
-        }
-    }
-    let (first, last) = (knots[0], knots[knots.len() - 1]);
-    let span = last - first;
-    if !span.is_finite() {
-        return Err(Error::SpanOverflow { first, last });
-    }
-    for (k, w) in knots.windows(2).map(|w| w[1] - w[0]).enumerate() {
-        if w < span * MIN_RELATIVE_INTERVAL {
-            return Err(Error::IntervalTooSmall {
-                interval: k,
-                width: w,
-                span,
-            });
-        }
-    }
-    Ok(())
-}
-
-/// Returns the first non-finite entry as an error.
-pub(crate) fn check_finite(field: Field, xs: &[f64]) -> Result<(), Error> {
-    match xs.iter().position(|v| !v.is_finite()) {
-        Some(index) => Err(Error::NonFinite {
-            field,
-            index,
-            value: xs[index],
-        }),
-        None => Ok(()),
-    }
-}
-
-/// Expands and checks the shape parameters for `intervals` intervals.
 /// Every check of a spline's input, one at a time so that the first fault is
 /// named: the knots (giving the widths), the values' length and finiteness, the
 /// alphas (giving one per interval).
@@ -224,49 +145,6 @@ fn validate_step_by_step(
     check_finite(Field::Value, values)?;
     let resolved = resolve_alphas(alphas, widths.len())?;
     Ok((widths, resolved))
-}
-
-pub(crate) fn resolve_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<Vec<f64>, Error> {
-    check_alphas(alphas, intervals)?;
-    Ok(match alphas {
-        Alphas::Uniform(a) => vec![a; intervals],
-        Alphas::PerInterval(a) => a.to_vec(),
-    })
-}
-
-/// The checks of [`resolve_alphas`], without expanding them.
-pub(crate) fn check_alphas(alphas: Alphas<'_>, intervals: usize) -> Result<(), Error> {
-    let (list, one): (&[f64], f64) = match alphas {
-        Alphas::Uniform(a) => (&[], a),
-        Alphas::PerInterval(a) => {
-            if a.len() != intervals {
-                return Err(Error::LengthMismatch {
-                    field: Field::Alpha,
-                    expected: intervals,
-                    found: a.len(),
-                });
-            }
-            (a, 0.5)
-        }
-    };
-    // One alpha stands for every interval: the first names it.
-    let uniform = (intervals > 0 && list.is_empty()).then_some((0, one));
-    for (k, a) in list.iter().copied().enumerate().chain(uniform) {
-        if !a.is_finite() {
-            return Err(Error::NonFinite {
-                field: Field::Alpha,
-                index: k,
-                value: a,
-            });
-        }
-        if !(ALPHA_MIN..=ALPHA_MAX).contains(&a) {
-            return Err(Error::AlphaOutOfRange {
-                interval: k,
-                value: a,
-            });
-        }
-    }
-    Ok(())
 }
 
 /// Every check of [`Spline::build`] in one branch-free pass: `Some(max |F|)`
@@ -1157,6 +1035,42 @@ impl Spline {
         out
     }
 
+    /// The graph `x -> (x, S(x))` as a planar [`Curve`] with the knots as its
+    /// parameters and the spline's alphas: each coordinate is the method's
+    /// spline on the same knots, and the spline of the linear data `x` is `x`
+    /// itself (to rounding), so the curve is this spline's graph. What a
+    /// curve can do (arc length, resampling, the nearest point) then applies
+    /// to the graph.
+    ///
+    /// # Errors
+    ///
+    /// None for a spline built by this crate; the curve builder's errors
+    /// otherwise.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Spline, DEFAULT_ACCURACY};
+    /// let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+    /// let g = s.graph()?;
+    /// let p = g.eval(0.5)?;
+    /// assert!((p[0] - 0.5).abs() < 1e-15 && (p[1] - s.eval(0.5)?).abs() < 1e-15);
+    /// assert!(g.arclen(DEFAULT_ACCURACY)? > 2.0);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn graph(&self) -> Result<Curve, Error> {
+        let flat: Vec<f64> = self
+            .knots()
+            .iter()
+            .zip(self.values())
+            .flat_map(|(&x, &y)| [x, y])
+            .collect();
+        CurveBuilder::new(&flat, 2)
+            .param(Param::Given(self.knots().to_vec()))
+            .alphas(self.alphas())
+            .build()
+    }
+
     /// The smallest and largest value of `S` on its domain, as `(x, y)` pairs.
     #[must_use]
     pub fn range(&self) -> ((f64, f64), (f64, f64)) {
@@ -1202,6 +1116,67 @@ impl ParamCurve for Spline {
             _ => 0.0,
         };
         Ok(())
+    }
+}
+
+impl Spline {
+    /// The graph `(x, S(x))` flattened to a polyline within `tol` of it; see
+    /// [`Curve::flatten`]. Vertices' parameters are their abscissas.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::flatten`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Spline;
+    /// let s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+    /// let p = s.flatten(1e-4)?;
+    /// assert_eq!(p.point(0), Some(&[0.0, 0.0][..]));
+    /// assert_eq!(p.point(p.len() - 1), Some(&[2.0, 0.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        check_tol(tol)?;
+        let knots = self.knots();
+        let mut coords = Vec::new();
+        let mut params = Vec::new();
+        for k in 0..self.len() {
+            let c = self.unit_coefficients(k).unwrap_or([0.0; 4]);
+            let accel = (2.0 * c[2]).abs().max((2.0 * c[2] + 6.0 * c[3]).abs());
+            let m = steps(accel, tol)?;
+            if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
+                return Err(Error::InvalidArgument {
+                    what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
+                    value: tol,
+                });
+            }
+            let h = knots[k + 1] - knots[k];
+            for j in usize::from(k > 0)..=m {
+                let x = if j == m {
+                    knots[k + 1]
+                } else {
+                    knots[k] + (j as f64 / m as f64) * h
+                };
+                let y = self.eval(x)?;
+                coords.push(x);
+                coords.push(y);
+                params.push(x);
+            }
+        }
+        Ok(Polyline::new(2, coords, params))
+    }
+}
+
+/// The arc length of the graph, measured on [`Spline::graph`]; parameters
+/// are abscissas.
+impl Arclen for Spline {
+    fn arclen(&self, accuracy: f64) -> Result<f64, Error> {
+        self.graph()?.arclen(accuracy)
+    }
+    fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
+        self.graph()?.params_at_lengths(lengths, accuracy)
     }
 }
 

@@ -1,8 +1,8 @@
 //! Capabilities shared by the crate's curve types, in the spirit of kurbo's
 //! `ParamCurve` family but for any dimension: evaluation and derivatives into a
 //! caller's buffer ([`ParamCurve`]), the pieces as cubic Bezier segments
-//! ([`BezierPieces`]), flattening ([`Flatten`]) and the exact bounding box
-//! ([`Bounds`]).
+//! ([`BezierPieces`]), flattening ([`Flatten`]), the exact bounding box
+//! ([`Bounds`]) and arc length ([`Arclen`], not for a lone [`CubicBez`]).
 //!
 //! [`Curve`] implements them in its own dimension; a [`Spline`] as its graph,
 //! the planar curve `x -> (x, S(x))`; a [`CubicBez`] on `t` in `[0, 1]`. Generic
@@ -88,6 +88,27 @@ pub trait ParamCurve {
         self.eval_into(t, &mut p)?;
         Ok(p)
     }
+}
+
+/// Arc length and its inverse, in the spirit of kurbo's `ParamCurveArclen`.
+pub trait Arclen {
+    /// The length of the whole curve, to `accuracy` (absolute, in the
+    /// curve's units).
+    ///
+    /// # Errors
+    ///
+    /// A typed error for an accuracy that is not finite and positive, or a
+    /// length that overflows.
+    fn arclen(&self, accuracy: f64) -> Result<f64, Error>;
+
+    /// The parameters at which the length from the start is `lengths[i]`,
+    /// each to `accuracy` in length.
+    ///
+    /// # Errors
+    ///
+    /// As [`Arclen::arclen`]; a length that is not finite or lies outside
+    /// `[0, arclen]` by more than the accuracy, with its index.
+    fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error>;
 }
 
 /// A curve made of cubic Bezier segments, exactly.

@@ -355,12 +355,32 @@ impl Curve {
     /// [`Error::OutOfDomain`] for one outside `[0, arclen]` by more than the
     /// accuracy (a length that close past an end gives that end).
     pub fn param_at_length(&self, length: f64, accuracy: f64) -> Result<f64, Error> {
-        let mut v = self.params_at_lengths(|_| vec![length], accuracy)?;
+        let mut v = self.params_for_lengths(|_| vec![length], accuracy)?;
         Ok(v.pop().unwrap_or(self.pieces.knots()[0]))
     }
 
+    /// The parameters at the lengths `lengths` from the start (each as
+    /// [`Curve::param_at_length`]), measuring the segments once for all.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::param_at_length`], with the index of the failing length.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, DEFAULT_ACCURACY};
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])?;
+    /// let t = c.params_at_lengths(&[0.0, 1.0, 2.0], DEFAULT_ACCURACY)?;
+    /// assert!((t[1] - 1.0).abs() < 1e-9 && t[2] == 2.0);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
+        self.params_for_lengths(|_| lengths.to_vec(), accuracy)
+    }
+
     /// Parameters at the lengths that `lengths` returns for the total length.
-    fn params_at_lengths(
+    fn params_for_lengths(
         &self,
         lengths: impl FnOnce(f64) -> Vec<f64>,
         accuracy: f64,
@@ -439,7 +459,7 @@ impl Curve {
                 value: count as f64,
             });
         }
-        let mut params = self.params_at_lengths(
+        let mut params = self.params_for_lengths(
             |total| {
                 (0..count)
                     .map(|i| (total * (i as f64 / (count - 1) as f64)).min(total))

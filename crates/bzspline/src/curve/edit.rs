@@ -14,8 +14,8 @@
 use super::{check_query, check_tolerance, chord_step, Curve, ParamKind};
 use crate::error::Error;
 use crate::method::row;
-use crate::spline::validate_knots;
 use crate::tridiag::{CyclicThomas, Thomas};
+use crate::validate::validate_knots;
 
 impl Curve {
     /// Moves control point `index` to `new_point` and updates the curve,
