@@ -1,46 +1,14 @@
-//! Command-line arguments (clap derive; the doc comments are the help text) and
-//! their validation into the configuration the commands work from.
+//! Command-line arguments shared by the subcommands and those of fit, eval,
+//! sample and smooth (clap derive; the doc comments are the help text), and
+//! their validation into the configuration the commands work from. The
+//! command line itself (`Cli`, `Command`) is in `commands.rs`.
 
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, ValueEnum};
 
 use crate::model::Mode;
-
-/// Fit, evaluate, sample and plot the third-degree Bezier-type spline of Stelia,
-/// Potapenko and Sirenko: a C1 cubic that touches every leg of the control polygon.
-#[derive(Debug, Parser)]
-#[command(name = "bzspline", version)]
-pub struct Cli {
-    /// What to do.
-    #[command(subcommand)]
-    pub command: Command,
-}
-
-/// The subcommands.
-#[derive(Debug, Subcommand)]
-pub enum Command {
-    /// Fit the spline and print its knots, knot values, tangent points and Bezier
-    /// segments (JSON), the segments' control points (CSV) or an SVG path.
-    Fit(FitArgs),
-    /// Evaluate the spline (and derivatives) at given abscissas.
-    Eval(EvalArgs),
-    /// Sample points along the spline.
-    Sample(SampleArgs),
-    /// Draw the control points, the control polygon and the spline as SVG or PNG.
-    ///
-    /// Without FILE or --example it draws the paper's Example 1 (`-` reads
-    /// standard input). The output is PNG when its name ends in `.png`, else SVG;
-    /// without -o, SVG goes to standard output.
-    Plot(crate::plot::PlotArgs),
-    /// Smooth the lines and polygons of a GeoJSON or TopoJSON document as one
-    /// coverage: shared borders smoothed once, valid polygons kept valid.
-    Smooth(SmoothArgs),
-    /// Serve an interactive editor over HTTP.
-    #[cfg(feature = "serve")]
-    Serve(crate::serve::ServeArgs),
-}
 
 /// The default of `--max-points`.
 pub const DEFAULT_MAX_POINTS: usize = 20_000_000;
@@ -451,8 +419,9 @@ impl From<ExtrapolateArg> for bzspline::Extrapolate {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::commands::{Cli, Command};
     use clap::CommandFactory;
+    use clap::Parser;
 
     #[test]
     fn clap_definition_is_consistent() {

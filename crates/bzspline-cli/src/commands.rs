@@ -5,15 +5,50 @@
 use std::io::Write as _;
 
 use anyhow::{anyhow, bail, Context, Result};
+use clap::{Parser, Subcommand};
 use serde_json::{json, Value};
 
 use crate::cli::{
-    Cli, Command, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, Shape, SmoothArgs,
-    TableFormat,
+    EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs, TableFormat,
 };
-use crate::input::{self, Points};
-use crate::model::{self, FitSpec, Fitted, Mode};
+use crate::fit::fit_points;
+use crate::input;
+use crate::model::{self, Fitted, Mode};
 use crate::output;
+
+/// Fit, evaluate, sample and plot the third-degree Bezier-type spline of Stelia,
+/// Potapenko and Sirenko: a C1 cubic that touches every leg of the control polygon.
+#[derive(Debug, Parser)]
+#[command(name = "bzspline", version)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Fit the spline and print its knots, knot values, tangent points and Bezier
+    /// segments (JSON), the segments' control points (CSV) or an SVG path.
+    Fit(FitArgs),
+    /// Evaluate the spline (and derivatives) at given abscissas.
+    Eval(EvalArgs),
+    /// Sample points along the spline.
+    Sample(SampleArgs),
+    /// Draw the control points, the control polygon and the spline as SVG or PNG.
+    ///
+    /// Without FILE or --example it draws the paper's Example 1 (`-` reads
+    /// standard input). The output is PNG when its name ends in `.png`, else SVG;
+    /// without -o, SVG goes to standard output.
+    Plot(crate::plot::PlotArgs),
+    /// Smooth the lines and polygons of a GeoJSON or TopoJSON document as one
+    /// coverage: shared borders smoothed once, valid polygons kept valid.
+    Smooth(SmoothArgs),
+    /// Serve an interactive editor over HTTP.
+    #[cfg(feature = "serve")]
+    Serve(crate::serve::ServeArgs),
+}
 
 /// Runs the parsed command line.
 ///
@@ -30,72 +65,6 @@ pub fn run(cli: Cli) -> Result<()> {
         #[cfg(feature = "serve")]
         Command::Serve(a) => crate::serve::run(&a),
     }
-}
-
-/// Builds the spline for `points` with the validated `shape`, naming the file
-/// and line of any fault.
-///
-/// # Errors
-///
-/// Rows of the wrong width, the library's refusals mapped to lines, and results
-/// that overflow a double.
-pub fn fit_points(points: &Points, shape: &Shape) -> Result<Fitted> {
-    check_columns(points, shape)?;
-    let built = model::build(&spec_of(points, shape));
-    checked(points, built)
-}
-
-fn check_columns(points: &Points, shape: &Shape) -> Result<()> {
-    match shape.mode {
-        Mode::Function => input::check_columns(points, &[2], "2 (x, y)"),
-        Mode::Curve => input::check_columns(points, &[2, 3], "2 or 3 coordinates"),
-    }
-}
-
-fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
-    FitSpec {
-        points: std::borrow::Cow::Borrowed(&points.coords),
-        dim: points.width,
-        mode: shape.mode,
-        closed: shape.closed,
-        param: shape.param.clone(),
-        alpha: shape.alpha,
-        alphas: shape.alphas.clone(),
-        through: shape.through,
-    }
-}
-
-/// Maps a library error to the input's lines and refuses non-finite results.
-fn checked(points: &Points, built: Result<Fitted, bzspline::Error>) -> Result<Fitted> {
-    let fitted = built.map_err(|e| input::explain(points, &e))?;
-    let finite = match &fitted {
-        // The segments' end points are the knot values (knot points).
-        Fitted::Function(s) => {
-            (0..s.len()).all(|k| {
-                s.segment(k)
-                    .is_some_and(|b| b.p.iter().flatten().all(|v| v.is_finite()))
-            }) && s
-                .tangent_points()
-                .iter()
-                .all(|(x, y)| x.is_finite() && y.is_finite())
-        }
-        Fitted::Curve(c) => {
-            (0..c.len()).all(|k| {
-                c.segment_points(k)
-                    .is_some_and(|p| p.iter().all(|v| v.is_finite()))
-            }) && c
-                .tangent_points()
-                .iter()
-                .all(|(t, p)| t.is_finite() && p.iter().all(|v| v.is_finite()))
-        }
-    };
-    if !finite {
-        bail!(
-            "{}: the spline's coefficients overflow a double (values too large)",
-            points.source
-        );
-    }
-    Ok(fitted)
 }
 
 /// A number as text that parses back to the same double: integers without a

@@ -5,6 +5,7 @@ use clap::Parser;
 
 mod cli;
 mod commands;
+mod fit;
 mod input;
 mod model;
 mod output;
@@ -15,7 +16,7 @@ mod smooth;
 mod topojson;
 
 fn main() {
-    let args = cli::Cli::parse();
+    let args = commands::Cli::parse();
     if let Err(e) = commands::run(args) {
         if output::is_broken_pipe(&e) {
             std::process::exit(0);

@@ -6,7 +6,7 @@ use clap::Args;
 
 use super::{read_overlay, render_png, render_svg, FigureArgs, PlotData};
 use crate::cli::{check_alpha, InputArgs, OutputArgs, ShapeArgs};
-use crate::commands::fit_points;
+use crate::fit::fit_points;
 use crate::model::{Fitted, Mode};
 use crate::{input, output};
 
