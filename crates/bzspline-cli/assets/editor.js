@@ -7,7 +7,8 @@
   const ALPHA_MIN = 1 / 3;
   const ALPHA_MAX = 2 / 3;
   const COMB_SAMPLES = 24;
-  const EXAMPLE_1 = [1, 3, 3, 1, 2, 7, 1.5, 1, 10, 2, 1.5].map((f, i) => [i + 1, f]);
+  // The paper's Example 1, as the server puts it into the page.
+  const EXAMPLE_1 = JSON.parse(document.getElementById('example-1').textContent);
 
   const $ = (id) => document.getElementById(id);
   const svg = $('canvas');

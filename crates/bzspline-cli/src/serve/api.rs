@@ -3,10 +3,9 @@
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use bzspline::Param;
+use bzspline::{BezierPieces, CubicBez, Param};
 
 use crate::model::{self, FitSpec, Mode};
-use bzspline::CubicBez;
 
 /// A refused request: the HTTP status and a message for the JSON body.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -212,33 +211,24 @@ pub fn fit(req: &FitRequest) -> Result<Value, ApiError> {
     let mut out = model::fit_json(&fitted);
     out["build_ms"] = json!(build_ms);
     if req.samples > 0 {
-        let segs = segments_of(&out);
-        out["comb"] = comb(&segs, req.samples);
+        out["comb"] = comb(fitted.pieces(), req.samples);
     }
     Ok(out)
 }
 
-/// The plane segments listed under `segments` in a fit's JSON.
-fn segments_of(fit: &Value) -> Vec<CubicBez<2>> {
-    let coord = |v: &Value| v.as_f64().unwrap_or(0.0);
-    fit["segments"]
-        .as_array()
-        .map(|segs| {
-            segs.iter()
-                .map(|s| {
-                    CubicBez::new(core::array::from_fn(|j| [coord(&s[j][0]), coord(&s[j][1])]))
-                })
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
-/// Samples of the signed curvature along the segments: `[x, y, nx, ny, k]`
-/// with the unit normal `(nx, ny)` (the tangent turned left) and the
-/// curvature `k` at the point `(x, y)`, `samples + 1` per segment.
-fn comb(segs: &[CubicBez<2>], samples: usize) -> Value {
-    let mut teeth = Vec::with_capacity(segs.len().saturating_mul(samples.saturating_add(1)));
-    for s in segs {
+/// Samples of the signed curvature along the planar segments of a fit:
+/// `[x, y, nx, ny, k]` with the unit normal `(nx, ny)` (the tangent turned
+/// left) and the curvature `k` at the point `(x, y)`, `samples + 1` per
+/// segment (none for a curve in space).
+fn comb(pieces: &dyn BezierPieces, samples: usize) -> Value {
+    let count = pieces.piece_count();
+    let mut teeth = Vec::with_capacity(count.saturating_mul(samples.saturating_add(1)));
+    let mut c = [0.0; 8];
+    for k in 0..count {
+        if !pieces.piece_into(k, &mut c) {
+            continue;
+        }
+        let s = CubicBez::new(core::array::from_fn(|j| [c[2 * j], c[2 * j + 1]]));
         for i in 0..=samples {
             let t = i as f64 / samples as f64;
             let p = s.eval(t);
@@ -301,6 +291,25 @@ mod tests {
         let e = fit(&req).unwrap_err();
         assert_eq!(e.status, 422);
         assert!(e.message.contains("outside [1/3, 2/3]"), "{}", e.message);
+    }
+
+    #[test]
+    fn comb_teeth_lie_on_the_fitted_curve() {
+        let body = br#"{"points": [[0,1],[1,3],[2,0],[4,2]], "samples": 5}"#;
+        let req = parse(body, LIMITS).unwrap();
+        let v = fit(&req).unwrap();
+        let teeth = v["comb"].as_array().unwrap();
+        assert_eq!(teeth.len(), 3 * 6, "{v}");
+        let s = bzspline::Spline::new(&[0.0, 1.0, 2.0, 4.0], &[1.0, 3.0, 0.0, 2.0]).unwrap();
+        for t in teeth {
+            let (x, y) = (t[0].as_f64().unwrap(), t[1].as_f64().unwrap());
+            assert!((s.eval(x).unwrap() - y).abs() < 1e-12, "({x}, {y})");
+            let (nx, ny) = (t[2].as_f64().unwrap(), t[3].as_f64().unwrap());
+            assert!((nx.hypot(ny) - 1.0).abs() < 1e-12);
+            // The normal is the tangent (1, S') turned left.
+            let d = s.deriv(x, 1).unwrap();
+            assert!((nx * 1.0 + ny * d).abs() < 1e-9 && ny > 0.0);
+        }
     }
 
     #[test]

@@ -141,7 +141,7 @@ fn router(state: Arc<AppState>, guard: guard::HostGuard) -> Router {
     Router::new()
         .route(
             "/",
-            get(|| async { asset(EDITOR_HTML, "text/html; charset=utf-8") }),
+            get(|| async { asset(editor_page(), "text/html; charset=utf-8") }),
         )
         .route(
             "/editor.js",
@@ -165,6 +165,18 @@ fn router(state: Arc<AppState>, guard: guard::HostGuard) -> Router {
             },
         ))
         .with_state(state)
+}
+
+/// The editor's page with the paper's Example 1 (the command's own copy of
+/// it) in its data block.
+fn editor_page() -> &'static str {
+    static PAGE: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    PAGE.get_or_init(|| {
+        let example = crate::input::example(1);
+        let points: Vec<&[f64]> = example.coords.chunks(example.width).collect();
+        let json = serde_json::to_string(&points).unwrap_or_else(|_| "[]".to_owned());
+        EDITOR_HTML.replace("EXAMPLE_1_POINTS", &json)
+    })
 }
 
 fn asset(body: &'static str, mime: &'static str) -> Response {
