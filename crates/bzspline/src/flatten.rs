@@ -11,7 +11,7 @@
 //! last are the curve's ends exactly.
 //!
 //!
-//! [`Spline::flatten`](crate::Spline::flatten) takes equal steps per piece; [`Curve::flatten`]
+//! [`Spline::flatten`](crate::Spline::flatten) takes equal steps per piece; [`Curve::flatten`](crate::Curve::flatten)
 //! (module `curve::flatten`) adds the chord search over runs of segments of a
 //! planar curve.
 

@@ -69,16 +69,13 @@ pub struct Extremum {
 ///
 /// # Memory
 ///
-/// A spline of `N` knots holds four vectors: the knots, the control values and
-/// the alphas (8 bytes a point each, for [`Spline::knots`], [`Spline::values`]
-/// and [`Spline::alphas`]) and the four coefficients of each piece (32 bytes a
-/// piece, aligned to 32 bytes), plus every 16th knot for the batch search:
-/// 56.5 bytes a point, see [`Spline::heap_bytes`]. The first batch of
-/// queries in random order at least `N / 32` long forms an index of those
-/// knots (a quarter of a byte a point), which later batches and single
-/// queries reuse until the next build: at `N = 10^6` it takes a quarter to
-/// half a millisecond, and makes a random query some 30 % faster when the
-/// knots are spread evenly.
+/// A spline of `N` knots holds the knots, the control values and the alphas
+/// (8 bytes a point each, for [`Spline::knots`], [`Spline::values`] and
+/// [`Spline::alphas`]), the four coefficients of each piece (32 bytes) and
+/// every 16th knot for the search: 56.5 bytes a point, see
+/// [`Spline::heap_bytes`]. The first long batch of queries in random order
+/// adds an index of those knots (a quarter of a byte a point), kept until the
+/// next build.
 ///
 /// # Examples
 ///
@@ -814,11 +811,8 @@ impl Spline {
 
     /// Evaluates the derivative of order `order` (0 for values) at every `xs[i]`
     /// into `out[i]`, with the same result as [`Spline::deriv`] at each point.
-    /// The queries are taken in blocks of 32: a sorted block walks from the
-    /// previous piece (one pass over sorted queries), an unsorted one is located
-    /// by a branchless binary search over every 16th knot (or over the one or
-    /// two of them that the search index leaves, see [`Spline`]'s notes on
-    /// memory), then over the 16 knots of one stretch.
+    /// Queries in increasing order are the fastest (one pass over the pieces);
+    /// any order is accepted.
     ///
     /// # Errors
     ///

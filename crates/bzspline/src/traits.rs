@@ -144,7 +144,7 @@ pub trait Bounds {
 /// in Rust's shortest round-trip form, and ` Z` when `closed`. Returns
 /// `Ok(false)`, having written the pieces before it, at the first piece with a
 /// control point that is not finite (near `f64::MAX` the inner control points
-/// can overflow; [`Curve::to_svg_path`] reports that as an error), and for a
+/// can overflow; [`Curve::to_svg_path`](crate::Curve::to_svg_path) reports that as an error), and for a
 /// curve that is not planar.
 ///
 /// # Errors
