@@ -372,7 +372,7 @@ impl Curve {
     /// use bzspline::{Curve, DEFAULT_ACCURACY};
     /// let c = Curve::open(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])?;
     /// let t = c.params_at_lengths(&[0.0, 1.0, 2.0], DEFAULT_ACCURACY)?;
-    /// assert!((t[1] - 1.0).abs() < 1e-9 && t[2] == 2.0);
+    /// assert!((t[1] - 1.0).abs() < 1e-9 && (t[2] - 2.0).abs() < 1e-9);
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
