@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
 
 use crate::model::Mode;
@@ -69,20 +69,24 @@ pub enum InputFormat {
 /// The shape of the spline.
 #[derive(Debug, Clone, Args)]
 pub struct ShapeArgs {
-    /// One shape parameter for every interval, in [1/3, 2/3] (default 1/2).
+    /// One shape parameter for every interval, in [1/3, 2/3] (default 1/2); a
+    /// decimal or a fraction (`1/3`, `2/3`).
     #[arg(
         long,
         value_name = "A",
         allow_hyphen_values = true,
-        conflicts_with = "alphas"
+        conflicts_with = "alphas",
+        value_parser = parse_alpha
     )]
     pub alpha: Option<f64>,
-    /// One shape parameter per interval, comma-separated (N-1 values for N points).
+    /// One shape parameter per interval, comma-separated (N-1 values for N
+    /// points), each a decimal or a fraction.
     #[arg(
         long,
         value_name = "A1,...",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = crate::model::parse_fraction
     )]
     pub alphas: Option<Vec<f64>>,
     /// Treat rows as control points of a parametric curve (2D or 3D) instead of
@@ -183,7 +187,8 @@ pub struct EvalArgs {
         value_delimiter = ',',
         allow_hyphen_values = true,
         required_unless_present = "at_file",
-        conflicts_with = "at_file"
+        conflicts_with = "at_file",
+        value_parser = finite
     )]
     pub at: Option<Vec<f64>>,
     /// Read the abscissas from a file, one per line (`#` comments allowed).
@@ -212,13 +217,16 @@ pub struct SampleArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Number of points, evenly spaced in x (in the parameter for curves).
-    #[arg(long, short = 'n', value_name = "K", group = "spacing")]
+    #[arg(long, short = 'n', value_name = "K", group = "spacing",
+          value_parser = at_least_two)]
     pub n: Option<usize>,
     /// Distance along the curve between consecutive points.
-    #[arg(long, value_name = "S", group = "spacing")]
+    #[arg(long, value_name = "S", group = "spacing", value_parser = positive,
+          allow_negative_numbers = true)]
     pub step: Option<f64>,
     /// Largest distance between the curve and the polyline through the points.
-    #[arg(long, value_name = "T", group = "spacing")]
+    #[arg(long, value_name = "T", group = "spacing", value_parser = positive,
+          allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
     /// Also print this derivative (1 or 2); repeat or give a list.
     #[arg(long, value_name = "K", value_delimiter = ',',
@@ -243,7 +251,7 @@ pub struct SmoothArgs {
     /// Largest distance between the smooth curve and the output polyline, in
     /// coordinate units. Default: 1e-4 of the diagonal of the data's bounding
     /// box (of each line's, for newline-delimited GeoJSON).
-    #[arg(long, value_name = "T", value_parser = positive)]
+    #[arg(long, value_name = "T", value_parser = positive, allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
     /// Smooth every ring and line on its own, as if it had no neighbours (the
     /// borders that features share are no longer shared afterwards).
@@ -251,11 +259,11 @@ pub struct SmoothArgs {
     pub independent: bool,
     /// Merge positions closer than EPS before finding the shared borders
     /// (for borders digitised twice with small differences).
-    #[arg(long, value_name = "EPS", value_parser = non_negative)]
+    #[arg(long, value_name = "EPS", value_parser = non_negative, allow_negative_numbers = true)]
     pub snap: Option<f64>,
     /// Keep every position where the line turns by more than DEG degrees as a
     /// sharp corner (street blocks, buildings, survey lines).
-    #[arg(long, value_name = "DEG", value_parser = degrees)]
+    #[arg(long, value_name = "DEG", value_parser = degrees, allow_negative_numbers = true)]
     pub keep_angle: Option<f64>,
     /// Pass through every vertex (the interpolating variant) instead of
     /// cutting the corners: the output keeps every input position.
@@ -298,6 +306,14 @@ impl UsageError {
     }
 }
 
+/// Returns a [`UsageError`] (exit code 2) with the formatted message.
+macro_rules! usage {
+    ($($arg:tt)*) => {
+        return Err($crate::cli::UsageError::new(&format!($($arg)*)).into())
+    };
+}
+pub(crate) use usage;
+
 impl std::fmt::Display for UsageError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&self.0)
@@ -310,6 +326,36 @@ fn parse_number(s: &str) -> Result<f64, String> {
     s.trim()
         .parse::<f64>()
         .map_err(|_| format!("'{s}' is not a number"))
+}
+
+fn finite(s: &str) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number (got {s})"))
+    }
+}
+
+fn at_least_two(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 2 => Ok(n),
+        _ => Err(format!("must be a whole number of at least 2 (got {s})")),
+    }
+}
+
+/// A shape parameter: a decimal or a fraction `p/q`, in [1/3, 2/3].
+///
+/// # Errors
+///
+/// Text that is no number or fraction, or a value outside the range.
+pub fn parse_alpha(s: &str) -> Result<f64, String> {
+    let v = crate::model::parse_fraction(s)?;
+    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{} is outside [1/3, 2/3]", s.trim()))
+    }
 }
 
 fn positive(s: &str) -> Result<f64, String> {
@@ -373,7 +419,7 @@ impl ShapeArgs {
         }
         let curve = self.curve || self.closed;
         if !curve && self.param != ParamArg::Uniform {
-            bail!("--param applies to curves only: add --curve");
+            usage!("--param applies to curves only: add --curve");
         }
         Ok(Shape {
             mode: if curve { Mode::Curve } else { Mode::Function },
@@ -389,10 +435,10 @@ impl ShapeArgs {
 /// Rejects a non-finite alpha or one outside [1/3, 2/3] before any work.
 pub fn check_alpha(name: &str, a: f64) -> Result<()> {
     if !a.is_finite() {
-        bail!("{name} = {a} is not a finite number");
+        usage!("{name} = {a} is not a finite number");
     }
     if !(bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
-        bail!("{name} = {a} is outside [1/3, 2/3]");
+        usage!("{name} = {a} is outside [1/3, 2/3]");
     }
     Ok(())
 }
@@ -419,6 +465,7 @@ impl From<ExtrapolateArg> for bzspline::Extrapolate {
 
 #[cfg(test)]
 mod tests {
+    use super::UsageError;
     use crate::commands::{Cli, Command};
     use clap::CommandFactory;
     use clap::Parser;
@@ -435,12 +482,25 @@ mod tests {
     }
 
     #[test]
-    fn shape_validation_names_the_bad_alpha() {
+    fn alphas_are_parsed_as_fractions_and_checked_by_clap() {
+        let cli = Cli::try_parse_from(["bzspline", "fit", "--alphas", "1/3,2/3,0.5"]).unwrap();
+        let Command::Fit(f) = cli.command else {
+            panic!("parsed as another command")
+        };
+        let shape = f.shape.validate().unwrap();
+        assert_eq!(
+            shape.alphas,
+            Some(vec![bzspline::ALPHA_MIN, 2.0 / 3.0, 0.5])
+        );
+        let e = Cli::try_parse_from(["bzspline", "fit", "--alpha", "0.9"]).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("0.9 is outside [1/3, 2/3]"), "{e}");
         let cli = Cli::try_parse_from(["bzspline", "fit", "--alphas", "0.5,0.9"]).unwrap();
         let Command::Fit(f) = cli.command else {
             panic!("parsed as another command")
         };
-        let e = f.shape.validate().unwrap_err().to_string();
-        assert!(e.contains("--alphas value 2 = 0.9"), "{e}");
+        let e = f.shape.validate().unwrap_err();
+        assert!(e.downcast_ref::<UsageError>().is_some());
+        assert!(e.to_string().contains("--alphas value 2 = 0.9"), "{e}");
     }
 }

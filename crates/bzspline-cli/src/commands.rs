@@ -9,7 +9,7 @@ use clap::{Parser, Subcommand};
 use serde_json::{json, Value};
 
 use crate::cli::{
-    EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs, TableFormat,
+    usage, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs, TableFormat,
 };
 use crate::fit::fit_points;
 use crate::input;
@@ -192,13 +192,13 @@ fn row_at(
 fn eval(a: &EvalArgs) -> Result<()> {
     let shape = a.shape.validate()?;
     if shape.mode == Mode::Curve && a.extrapolate != ExtrapolateArg::Error {
-        bail!("--extrapolate applies to y(x) only (a closed curve is periodic)");
+        usage!("--extrapolate applies to y(x) only (a closed curve is periodic)");
     }
     let (queries, qpos): (Vec<f64>, Vec<String>) = match (&a.at, &a.at_file) {
         (Some(xs), _) => {
             for (i, x) in xs.iter().enumerate() {
                 if !x.is_finite() {
-                    bail!("--at value {} = {x} is not a finite number", i + 1);
+                    usage!("--at value {} = {x} is not a finite number", i + 1);
                 }
             }
             let pos = (1..=xs.len()).map(|i| format!("--at value {i}")).collect();
@@ -212,7 +212,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
             let pos = (0..t.len()).map(|i| t.at(i)).collect();
             (t.column(0), pos)
         }
-        (None, None) => bail!("give --at X1,... or --at-file FILE"),
+        (None, None) => usage!("give --at X1,... or --at-file FILE"),
     };
     let points = input::load(&a.input)?;
     let fitted = match fit_points(&points, &shape)? {
@@ -286,13 +286,13 @@ fn sample(a: &SampleArgs) -> Result<()> {
     let shape = a.shape.validate()?;
     if let Some(n) = a.n {
         if n < 2 {
-            bail!("--n must be at least 2 (got {n})");
+            usage!("--n must be at least 2 (got {n})");
         }
     }
     for (name, v) in [("--tolerance", a.tolerance), ("--step", a.step)] {
         if let Some(v) = v {
             if !(v.is_finite() && v > 0.0) {
-                bail!("{name} must be a positive number (got {v})");
+                usage!("{name} must be a positive number (got {v})");
             }
         }
     }
@@ -320,7 +320,7 @@ fn sample(a: &SampleArgs) -> Result<()> {
     } else if let Some(step) = a.step {
         params_by_step(&fitted, step).map_err(lib)?
     } else {
-        bail!("give one of --n K, --step S or --tolerance T");
+        usage!("give one of --n K, --step S or --tolerance T");
     };
     let mut rows = Vec::with_capacity(params.len());
     for p in params {

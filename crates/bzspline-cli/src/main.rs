@@ -16,7 +16,24 @@ mod smooth;
 mod topojson;
 
 fn main() {
-    let args = commands::Cli::parse();
+    let args = match commands::Cli::try_parse() {
+        Ok(args) => args,
+        // --help and --version print and exit 0.
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            // One line, as every other error: clap's message up to its usage
+            // summary, which names the option and the value.
+            let text = e.render().to_string();
+            let parts: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .collect();
+            eprintln!("{} (see --help)", parts.join(" "));
+            std::process::exit(2);
+        }
+    };
     if let Err(e) = commands::run(args) {
         if output::is_broken_pipe(&e) {
             std::process::exit(0);

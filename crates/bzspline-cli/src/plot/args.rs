@@ -41,7 +41,7 @@ pub struct FigureArgs {
     #[arg(long)]
     pub equal_aspect: bool,
     /// Draw one spline per shape parameter in the list, e.g. `1/3,1/2,2/3`.
-    #[arg(long, value_name = "A,...", value_delimiter = ',', value_parser = parse_fraction)]
+    #[arg(long, value_name = "A,...", value_delimiter = ',', value_parser = crate::cli::parse_alpha)]
     pub alpha_sweep: Vec<f64>,
     /// Add the curves of a JSON file to the figure (repeatable):
     /// `[{"label": "...", "points": [[x, y], ...]}, ...]`.
@@ -78,27 +78,6 @@ fn parse_scale(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(v) if v.is_finite() && v > 0.0 && v <= 16.0 => Ok(v),
         _ => Err(format!("{s:?} is not a number in (0, 16]")),
-    }
-}
-
-/// A shape parameter written as a decimal or a fraction `p/q` (`1/3`, `0.5`).
-///
-/// # Errors
-///
-/// The text is neither a finite number nor a fraction with a non-zero denominator.
-pub fn parse_fraction(s: &str) -> Result<f64, String> {
-    let item = s.trim();
-    let v = match item.split_once('/') {
-        Some((p, q)) => match (p.trim().parse::<f64>(), q.trim().parse::<f64>()) {
-            (Ok(p), Ok(q)) if q != 0.0 => p / q,
-            _ => f64::NAN,
-        },
-        None => item.parse::<f64>().unwrap_or(f64::NAN),
-    };
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(format!("{item:?} is not a number or a fraction p/q"))
     }
 }
 
@@ -177,7 +156,8 @@ mod tests {
         assert_eq!(cli.plot.alpha_sweep, vec![1.0 / 3.0, 0.5, 2.0 / 3.0]);
         assert!(Cli::try_parse_from(["t", "--width", "0"]).is_err());
         assert!(Cli::try_parse_from(["t", "--scale", "nan"]).is_err());
-        assert!(parse_fraction("1/0").is_err() && parse_fraction("x").is_err());
+        assert!(crate::model::parse_fraction("1/0").is_err());
+        assert!(Cli::try_parse_from(["t", "--alpha-sweep", "0.5,0.7"]).is_err());
         let e = Cli::try_parse_from(["t", "--alpha-sweep", "0.5,x"])
             .err()
             .unwrap();

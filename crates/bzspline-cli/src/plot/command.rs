@@ -1,11 +1,11 @@
 //! The `plot` subcommand: reads and fits the points like the other commands, then
 //! draws the figure as SVG or PNG.
 
-use anyhow::{anyhow, bail, Result};
+use anyhow::{anyhow, Result};
 use clap::Args;
 
 use super::{read_overlay, render_png, render_svg, FigureArgs, PlotData};
-use crate::cli::{check_alpha, InputArgs, OutputArgs, ShapeArgs};
+use crate::cli::{check_alpha, usage, InputArgs, OutputArgs, ShapeArgs};
 use crate::fit::fit_points;
 use crate::model::{Fitted, Mode};
 use crate::{input, output};
@@ -45,7 +45,7 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         data.push(plot_data(&fit_points(&points, &shape)?, label)?);
     } else {
         if shape.alpha.is_some() || shape.alphas.is_some() {
-            bail!("--alpha-sweep draws one curve per alpha: leave out --alpha and --alphas");
+            usage!("--alpha-sweep draws one curve per alpha: leave out --alpha and --alphas");
         }
         for (i, &alpha) in sweep.iter().enumerate() {
             check_alpha(&format!("--alpha-sweep value {}", i + 1), alpha)?;

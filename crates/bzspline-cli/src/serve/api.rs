@@ -99,6 +99,17 @@ fn number(v: &Value, what: impl Fn() -> String) -> Result<f64, ApiError> {
     }
 }
 
+/// A shape parameter: a number, or a string holding a decimal or a fraction
+/// (`"1/3"`).
+fn alpha_of(v: &Value, what: impl Fn() -> String) -> Result<f64, ApiError> {
+    match v {
+        Value::String(text) => {
+            model::parse_fraction(text).map_err(|e| ApiError::new(422, format!("{}: {e}", what())))
+        }
+        _ => number(v, what),
+    }
+}
+
 /// Parses and checks a request body.
 ///
 /// # Errors
@@ -160,14 +171,14 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
     };
     let alpha = match &raw.alpha {
         None | Some(Value::Null) => None,
-        Some(v) => Some(number(v, || "alpha".to_owned())?),
+        Some(v) => Some(alpha_of(v, || "alpha".to_owned())?),
     };
     let alphas = match &raw.alphas {
         None => None,
         Some(list) => Some(
             list.iter()
                 .enumerate()
-                .map(|(k, v)| number(v, || format!("alphas[{k}]")))
+                .map(|(k, v)| alpha_of(v, || format!("alphas[{k}]")))
                 .collect::<Result<Vec<f64>, ApiError>>()?,
         ),
     };
@@ -283,6 +294,21 @@ mod tests {
             422
         );
         assert_eq!(status(r#"{"points": [[0,1],[1,2]], "samples": 60}"#), 422);
+    }
+
+    #[test]
+    fn alphas_may_be_fractions() {
+        let body = br#"{"points": [[0,1],[1,2],[2,0]], "alpha": "1/3"}"#;
+        let req = parse(body, LIMITS).unwrap();
+        assert_eq!(req.spec.alpha, Some(bzspline::ALPHA_MIN));
+        let body = br#"{"points": [[0,1],[1,2],[2,0]], "alphas": ["2/3", 0.5]}"#;
+        let req = parse(body, LIMITS).unwrap();
+        assert_eq!(req.spec.alphas, Some(vec![2.0 / 3.0, 0.5]));
+        assert!(fit(&req).is_ok());
+        let body = br#"{"points": [[0,1],[1,2],[2,0]], "alpha": "1/0"}"#;
+        let e = parse(body, LIMITS).unwrap_err();
+        assert_eq!(e.status, 422);
+        assert!(e.message.starts_with("alpha: "), "{}", e.message);
     }
 
     #[test]
