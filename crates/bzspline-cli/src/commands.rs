@@ -67,15 +67,11 @@ pub fn run(cli: Cli) -> Result<()> {
     }
 }
 
-/// A number as text that parses back to the same double: integers without a
-/// fraction (`3`), others in Rust's shortest round-trip form (`0.1`, `1e-7`).
+/// A number as text that parses back to the same double, as every output of
+/// the command writes it ([`bzspline::Shortest`]).
 #[must_use]
 pub fn num(v: f64) -> String {
-    let s = format!("{v:?}");
-    match s.strip_suffix(".0") {
-        Some(int) => int.to_owned(),
-        None => s,
-    }
+    bzspline::Shortest(v).to_string()
 }
 
 fn fit(a: &FitArgs) -> Result<()> {

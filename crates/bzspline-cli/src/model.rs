@@ -390,6 +390,25 @@ pub fn write_json_lines<W: std::io::Write>(v: &impl Serialize, w: W) -> std::io:
     ser.into_inner().write_all(b"\n")
 }
 
+/// Writes `v` as compact JSON, numbers as every output writes them.
+///
+/// # Errors
+///
+/// Write errors of `w`.
+pub fn write_json_compact<W: std::io::Write>(w: W, v: &impl Serialize) -> std::io::Result<()> {
+    let mut ser = serde_json::Serializer::with_formatter(w, Compact);
+    v.serialize(&mut ser).map_err(std::io::Error::from)
+}
+
+/// serde_json's compact layout with numbers in their shortest form.
+struct Compact;
+
+impl serde_json::ser::Formatter for Compact {
+    fn write_f64<W: ?Sized + std::io::Write>(&mut self, w: &mut W, v: f64) -> std::io::Result<()> {
+        write!(w, "{}", bzspline::Shortest(v))
+    }
+}
+
 /// A JSON layout: the keys of the outermost object on lines of their own,
 /// everything else compact.
 #[derive(Default)]
@@ -433,6 +452,11 @@ impl serde_json::ser::Formatter for LinesFormatter {
 
     fn begin_object_value<W: ?Sized + std::io::Write>(&mut self, w: &mut W) -> std::io::Result<()> {
         w.write_all(if self.depth == 1 { b": " } else { b":" })
+    }
+
+    /// Numbers as every output writes them ([`bzspline::Shortest`]).
+    fn write_f64<W: ?Sized + std::io::Write>(&mut self, w: &mut W, v: f64) -> std::io::Result<()> {
+        write!(w, "{}", bzspline::Shortest(v))
     }
 }
 

@@ -84,6 +84,7 @@ pub mod flatten;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
 pub(crate) mod method;
+mod num;
 mod pieces;
 mod poly;
 mod polyline;
@@ -96,6 +97,7 @@ pub use bezier::CubicBez;
 pub use curve::{BBox, Curve, CurveBuilder, Nearest, Param, Repeats, DEFAULT_ACCURACY};
 pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
+pub use num::Shortest;
 pub use spline::{
     Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
     MIN_RELATIVE_INTERVAL,

@@ -26,6 +26,7 @@
 //! ```
 
 use crate::error::Error;
+use crate::num::Shortest;
 use crate::polyline::Polyline;
 
 /// The axis-aligned box spanned by a curve.
@@ -141,7 +142,7 @@ pub trait Bounds {
 
 /// Writes the SVG path data of a planar curve's pieces into `out`, formed while
 /// it is written: `M x0 y0` and one `C x1 y1 x2 y2 x3 y3` a piece, each number
-/// in Rust's shortest round-trip form, and ` Z` when `closed`. Returns
+/// as [`Shortest`] writes it, and ` Z` when `closed`. Returns
 /// `Ok(false)`, having written the pieces before it, at the first piece with a
 /// control point that is not finite (near `f64::MAX` the inner control points
 /// can overflow; [`Curve::to_svg_path`](crate::Curve::to_svg_path) reports that as an error), and for a
@@ -172,13 +173,12 @@ pub fn write_svg_path<W: std::fmt::Write>(
             return Ok(false);
         }
         if k == 0 {
-            write!(out, "M {} {}", p[0], p[1])?;
+            write!(out, "M {} {}", Shortest(p[0]), Shortest(p[1]))?;
         }
-        write!(
-            out,
-            " C {} {} {} {} {} {}",
-            p[2], p[3], p[4], p[5], p[6], p[7]
-        )?;
+        out.write_str(" C")?;
+        for v in &p[2..] {
+            write!(out, " {}", Shortest(*v))?;
+        }
     }
     if closed {
         out.write_str(" Z")?;

@@ -151,7 +151,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
 }
 
 fn write_line(sink: &mut Sink, v: &Value) -> Result<()> {
-    serde_json::to_writer(&mut *sink, v).context("writing output")?;
+    crate::model::write_json_compact(&mut *sink, v).context("writing output")?;
     sink.write_all(b"\n").context("writing output")
 }
 
