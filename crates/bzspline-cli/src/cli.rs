@@ -24,7 +24,8 @@ pub struct InputArgs {
     /// Use the paper's Example 1 (11 points on [1, 11]) or Example 2 (a semicircle).
     #[arg(long, value_name = "1|2", value_parser = clap::value_parser!(u8).range(1..=2))]
     pub example: Option<u8>,
-    /// Input format; by default from the file's extension, else CSV.
+    /// Input format; by default from the file's extension, else from the content
+    /// (`{` or `[` starts JSON, GeoJSON or TopoJSON, anything else is a table).
     #[arg(long, value_enum, value_name = "FORMAT")]
     pub input_format: Option<InputFormat>,
     /// Refuse inputs with more than N control points (a table's rows, a line's

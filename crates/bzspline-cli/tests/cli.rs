@@ -1133,3 +1133,42 @@ fn through_passes_the_curve_through_the_points() {
 fn input_example1() -> Vec<f64> {
     vec![1.0, 3.0, 3.0, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5]
 }
+
+/// Standard input in any format the command reads, told apart by its content.
+#[test]
+fn standard_input_is_sniffed() {
+    let geojson = br#"{"type": "Feature", "geometry": {"type": "LineString",
+        "coordinates": [[0,0],[1,2],[3,2],[4,0]]}, "properties": {}}"#;
+    let json = b"[[0,0],[1,2],[3,2],[4,0]]";
+    let csv = b"0,0\n1,2\n3,2\n4,0\n";
+    let mut outs = Vec::new();
+    for input in [&geojson[..], &json[..], &csv[..]] {
+        let o = run(&["fit", "--curve", "--format", "svg"], Some(input));
+        assert_eq!(o.code, 0, "{}", o.stderr);
+        outs.push(o.stdout);
+    }
+    assert!(outs.iter().all(|o| *o == outs[0]), "{outs:?}");
+    let topo = br#"{"type":"Topology","arcs":[],"objects":{}}"#;
+    let o = run(&["fit"], Some(&topo[..]));
+    assert_eq!(o.code, 1);
+    assert!(o.stderr.contains("TopoJSON"), "{}", o.stderr);
+}
+
+/// x that runs back and forth in two columns is a path, not a function: the
+/// error says how to read it.
+#[test]
+fn a_polygon_read_as_a_function_suggests_curve() {
+    assert_data_error(
+        &["fit"],
+        Some(b"0,0\n2,0\n1,2\n"),
+        &["<stdin>:3", "x must be strictly increasing", "--curve"],
+    );
+    assert_data_error(
+        &["fit"],
+        Some(b"0,0\n2,0\n2,2\n0,2\n0,0\n"),
+        &["--closed", "leave out the last row"],
+    );
+    // Sorted x with a repeat is no path.
+    let o = run(&["fit"], Some(b"0,0\n2,0\n2,1\n"));
+    assert!(!o.stderr.contains("--curve"), "{}", o.stderr);
+}

@@ -37,9 +37,10 @@ pub fn explain(points: &Points, e: &bzspline::Error) -> anyhow::Error {
             previous,
             value,
         } => anyhow!(
-            "{}: x = {value} does not exceed x = {previous} on {}: x must be strictly increasing",
+            "{}: x = {value} does not exceed x = {previous} on {}: x must be strictly increasing{}",
             points.at(index),
-            points.pos_words(index.saturating_sub(1))
+            points.pos_words(index.saturating_sub(1)),
+            curve_hint(points)
         ),
         E::IntervalTooSmall {
             interval,
@@ -80,5 +81,29 @@ pub fn explain(points: &Points, e: &bzspline::Error) -> anyhow::Error {
             points.pos_words(0)
         ),
         ref other => anyhow!("{}: {other}", points.source),
+    }
+}
+
+/// For two columns whose x runs back and forth (the corners of a polygon or
+/// the points of a path rather than samples of a function), the options that
+/// read them as a curve; nothing otherwise.
+fn curve_hint(points: &Points) -> &'static str {
+    if points.width != 2 || points.len < 3 {
+        return "";
+    }
+    let x = |i: usize| points.coords[2 * i];
+    let (mut up, mut down) = (false, false);
+    for i in 1..points.len {
+        up |= x(i) > x(i - 1);
+        down |= x(i) < x(i - 1);
+    }
+    if !(up && down) {
+        return "";
+    }
+    let last = 2 * (points.len - 1);
+    if points.coords[..2] == points.coords[last..last + 2] {
+        " (the rows look like a closed polygon: add --closed and leave out the last row, which repeats the first)"
+    } else {
+        " (the rows look like points along a path: --curve reads them as one)"
     }
 }

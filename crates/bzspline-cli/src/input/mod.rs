@@ -258,22 +258,70 @@ pub fn read_source(file: Option<&Path>, max_bytes: u64) -> Result<(String, Vec<u
 /// The format of `file`: the explicit one, else by extension, else CSV.
 #[must_use]
 pub fn format_of(file: Option<&Path>, explicit: Option<InputFormat>) -> InputFormat {
-    if let Some(f) = explicit {
-        return f;
-    }
+    explicit
+        .or_else(|| format_by_extension(file))
+        .unwrap_or(InputFormat::Csv)
+}
+
+/// The format a file's extension names, if it names one.
+fn format_by_extension(file: Option<&Path>) -> Option<InputFormat> {
     let ext = file
         .and_then(Path::extension)
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     match ext.as_deref() {
-        Some("tsv" | "tab") => InputFormat::Tsv,
-        Some("json") => InputFormat::Json,
-        Some("geojson") => InputFormat::Geojson,
-        Some("topojson") => InputFormat::Topojson,
-        Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => InputFormat::Geojsonseq,
+        Some("csv") => Some(InputFormat::Csv),
+        Some("tsv" | "tab") => Some(InputFormat::Tsv),
+        Some("json") => Some(InputFormat::Json),
+        Some("geojson") => Some(InputFormat::Geojson),
+        Some("topojson") => Some(InputFormat::Topojson),
+        Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => Some(InputFormat::Geojsonseq),
+        _ => None,
+    }
+}
+
+/// The format of data that no option or extension names (standard input, a
+/// `.txt` file): a record separator starts newline-delimited GeoJSON; `{` or
+/// `[` starts JSON, which is GeoJSON or TopoJSON when a `"type"` of theirs
+/// appears in its first 64 KiB; anything else is a table.
+#[must_use]
+pub fn sniff(bytes: &[u8]) -> InputFormat {
+    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let Some(&first) = text.iter().find(|b| !b.is_ascii_whitespace()) else {
+        return InputFormat::Csv;
+    };
+    match first {
+        0x1e => InputFormat::Geojsonseq,
+        b'{' | b'[' => {
+            let head = String::from_utf8_lossy(&text[..text.len().min(1 << 16)]);
+            let squeezed: String = head.chars().filter(|c| !c.is_whitespace()).collect();
+            if squeezed.contains("\"type\":\"Topology\"") {
+                InputFormat::Topojson
+            } else if GEOJSON_TYPES
+                .iter()
+                .any(|t| squeezed.contains(&format!("\"type\":\"{t}\"")))
+            {
+                InputFormat::Geojson
+            } else {
+                InputFormat::Json
+            }
+        }
         _ => InputFormat::Csv,
     }
 }
+
+/// The `type` values of GeoJSON objects.
+const GEOJSON_TYPES: [&str; 9] = [
+    "FeatureCollection",
+    "Feature",
+    "Point",
+    "MultiPoint",
+    "LineString",
+    "MultiLineString",
+    "Polygon",
+    "MultiPolygon",
+    "GeometryCollection",
+];
 
 /// Loads the points named by the input arguments.
 ///
@@ -288,7 +336,11 @@ pub fn load(args: &InputArgs) -> Result<Points> {
     let limits = Limits::of(args);
     let (name, bytes) = read_source(file, limits.max_bytes)?;
     let max = limits.max_points;
-    match format_of(file, args.input_format) {
+    let format = args
+        .input_format
+        .or_else(|| format_by_extension(file))
+        .unwrap_or_else(|| sniff(&bytes));
+    match format {
         InputFormat::Csv => parse_table(&name, &bytes, None, max),
         InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t'), max),
         InputFormat::Json => parse_json(&name, &bytes, max),
