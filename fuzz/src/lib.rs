@@ -18,6 +18,10 @@ pub mod input;
 #[path = "../../crates/bzspline-cli/src/model.rs"]
 pub mod model;
 
+/// The command's dates and times, which the table reader reads x as.
+#[path = "../../crates/bzspline-cli/src/time.rs"]
+pub mod time;
+
 /// The command's TopoJSON reader and writers, compiled from their source file
 /// like the readers.
 #[path = "../../crates/bzspline-cli/src/topojson.rs"]
@@ -52,6 +56,12 @@ pub mod cli {
         pub max_points: u64,
         /// Most bytes.
         pub max_bytes: u64,
+        /// Column of x.
+        pub x: Option<String>,
+        /// Column of y.
+        pub y: Option<String>,
+        /// Columns.
+        pub columns: Option<Vec<String>>,
     }
 
     /// Formats the readers understand.

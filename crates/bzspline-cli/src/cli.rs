@@ -48,6 +48,20 @@ pub struct InputArgs {
         value_parser = clap::value_parser!(u64).range(1..)
     )]
     pub max_bytes: u64,
+    /// A table's column of x, by header name or number (from 1); its values
+    /// may be numbers or ISO 8601 dates (`2024-03-01`, days) and date-times
+    /// (`2024-03-01T06:00:00Z`, seconds; without an offset read as UTC). With
+    /// --x alone, y is the first other column.
+    #[arg(long = "x", value_name = "NAME|N", conflicts_with = "columns")]
+    pub x: Option<String>,
+    /// A table's column of y, by header name or number. With --y alone (or a
+    /// table of one column), y is read over its row number: x = 0, 1, 2, ...
+    #[arg(long = "y", value_name = "NAME|N", conflicts_with = "columns")]
+    pub y: Option<String>,
+    /// A table's columns to read, in order (x,y, or a curve's coordinates), by
+    /// header name or number.
+    #[arg(long, value_name = "A,B[,C]", value_delimiter = ',')]
+    pub columns: Option<Vec<String>>,
 }
 
 /// Formats the readers understand.
@@ -181,7 +195,8 @@ pub struct EvalArgs {
     pub shape: ShapeArgs,
     #[command(flatten)]
     pub output: OutputArgs,
-    /// Abscissas (curve parameters with --curve), comma-separated.
+    /// Abscissas (curve parameters with --curve), comma-separated: numbers, or
+    /// dates and date-times when the data's x holds them.
     #[arg(
         long,
         value_name = "X1,...",
@@ -189,9 +204,9 @@ pub struct EvalArgs {
         allow_hyphen_values = true,
         required_unless_present = "at_file",
         conflicts_with = "at_file",
-        value_parser = finite
+        value_parser = abscissa
     )]
-    pub at: Option<Vec<f64>>,
+    pub at: Option<Vec<Abscissa>>,
     /// Read the abscissas from a file, one per line (`#` comments allowed).
     #[arg(long, value_name = "XS")]
     pub at_file: Option<PathBuf>,
@@ -335,6 +350,27 @@ fn finite(s: &str) -> Result<f64, String> {
         Ok(v)
     } else {
         Err(format!("must be a finite number (got {s})"))
+    }
+}
+
+/// An abscissa of `--at`: a number, or a date or date-time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Abscissa {
+    /// A finite number.
+    Number(f64),
+    /// A date or date-time, in its kind's unit.
+    Time(f64, crate::time::TimeKind),
+}
+
+fn abscissa(s: &str) -> Result<Abscissa, String> {
+    if let Ok(v) = finite(s) {
+        return Ok(Abscissa::Number(v));
+    }
+    match crate::time::parse(s) {
+        Some((v, k)) => Ok(Abscissa::Time(v, k)),
+        None => Err(format!(
+            "must be a finite number or an ISO 8601 date (got {s})"
+        )),
     }
 }
 

@@ -9,12 +9,14 @@ use clap::{Parser, Subcommand};
 use serde_json::{json, Value};
 
 use crate::cli::{
-    usage, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs, TableFormat,
+    usage, Abscissa, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs,
+    TableFormat,
 };
 use crate::fit::fit_points;
 use crate::input;
 use crate::model::{self, Fitted, Mode};
 use crate::output;
+use crate::time::{self, TimeKind};
 
 /// Fit, evaluate, sample and plot the third-degree Bezier-type spline of Stelia,
 /// Potapenko and Sirenko: a C1 cubic that touches every leg of the control polygon.
@@ -80,7 +82,13 @@ fn fit(a: &FitArgs) -> Result<()> {
     let fitted = fit_points(&points, &shape)?;
     let mut sink = output::Sink::create(a.output.output.as_deref())?;
     match a.format {
-        FitFormat::Json => model::write_fit_json(&fitted, &mut sink).context("writing output")?,
+        FitFormat::Json => match points.time.filter(|_| shape.mode == Mode::Function) {
+            None => model::write_fit_json(&fitted, &mut sink).context("writing output")?,
+            Some(kind) => {
+                let v = with_knot_times(model::fit_json(&fitted), kind)?;
+                model::write_json_lines(&v, &mut sink).context("writing output")?;
+            }
+        },
         FitFormat::Csv => {
             let dim = fitted.curve().dim();
             writeln!(sink, "{}", ["x", "y", "z", "w"][..dim.min(4)].join(","))
@@ -102,18 +110,57 @@ fn fit(a: &FitArgs) -> Result<()> {
     sink.finish()
 }
 
+/// A fit's JSON with `knot_times` after `knots`: the knots in the form of the
+/// input's dates.
+fn with_knot_times(fit: Value, kind: TimeKind) -> Result<Value> {
+    let Value::Object(map) = fit else {
+        return Ok(fit);
+    };
+    let mut out = serde_json::Map::new();
+    for (k, v) in map {
+        let times = (k == "knots").then(|| v.clone());
+        out.insert(k, v);
+        if let Some(Value::Array(knots)) = times {
+            let strings = knots
+                .iter()
+                .map(|x| {
+                    let x = x.as_f64().unwrap_or(f64::NAN);
+                    time::format(x, kind).ok_or_else(|| anyhow!("knot {x} is outside the calendar"))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            out.insert("knot_times".to_owned(), json!(strings));
+        }
+    }
+    Ok(Value::Object(out))
+}
+
 /// Writes a table as CSV (header line, then rows) or as a JSON object with one
 /// array per column.
-fn table(columns: &[String], rows: &[Vec<f64>], format: TableFormat) -> Result<String> {
+fn table(
+    columns: &[String],
+    rows: &[Vec<f64>],
+    time: Option<TimeKind>,
+    format: TableFormat,
+) -> Result<String> {
     if !model::all_finite(rows) {
         bail!("a result overflows a double");
     }
+    // The first column in the form of the input's dates, when it had them.
+    let first = |v: f64| -> Result<String> {
+        match time {
+            None => Ok(num(v)),
+            Some(k) => time::format(v, k).ok_or_else(|| anyhow!("x = {v} is outside the calendar")),
+        }
+    };
     Ok(match format {
         TableFormat::Csv => {
             let mut s = columns.join(",");
             s.push('\n');
             for r in rows {
-                let cells: Vec<String> = r.iter().map(|&v| num(v)).collect();
+                let mut cells: Vec<String> = Vec::with_capacity(r.len());
+                for (j, &v) in r.iter().enumerate() {
+                    cells.push(if j == 0 { first(v)? } else { num(v) });
+                }
                 s.push_str(&cells.join(","));
                 s.push('\n');
             }
@@ -123,7 +170,13 @@ fn table(columns: &[String], rows: &[Vec<f64>], format: TableFormat) -> Result<S
             let mut obj = serde_json::Map::new();
             for (j, c) in columns.iter().enumerate() {
                 let col: Vec<f64> = rows.iter().map(|r| r[j]).collect();
-                obj.insert(c.clone(), json!(col));
+                let col = match (j, time) {
+                    (0, Some(_)) => {
+                        json!(col.iter().map(|&v| first(v)).collect::<Result<Vec<_>>>()?)
+                    }
+                    _ => json!(col),
+                };
+                obj.insert(c.clone(), col);
             }
             let mut out = Vec::new();
             model::write_json_lines(&Value::Object(obj), &mut out).context("formatting JSON")?;
@@ -134,16 +187,25 @@ fn table(columns: &[String], rows: &[Vec<f64>], format: TableFormat) -> Result<S
 
 /// Column names: `x,y` and `dy`, `d2y`, ... for a function; `[t,]x,y[,z]` and
 /// `dx,dy`, `d2x,d2y`, ... for a curve.
-fn columns(f: &Fitted, with_param: bool, derivs: &[u32]) -> Vec<String> {
+fn columns(f: &Fitted, names: Option<&[String]>, with_param: bool, derivs: &[u32]) -> Vec<String> {
     let order = |k: u32| if k == 1 { String::new() } else { k.to_string() };
+    let dim = f.curve().dim();
+    let default = ["x", "y", "z", "w"];
+    let named: Vec<&str> = match names {
+        Some(n) if n.len() == dim.max(2) && n.iter().all(|s| !s.is_empty()) => {
+            n.iter().map(String::as_str).collect()
+        }
+        _ => default[..dim.clamp(2, 4)].to_vec(),
+    };
     match f {
         Fitted::Function(_) => {
-            let mut c = vec!["x".to_owned(), "y".to_owned()];
-            c.extend(derivs.iter().map(|&k| format!("d{}y", order(k))));
+            let (x, y) = (named[0], named[1]);
+            let mut c = vec![x.to_owned(), y.to_owned()];
+            c.extend(derivs.iter().map(|&k| format!("d{}{y}", order(k))));
             c
         }
-        Fitted::Curve(curve) => {
-            let names = &["x", "y", "z", "w"][..curve.dim().min(4)];
+        Fitted::Curve(_) => {
+            let names = &named[..dim.min(named.len())];
             let mut c: Vec<String> = if with_param {
                 vec!["t".to_owned()]
             } else {
@@ -190,13 +252,8 @@ fn eval(a: &EvalArgs) -> Result<()> {
     if shape.mode == Mode::Curve && a.extrapolate != ExtrapolateArg::Error {
         usage!("--extrapolate applies to y(x) only (a closed curve is periodic)");
     }
-    let (queries, qpos): (Vec<f64>, Vec<String>) = match (&a.at, &a.at_file) {
+    let (given, qpos): (Vec<Abscissa>, Vec<String>) = match (&a.at, &a.at_file) {
         (Some(xs), _) => {
-            for (i, x) in xs.iter().enumerate() {
-                if !x.is_finite() {
-                    usage!("--at value {} = {x} is not a finite number", i + 1);
-                }
-            }
             let pos = (1..=xs.len()).map(|i| format!("--at value {i}")).collect();
             (xs.clone(), pos)
         }
@@ -206,7 +263,15 @@ fn eval(a: &EvalArgs) -> Result<()> {
             let t = input::parse_table(&name, &bytes, None, limits.max_points)?;
             input::check_columns(&t, &[1], "1 (one abscissa per line)")?;
             let pos = (0..t.len()).map(|i| t.at(i)).collect();
-            (t.column(0), pos)
+            let xs = t
+                .column(0)
+                .into_iter()
+                .map(|v| match t.time {
+                    Some(k) => Abscissa::Time(v, k),
+                    None => Abscissa::Number(v),
+                })
+                .collect();
+            (xs, pos)
         }
         (None, None) => usage!("give --at X1,... or --at-file FILE"),
     };
@@ -215,6 +280,24 @@ fn eval(a: &EvalArgs) -> Result<()> {
         Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate.into())),
         other => other,
     };
+    // Dates for data whose x holds dates, numbers otherwise.
+    let data_time = points.time.filter(|_| shape.mode == Mode::Function);
+    let mut queries = Vec::with_capacity(given.len());
+    for (x, pos) in given.iter().zip(&qpos) {
+        queries.push(match (*x, data_time) {
+            (Abscissa::Number(v), None) => v,
+            (Abscissa::Time(v, k), Some(want)) => time::convert(v, k, want),
+            (Abscissa::Number(v), Some(_)) => {
+                bail!(
+                    "{pos}: {v} is a number, but x in {} holds dates",
+                    points.source
+                )
+            }
+            (Abscissa::Time(..), None) => {
+                bail!("{pos}: a date, but x in {} holds numbers", points.source)
+            }
+        });
+    }
     let mut rows = Vec::with_capacity(queries.len());
     for (x, pos) in queries.iter().zip(&qpos) {
         let row = row_at(&fitted, *x, true, &a.derivative).map_err(|e| anyhow!("{pos}: {e}"))?;
@@ -223,7 +306,14 @@ fn eval(a: &EvalArgs) -> Result<()> {
         }
         rows.push(row);
     }
-    let text = table(&columns(&fitted, true, &a.derivative), &rows, a.format)?;
+    let names = points.names.as_deref();
+    let time = points.time.filter(|_| shape.mode == Mode::Function);
+    let text = table(
+        &columns(&fitted, names, true, &a.derivative),
+        &rows,
+        time,
+        a.format,
+    )?;
     output::emit(a.output.output.as_deref(), text.as_bytes())
 }
 
@@ -322,7 +412,14 @@ fn sample(a: &SampleArgs) -> Result<()> {
     for p in params {
         rows.push(row_at(&fitted, p, false, &a.derivative).map_err(lib)?);
     }
-    let text = table(&columns(&fitted, false, &a.derivative), &rows, a.format)?;
+    let names = points.names.as_deref();
+    let time = points.time.filter(|_| shape.mode == Mode::Function);
+    let text = table(
+        &columns(&fitted, names, false, &a.derivative),
+        &rows,
+        time,
+        a.format,
+    )?;
     output::emit(a.output.output.as_deref(), text.as_bytes())
 }
 

@@ -13,6 +13,7 @@ mod plot;
 #[cfg(feature = "serve")]
 mod serve;
 mod smooth;
+mod time;
 mod topojson;
 
 fn main() {

@@ -27,7 +27,7 @@ pub use examples::EXAMPLE1;
 pub use explain::explain;
 pub use geojson::parse_geojson_points;
 pub use json::parse_json;
-pub use table::parse_table;
+pub use table::{parse_table, parse_table_with, Col, Select};
 
 /// Where a point came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -88,6 +88,11 @@ pub struct Points {
     pub pos: Positions,
     /// Where the source ended (the last line of a table), for "no data" errors.
     pub end: Pos,
+    /// The header's names of the columns, when a header named them.
+    pub names: Option<Vec<String>>,
+    /// The kind of dates in the first column, when it held dates (its numbers
+    /// are then days or seconds since 1970, see [`crate::time`]).
+    pub time: Option<crate::time::TimeKind>,
 }
 
 impl Points {
@@ -106,6 +111,8 @@ impl Points {
             coords,
             pos,
             end,
+            names: None,
+            time: None,
         }
     }
 
@@ -340,9 +347,21 @@ pub fn load(args: &InputArgs) -> Result<Points> {
         .input_format
         .or_else(|| format_by_extension(file))
         .unwrap_or_else(|| sniff(&bytes));
-    match format {
-        InputFormat::Csv => parse_table(&name, &bytes, None, max),
-        InputFormat::Tsv => parse_table(&name, &bytes, Some(b'\t'), max),
+    let select = Select {
+        x: args.x.as_deref().map(Col::parse),
+        y: args.y.as_deref().map(Col::parse),
+        columns: args
+            .columns
+            .as_ref()
+            .map(|c| c.iter().map(|s| Col::parse(s)).collect()),
+    };
+    let table = matches!(format, InputFormat::Csv | InputFormat::Tsv);
+    if !table && select != Select::default() {
+        bail!("{name}: --x, --y and --columns choose columns of a table; this is {format:?}");
+    }
+    let points = match format {
+        InputFormat::Csv => parse_table_with(&name, &bytes, None, max, &select),
+        InputFormat::Tsv => parse_table_with(&name, &bytes, Some(b'\t'), max, &select),
         InputFormat::Json => parse_json(&name, &bytes, max),
         InputFormat::Geojson => parse_geojson_points(&name, &bytes, max),
         InputFormat::Topojson => {
@@ -362,7 +381,29 @@ pub fn load(args: &InputArgs) -> Result<Points> {
             let line = line.trim_matches(|c: char| c.is_whitespace() || c == '\u{1e}');
             parse_geojson_points(&format!("{name}:{}", i + 1), line.as_bytes(), max)
         }
+    }?;
+    Ok(if table { over_index(points) } else { points })
+}
+
+/// A table's one column of values as y over its row number (x = 0, 1, 2, ...); other
+/// points unchanged.
+fn over_index(mut p: Points) -> Points {
+    if p.width != 1 {
+        return p;
     }
+    p.coords = p
+        .coords
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &y)| [i as f64, y])
+        .collect();
+    p.width = 2;
+    p.names = p.names.map(|n| {
+        let y = n.into_iter().next().unwrap_or_default();
+        vec!["index".to_owned(), y]
+    });
+    p.time = None;
+    p
 }
 
 /// The text of `bytes` without a UTF-8 byte-order mark.

@@ -1,12 +1,104 @@
-//! Tables: comma-, semicolon- or tab-separated values with an optional header,
-//! `#` comments, blank lines, CRLF and a byte-order mark.
+//! Tables: comma-, semicolon-, tab- or whitespace-separated values with an
+//! optional header naming the columns, `#` comments, blank lines, CRLF and a
+//! byte-order mark; the columns chosen by name or number, the first of them
+//! holding numbers or dates.
 
 use anyhow::{anyhow, Result};
 
 use super::{too_many, utf8, Points, Pos, Positions};
+use crate::time::{self, TimeKind};
+
+/// A column, by its header name or its number (from 1).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Col {
+    /// The column whose header is this name.
+    Name(String),
+    /// The column with this number, 1 for the first.
+    Index(usize),
+}
+
+impl Col {
+    /// A number from 1 is an index, anything else a name.
+    #[must_use]
+    pub fn parse(text: &str) -> Col {
+        match text.trim().parse::<usize>() {
+            Ok(i) if i >= 1 => Col::Index(i),
+            _ => Col::Name(text.trim().to_owned()),
+        }
+    }
+}
+
+impl std::fmt::Display for Col {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Col::Name(n) => write!(f, "'{}'", show(n)),
+            Col::Index(i) => write!(f, "{i}"),
+        }
+    }
+}
+
+/// Which columns of a table are read, in order: `--columns`, or `--x` and
+/// `--y`; every column when nothing is chosen.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Select {
+    /// The abscissa (`--x`).
+    pub x: Option<Col>,
+    /// The ordinate (`--y`); alone, it is read over its row index.
+    pub y: Option<Col>,
+    /// The columns of a curve's coordinates, or x and y (`--columns`).
+    pub columns: Option<Vec<Col>>,
+}
+
+/// The chosen columns of a table whose rows have `width` fields, by number
+/// (from 0); `Ok(None)` for every column. A `y` chosen alone comes back as
+/// the only column.
+fn resolve(
+    select: &Select,
+    header: Option<&[String]>,
+    width: usize,
+    name: &str,
+) -> Result<Option<Vec<usize>>> {
+    let find = |c: &Col| -> Result<usize> {
+        match c {
+            Col::Index(i) if *i <= width => Ok(i - 1),
+            Col::Index(i) => Err(anyhow!(
+                "{name}: no column {i}: the rows have {width} field{}",
+                if width == 1 { "" } else { "s" }
+            )),
+            Col::Name(n) => match header {
+                Some(h) => h.iter().position(|f| f == n).ok_or_else(|| {
+                    anyhow!(
+                        "{name}: no column named {c} (the header names {})",
+                        h.iter()
+                            .map(|f| format!("'{}'", show(f)))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                }),
+                None => Err(anyhow!(
+                    "{name}: no header line to find the column named {c} in"
+                )),
+            },
+        }
+    };
+    Ok(match (&select.columns, &select.x, &select.y) {
+        (Some(cols), _, _) => Some(cols.iter().map(find).collect::<Result<_>>()?),
+        (None, Some(x), Some(y)) => Some(vec![find(x)?, find(y)?]),
+        (None, Some(x), None) => {
+            let x = find(x)?;
+            let y = (0..width).find(|&j| j != x).ok_or_else(|| {
+                anyhow!("{name}: --x names the only column: no y to read beside it")
+            })?;
+            Some(vec![x, y])
+        }
+        (None, None, Some(y)) => Some(vec![find(y)?]),
+        (None, None, None) => None,
+    })
+}
 
 /// Picks the separator from the first line that is not blank or a comment:
-/// a tab, else a semicolon, else a comma.
+/// a tab, else a semicolon, else a comma, else (for fields apart by spaces
+/// only) runs of whitespace, given as `b' '`.
 fn sniff_delimiter(text: &str) -> u8 {
     let first = text
         .lines()
@@ -17,9 +109,36 @@ fn sniff_delimiter(text: &str) -> u8 {
         b'\t'
     } else if first.contains(';') {
         b';'
-    } else {
+    } else if first.contains(',') || !first.contains(' ') {
         b','
+    } else {
+        b' '
     }
+}
+
+/// A whitespace-separated table as a tab-separated one: every run of spaces
+/// and tabs inside a line becomes one tab (lines and their count unchanged).
+fn tabs_for_spaces(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for (i, line) in text.split('\n').enumerate() {
+        if i > 0 {
+            out.push('\n');
+        }
+        let line = line.trim_matches(|c| c == ' ' || c == '\t');
+        let mut gap = false;
+        for ch in line.chars() {
+            if ch == ' ' || ch == '\t' {
+                gap = true;
+            } else {
+                if gap {
+                    out.push('\t');
+                    gap = false;
+                }
+                out.push(ch);
+            }
+        }
+    }
+    out
 }
 
 /// The first byte at or after `from` that is not blank or in a comment line: the
@@ -55,6 +174,40 @@ fn parse_number(field: &str) -> std::result::Result<f64, String> {
     }
 }
 
+/// The first column's field: a number, or a date or date-time of the kind the
+/// column's first row set (`kind`: unset, `None` for numbers, the kind of
+/// dates).
+fn read_x(field: &str, kind: &mut Option<Option<TimeKind>>) -> std::result::Result<f64, String> {
+    if let Ok(v) = parse_number(field) {
+        return match kind {
+            Some(Some(_)) => Err(format!(
+                "'{}' is a number, but the column holds dates",
+                show(field)
+            )),
+            _ => {
+                *kind = Some(None);
+                Ok(v)
+            }
+        };
+    }
+    match (time::parse(field), *kind) {
+        (Some((v, k)), None) => {
+            *kind = Some(Some(k));
+            Ok(v)
+        }
+        (Some((v, k)), Some(Some(want))) => Ok(time::convert(v, k, want)),
+        (Some(_), Some(None)) => Err(format!(
+            "'{}' is a date, but the column holds numbers",
+            show(field)
+        )),
+        (None, _) => match field.parse::<f64>() {
+            Ok(_) => parse_number(field),
+            Err(_) if field.is_empty() => parse_number(field),
+            Err(_) => Err(format!("'{}' is not a number or a date", show(field))),
+        },
+    }
+}
+
 /// A field for a one-line message: control characters escaped, at most 40
 /// characters.
 fn show(field: &str) -> String {
@@ -69,21 +222,50 @@ fn show(field: &str) -> String {
     s
 }
 
-/// Parses a table of numbers: an optional header line, `#` comments, blank lines,
-/// CRLF, a BOM, spaces around fields; `delimiter` or one sniffed from the data.
+/// Parses a table of numbers, every column: see [`parse_table_with`].
 ///
 /// # Errors
 ///
-/// `FILE:LINE: ...` for invalid UTF-8, a field that is not a finite number, a row
-/// with another number of fields than the first, a header after data.
+/// As [`parse_table_with`].
 pub fn parse_table(
     name: &str,
     bytes: &[u8],
     delimiter: Option<u8>,
     max_points: usize,
 ) -> Result<Points> {
+    parse_table_with(name, bytes, delimiter, max_points, &Select::default())
+}
+
+/// Parses a table: an optional header line (the first line in which no field
+/// is a number or a date) naming the columns, `#` comments, blank lines, CRLF,
+/// a BOM, spaces around fields; `delimiter` or one sniffed from the data
+/// (whitespace-separated when the first line has only spaces between its
+/// fields). `select` picks the columns read, in its order; the first of them
+/// may hold ISO 8601 dates or date-times instead of numbers (see
+/// [`crate::time`]), all of one column's rows alike.
+///
+/// # Errors
+///
+/// `FILE:LINE: ...` for invalid UTF-8, a field that is not a finite number (or
+/// date, in the first column read), a row with another number of fields than
+/// the first, a header after data; `FILE: ...` for a chosen column that is not
+/// there.
+pub fn parse_table_with(
+    name: &str,
+    bytes: &[u8],
+    delimiter: Option<u8>,
+    max_points: usize,
+    select: &Select,
+) -> Result<Points> {
     let text = utf8(name, bytes)?;
     let delimiter = delimiter.unwrap_or_else(|| sniff_delimiter(text));
+    let spaced;
+    let (text, delimiter) = if delimiter == b' ' {
+        spaced = tabs_for_spaces(text);
+        (spaced.as_str(), b'\t')
+    } else {
+        (text, delimiter)
+    };
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
@@ -93,8 +275,12 @@ pub fn parse_table(
         .from_reader(text.as_bytes());
     let mut coords: Vec<f64> = Vec::new();
     let mut lines: Vec<usize> = Vec::new();
-    let mut header_line: Option<usize> = None;
+    let mut header: Option<Vec<String>> = None;
     let mut first_width: Option<(usize, usize)> = None;
+    // The columns read (by number), fixed at the first row of data.
+    let mut chosen: Option<Vec<usize>> = None;
+    // The first column's kind of date, fixed at the first row of data.
+    let mut kind: Option<Option<TimeKind>> = None;
     let mut record = csv::StringRecord::new();
     // The line of byte `counted`: newlines are counted once, as records advance.
     let mut line = 1usize;
@@ -122,32 +308,13 @@ pub fn parse_table(
         if record.iter().all(str::is_empty) || record.get(0).is_some_and(|f| f.starts_with('#')) {
             continue; // a line of spaces, or an indented comment
         }
-        let row_start = coords.len();
-        let mut bad = None;
-        for (i, field) in record.iter().enumerate() {
-            match parse_number(field) {
-                Ok(v) => coords.push(v),
-                Err(msg) => {
-                    bad = Some((i, msg));
-                    break;
-                }
-            }
+        let readable = |f: &str| parse_number(f).is_ok() || time::parse(f).is_some();
+        let numeric = record.iter().filter(|f| readable(f)).count();
+        if lines.is_empty() && header.is_none() && numeric == 0 {
+            header = Some(record.iter().map(str::to_owned).collect());
+            continue;
         }
-        if let Some((i, msg)) = bad {
-            coords.truncate(row_start);
-            let numeric = record.iter().filter(|f| parse_number(f).is_ok()).count();
-            if lines.is_empty() && header_line.is_none() && numeric == 0 {
-                header_line = Some(line);
-                continue;
-            }
-            let hint = if numeric == 0 {
-                " (a header line in the middle of the data?)"
-            } else {
-                ""
-            };
-            return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", i + 1));
-        }
-        let width = coords.len() - row_start;
+        let width = record.len();
         match first_width {
             None => first_width = Some((width, line)),
             Some((w, first)) if w != width => {
@@ -162,18 +329,52 @@ pub fn parse_table(
             }
             Some(_) => {}
         }
+        if chosen.is_none() {
+            let cols = resolve(select, header.as_deref(), width, name)?
+                .unwrap_or_else(|| (0..width).collect());
+            chosen = Some(cols);
+        }
+        let cols = chosen.as_deref().unwrap_or_default();
+        for (slot, &j) in cols.iter().enumerate() {
+            let field = record.get(j).unwrap_or("");
+            let read = if slot == 0 {
+                read_x(field, &mut kind)
+            } else {
+                parse_number(field)
+            };
+            match read {
+                Ok(v) => coords.push(v),
+                Err(msg) => {
+                    let hint = if numeric == 0 {
+                        " (a header line in the middle of the data?)"
+                    } else {
+                        ""
+                    };
+                    return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", j + 1));
+                }
+            }
+        }
         if lines.len() >= max_points {
             return Err(too_many(&format!("{name}:{line}"), max_points));
         }
         lines.push(line);
     }
     let last_line = text.lines().count().max(1);
-    let width = first_width.map_or(0, |(w, _)| w);
-    Ok(Points::new(
+    let width = chosen.as_ref().map_or(0, Vec::len);
+    let mut points = Points::new(
         name,
         (width, lines.len()),
         coords,
         Positions::Lines(lines),
         Pos::Line(last_line),
-    ))
+    );
+    if let (Some(h), Some(cols)) = (&header, &chosen) {
+        points.names = Some(
+            cols.iter()
+                .map(|&j| h.get(j).cloned().unwrap_or_default())
+                .collect(),
+        );
+    }
+    points.time = kind.flatten();
+    Ok(points)
 }
