@@ -1172,3 +1172,113 @@ fn a_polygon_read_as_a_function_suggests_curve() {
     let o = run(&["fit"], Some(b"0,0\n2,0\n2,1\n"));
     assert!(!o.stderr.contains("--curve"), "{}", o.stderr);
 }
+
+/// A dated series: computed on days since 1970, written back as dates, with
+/// the header's names.
+#[test]
+fn dates_as_x_come_back_as_dates() {
+    let csv = ok(&["sample", "daily.csv", "--n", "3"]);
+    assert_eq!(
+        csv.lines().next(),
+        Some("day,visitors"),
+        "the header's names: {csv}"
+    );
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert!(rows[0].starts_with("2024-01-01,120"), "{csv}");
+    assert!(rows[1].starts_with("2024-01-05,"), "the middle day: {csv}");
+    assert!(rows[2].starts_with("2024-01-09,170"), "{csv}");
+    // The same spline as on the day numbers (1 January 2024 is day 19723).
+    let days = [19723.0, 19724.0, 19725.0, 19727.0, 19730.0, 19731.0];
+    let s = Spline::new(&days, &[120.0, 135.0, 128.0, 160.0, 151.0, 170.0]).unwrap();
+    let at = ok(&[
+        "eval",
+        "daily.csv",
+        "--at",
+        "2024-01-04,2024-01-04T12:00:00Z",
+        "--derivative",
+        "1",
+    ]);
+    let lines: Vec<Vec<&str>> = at.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(lines[0], ["day", "visitors", "dvisitors"]);
+    assert_eq!(lines[1][0], "2024-01-04");
+    assert_eq!(lines[2][0], "2024-01-04T12:00:00Z");
+    let y: f64 = lines[2][1].parse().unwrap();
+    assert_eq!(y, s.eval(19726.5).unwrap());
+    let dy: f64 = lines[1][2].parse().unwrap();
+    assert_eq!(dy, s.deriv(19726.0, 1).unwrap(), "per day");
+    let fit: Value = serde_json::from_str(&ok(&["fit", "daily.csv"])).unwrap();
+    assert_eq!(fit["knots"][0].as_f64(), Some(19723.0));
+    assert_eq!(fit["knot_times"][5], "2024-01-09");
+    let json: Value = serde_json::from_str(&ok(&[
+        "sample",
+        "daily.csv",
+        "--n",
+        "2",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(json["day"], serde_json::json!(["2024-01-01", "2024-01-09"]));
+}
+
+/// Date-times with an offset, whitespace-separated columns chosen by name.
+#[test]
+fn date_times_and_named_columns() {
+    let out = ok(&[
+        "sample",
+        "hourly.txt",
+        "--y",
+        "humidity",
+        "--x",
+        "time",
+        "--n",
+        "4",
+    ]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "time,humidity");
+    assert_eq!(lines[1], "2024-03-01T06:00:00+02:00,81");
+    assert!(lines[2].starts_with("2024-03-01T10:00:00+02:00,"), "{out}");
+    assert_eq!(lines[4], "2024-03-01T18:00:00+02:00,66");
+    // By number, the same.
+    assert_eq!(
+        ok(&["sample", "hourly.txt", "--columns", "1,3", "--n", "4"]),
+        out
+    );
+    // --y alone: over the row number.
+    let idx = ok(&["sample", "hourly.txt", "--y", "temperature", "--n", "2"]);
+    assert_eq!(idx, "index,temperature\n0,4.5\n3,8\n");
+}
+
+#[test]
+fn bad_dates_and_columns_name_the_place() {
+    assert_data_error(
+        &["fit", "bad_date.csv"],
+        None,
+        &["bad_date.csv:4: field 1: '2024-01-32' is not a number or a date"],
+    );
+    assert_data_error(
+        &["fit", "bad_mixed_date.csv"],
+        None,
+        &["bad_mixed_date.csv:3: field 1: '19725' is a number, but the column holds dates"],
+    );
+    assert_data_error(
+        &["fit", "daily.csv", "--y", "sales"],
+        None,
+        &["daily.csv: no column named 'sales' (the header names 'day', 'visitors')"],
+    );
+    assert_data_error(
+        &["fit", "daily.csv", "--columns", "1,3"],
+        None,
+        &["daily.csv: no column 3: the rows have 2 fields"],
+    );
+    assert_data_error(
+        &["eval", "daily.csv", "--at", "3"],
+        None,
+        &["--at value 1: 3 is a number, but x in daily.csv holds dates"],
+    );
+    assert_data_error(
+        &["eval", "example1.csv", "--at", "2024-01-01"],
+        None,
+        &["--at value 1: a date, but x in example1.csv holds numbers"],
+    );
+}

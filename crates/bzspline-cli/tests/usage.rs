@@ -56,6 +56,7 @@ const CASES: &[(&[&str], &str)] = &[
     (&["eval", "--example", "1"], "--at"),
     (&["eval", "--example", "1", "--at", "x"], "--at"),
     (&["eval", "--example", "1", "--at", "inf"], "--at"),
+    (&["eval", "--example", "1", "--at", "2024-02-30"], "--at"),
     (
         &[
             "eval",
