@@ -38,11 +38,12 @@ pub enum Command {
     Eval(EvalArgs),
     /// Sample points along the spline.
     Sample(SampleArgs),
-    /// Draw the control points, the control polygon and the spline as SVG or PNG.
+    /// Draw the control points, the control polygon and the spline as SVG, PNG
+    /// or PDF.
     ///
     /// Without FILE or --example it draws the paper's Example 1 (`-` reads
-    /// standard input). The output is PNG when its name ends in `.png`, else SVG;
-    /// without -o, SVG goes to standard output.
+    /// standard input). The output's format is its name's ending (`.svg`,
+    /// `.png`, `.pdf`); without -o, SVG goes to standard output.
     Plot(crate::plot::PlotArgs),
     /// Smooth the lines and polygons of a GeoJSON or TopoJSON document as one
     /// coverage: shared borders smoothed once, valid polygons kept valid.

@@ -123,3 +123,104 @@ fn alpha_sweep_and_overlays() {
         "{err}"
     );
 }
+
+#[test]
+#[cfg(feature = "pdf")]
+fn pdf_by_extension() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(dir.path(), &["plot", "--example", "1", "-o", "fig.pdf"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    if out.status.success() {
+        let pdf = std::fs::read(dir.path().join("fig.pdf")).unwrap();
+        assert!(pdf.starts_with(b"%PDF-"), "not a PDF");
+        let text = String::from_utf8_lossy(&pdf);
+        assert_eq!(
+            text.matches("/Type /Page\n").count() + text.matches("/Type /Page ").count(),
+            1,
+            "one page"
+        );
+    } else {
+        // A machine without fonts: the message says what to install.
+        assert!(err.contains("fonts"), "{err}");
+    }
+}
+
+#[test]
+fn a_clean_chart_line_and_its_labels() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("daily.csv"),
+        "day,visitors\n2024-01-01,120\n2024-01-02,135\n2024-01-03,128\n2024-01-05,160\n",
+    )
+    .unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "plot",
+            "daily.csv",
+            "--no-points",
+            "--no-polygon",
+            "--no-tangents",
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(count(&svg, "circle"), 0, "no markers: {svg}");
+    assert!(!svg.contains("stroke-dasharray=\"6 4\""), "no polygon");
+    // The header's names label the axes; the x ticks are dates.
+    assert!(
+        svg.contains(">day</text>") && svg.contains(">visitors</text>"),
+        "{svg}"
+    );
+    assert!(svg.contains(">2024-01-02</text>"), "{svg}");
+    // The data is drawn inside the plot area.
+    assert!(svg.contains(r#"<g clip-path="url(#plot-area)">"#));
+}
+
+/// Values near the ends of the double range: the axis holds them all.
+#[test]
+fn axes_hold_the_whole_finite_range() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("huge.csv"),
+        "0,1e308\n1,-1e308\n2,1.5e308\n3,-1.7e308\n",
+    )
+    .unwrap();
+    let out = run(dir.path(), &["plot", "huge.csv"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = String::from_utf8(out.stdout).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    // Every control point's dot lies inside the plot area's clip rectangle.
+    let clip = doc
+        .descendants()
+        .find(|n| n.has_tag_name("clipPath"))
+        .unwrap();
+    let rect = clip.children().find(|n| n.has_tag_name("rect")).unwrap();
+    let num = |n: &roxmltree::Node, a: &str| n.attribute(a).unwrap().parse::<f64>().unwrap();
+    let (top, h) = (num(&rect, "y"), num(&rect, "height"));
+    let dots: Vec<f64> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("circle") && n.attribute("r") == Some("4.2"))
+        .map(|n| num(&n, "cy"))
+        .collect();
+    assert_eq!(
+        dots.len(),
+        4 + 1,
+        "four control points and the legend's dot"
+    );
+    for cy in &dots[..4] {
+        assert!(
+            *cy > top && *cy < top + h,
+            "{cy} outside {top}..{}",
+            top + h
+        );
+    }
+}

@@ -188,7 +188,8 @@ const CASES: &[(&[&str], &str)] = &[
 #[test]
 fn every_bad_option_value_is_a_usage_error() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out");
+    // An ending every command takes (plot writes by the name's ending).
+    let out = dir.path().join("out.svg");
     let out_s = out.to_str().unwrap().to_owned();
     let mut problems = Vec::new();
     for (args, want) in CASES {
@@ -221,4 +222,9 @@ fn every_bad_option_value_is_a_usage_error() {
         }
     }
     assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+    // A figure in a format plot does not write.
+    let jpg = dir.path().join("fig.jpg");
+    let o = run(&["plot", "--example", "1", "-o", jpg.to_str().unwrap()], None);
+    assert_eq!(o.code, 2, "{}", o.stderr);
+    assert!(o.stderr.contains(".svg, .png or .pdf") && !jpg.exists(), "{}", o.stderr);
 }

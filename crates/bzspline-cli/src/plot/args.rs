@@ -19,12 +19,20 @@ pub struct FigureArgs {
     /// Title above the plot.
     #[arg(long)]
     pub title: Option<String>,
-    /// Label of the horizontal axis.
-    #[arg(long, default_value = "x")]
-    pub xlabel: String,
-    /// Label of the vertical axis.
-    #[arg(long, default_value = "y")]
-    pub ylabel: String,
+    /// Label of the horizontal axis (default: the header's name of the x
+    /// column, else "x").
+    #[arg(long)]
+    pub xlabel: Option<String>,
+    /// Label of the vertical axis (default: the header's name of the y column,
+    /// else "y").
+    #[arg(long)]
+    pub ylabel: Option<String>,
+    /// Do not draw the control points (a clean chart line).
+    #[arg(long)]
+    pub no_points: bool,
+    /// Do not draw the dashed control polygon.
+    #[arg(long)]
+    pub no_polygon: bool,
     /// Do not mark the points where the curve touches the control polygon.
     #[arg(long)]
     pub no_tangents: bool,
@@ -53,22 +61,31 @@ pub struct FigureArgs {
 }
 
 impl FigureArgs {
-    /// The drawing options these arguments ask for.
+    /// The drawing options these arguments ask for; `names` are the data's
+    /// column names (the axis labels unless given).
     #[must_use]
-    pub fn options(&self) -> PlotOptions {
+    pub fn options(&self, names: Option<&[String]>) -> PlotOptions {
+        let name = |i: usize, default: &str| {
+            names
+                .and_then(|n| n.get(i))
+                .filter(|n| !n.is_empty())
+                .map_or_else(|| default.to_owned(), Clone::clone)
+        };
         PlotOptions {
             width: self.width,
             height: self.height,
             title: self.title.clone(),
-            x_label: self.xlabel.clone(),
-            y_label: self.ylabel.clone(),
+            x_label: self.xlabel.clone().unwrap_or_else(|| name(0, "x")),
+            y_label: self.ylabel.clone().unwrap_or_else(|| name(1, "y")),
             show_tangents: !self.no_tangents,
             show_hull: self.hull,
             show_knots: self.knots,
-            show_control: true,
+            show_points: !self.no_points,
+            show_polygon: !self.no_polygon,
             show_range: self.data_range,
             equal_aspect: self.equal_aspect,
             png_scale: self.scale,
+            x_time: None,
             through: false,
         }
     }
@@ -149,7 +166,7 @@ mod tests {
             "1/3, 0.5,2/3",
         ])
         .unwrap();
-        let o = cli.plot.options();
+        let o = cli.plot.options(None);
         assert_eq!((o.width, o.height), (640, 500));
         assert_eq!(o.title.as_deref(), Some("T"));
         assert!(!o.show_tangents && o.show_hull && !o.show_knots);

@@ -1,4 +1,7 @@
-//! Axis ranges and "nice" tick marks (steps of 1, 2 or 5 times a power of ten).
+//! Axis ranges and "nice" tick marks (steps of 1, 2 or 5 times a power of ten,
+//! or whole calendar units for dates and times).
+
+use crate::time::{self, TimeKind};
 
 /// A closed interval of data values shown along one axis, with its ticks.
 #[derive(Clone, Debug, PartialEq)]
@@ -11,6 +14,22 @@ pub struct Axis {
     pub step: f64,
     /// Tick positions inside `[lo, hi]`, increasing.
     pub ticks: Vec<f64>,
+    /// For values that are dates or times: their kind and the calendar unit
+    /// the ticks step by (labels are then dates, months, years or times).
+    pub calendar: Option<(TimeKind, Unit)>,
+}
+
+/// The calendar units date ticks step by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// Seconds, minutes or hours: labels with the time of day.
+    Clock,
+    /// Days or weeks: labels are dates.
+    Day,
+    /// Months: labels are year and month.
+    Month,
+    /// Years: labels are years.
+    Year,
 }
 
 impl Axis {
@@ -24,7 +43,9 @@ impl Axis {
         } else {
             (0.0, 1.0)
         };
-        if hi - lo <= f64::EPSILON * lo.abs().max(hi.abs()) || !(hi - lo).is_normal() {
+        // Half-spans: the whole one overflows between values near +-f64::MAX.
+        let half = hi / 2.0 - lo / 2.0;
+        if half <= f64::EPSILON / 2.0 * lo.abs().max(hi.abs()) || !half.is_normal() {
             // One value (or a span too small to draw): centre it in a unit-ish window.
             let w = if lo.abs() > 1.0 { lo.abs() * 0.1 } else { 1.0 };
             let mid = lo / 2.0 + hi / 2.0;
@@ -43,7 +64,51 @@ impl Axis {
             hi,
             step,
             ticks,
+            calendar: None,
         }
+    }
+
+    /// An axis of dates or times (`kind`'s unit: days or seconds since 1970)
+    /// with about `target` ticks at whole calendar units: seconds, minutes,
+    /// hours, days, weeks, months or years, as the span asks.
+    #[must_use]
+    pub fn calendar(lo: f64, hi: f64, pad: f64, target: usize, kind: TimeKind) -> Self {
+        let mut a = Axis::new(lo, hi, pad, target);
+        let to_s = time::convert(1.0, kind, TimeKind::DateTime(None));
+        let (lo_s, hi_s) = (a.lo * to_s, a.hi * to_s);
+        let span = hi_s - lo_s;
+        if !(span.is_finite() && span > 0.0 && lo_s.abs() < 3e11 && hi_s.abs() < 3e11) {
+            return a;
+        }
+        const DAY: f64 = 86_400.0;
+        let clock = [
+            1.0, 2.0, 5.0, 10.0, 15.0, 30.0, 60.0, 120.0, 300.0, 600.0, 900.0, 1800.0, 3600.0,
+            7200.0, 10800.0, 21600.0, 43200.0,
+        ];
+        let want = span / target.max(2) as f64;
+        let (unit, ticks_s): (Unit, Vec<f64>) =
+            if let Some(&step) = clock.iter().find(|&&st| st >= want) {
+                (Unit::Clock, ticks(lo_s, hi_s, step))
+            } else if let Some(&days) = [1.0, 2.0, 7.0, 14.0].iter().find(|&&d| d * DAY >= want) {
+                // Weeks start on the Monday after 1970-01-01 (a Thursday) + 4 days.
+                let shift = if days >= 7.0 { 4.0 * DAY } else { 0.0 };
+                let t = ticks(lo_s - shift, hi_s - shift, days * DAY);
+                (Unit::Day, t.into_iter().map(|v| v + shift).collect())
+            } else if let Some(&months) = [1, 2, 3, 6]
+                .iter()
+                .find(|&&m| f64::from(m) * 30.0 * DAY >= want)
+            {
+                (Unit::Month, month_ticks(lo_s, hi_s, months))
+            } else {
+                let years = nice_step(want / (365.25 * DAY) / 2.0, 1).max(1.0);
+                (
+                    Unit::Year,
+                    month_ticks(lo_s, hi_s, (years as i32).saturating_mul(12)),
+                )
+            };
+        a.ticks = ticks_s.into_iter().map(|v| v / to_s).collect();
+        a.calendar = Some((kind, unit));
+        a
     }
 
     /// Where `v` sits along the axis: 0 at `lo`, 1 at `hi`, finite for finite `v`.
@@ -57,8 +122,62 @@ impl Axis {
     /// typographic minus sign.
     #[must_use]
     pub fn label(&self, v: f64) -> String {
-        format_tick(v, self.step)
+        let Some((kind, unit)) = self.calendar else {
+            return format_tick(v, self.step);
+        };
+        let text = time::format(v, kind).unwrap_or_default();
+        // `2024-03-01T06:30:00Z` and the like: keep what the unit shows.
+        let (date, clock) = text.split_once('T').unwrap_or((&text, ""));
+        match unit {
+            Unit::Year => date
+                .get(..date.len().saturating_sub(6))
+                .unwrap_or(date)
+                .to_owned(),
+            Unit::Month => date
+                .get(..date.len().saturating_sub(3))
+                .unwrap_or(date)
+                .to_owned(),
+            Unit::Day => date.to_owned(),
+            Unit::Clock => {
+                let hm = clock.get(..5).unwrap_or("00:00");
+                let secs = clock.get(5..8).filter(|s| *s != ":00").unwrap_or("");
+                format!("{} {hm}{secs}", date.get(5..).unwrap_or(date))
+            }
+        }
     }
+}
+
+/// Ticks at the first of every `months`-th month (from January of year 0)
+/// between `lo` and `hi` seconds since 1970, in seconds.
+fn month_ticks(lo: f64, hi: f64, months: i32) -> Vec<f64> {
+    use jiff::civil::Date;
+    let months = months.max(1);
+    let Some(start) = time::format(lo, TimeKind::DateTime(None)) else {
+        return Vec::new();
+    };
+    let (Ok(y), Ok(m)) = (start[..4].parse::<i32>(), start[5..7].parse::<i32>()) else {
+        return Vec::new();
+    };
+    let mut index = (y * 12 + m - 1).div_euclid(months) * months;
+    let mut out = Vec::new();
+    while out.len() < 500 {
+        let (year, month) = (index.div_euclid(12), index.rem_euclid(12) + 1);
+        let Ok(d) = Date::new(year as i16, month as i8, 1) else {
+            break;
+        };
+        let Some((v, _)) = time::parse(&d.to_string()) else {
+            break;
+        };
+        let secs = v * 86_400.0;
+        if secs > hi {
+            break;
+        }
+        if secs >= lo {
+            out.push(secs);
+        }
+        index += months;
+    }
+    out
 }
 
 fn finite_or(v: f64, fallback: f64) -> f64 {
@@ -121,7 +240,11 @@ pub fn format_tick(v: f64, step: f64) -> String {
         0.0
     };
     let s = if !(-5.0..=6.0).contains(&e) {
-        format!("{v:.1e}")
+        if v == 0.0 {
+            "0".to_owned()
+        } else {
+            format!("{v:.1e}")
+        }
     } else {
         // e is in -5..=6 here, so the cast is exact.
         let decimals = if e < 0.0 { (-e) as usize } else { 0 };
@@ -178,6 +301,43 @@ mod tests {
         assert_eq!(nice_step(5.0, 10), 1.0);
         assert_eq!(nice_step(5.5, 10), 2.0);
         assert_eq!(nice_step(0.2, 8), 0.05);
+    }
+
+    #[test]
+    fn date_axes_tick_at_calendar_units() {
+        let day = |s: &str| time::parse(s).unwrap().0;
+        let a = Axis::calendar(day("2024-01-01"), day("2024-01-09"), 0.0, 6, TimeKind::Date);
+        let labels: Vec<String> = a.ticks.iter().map(|t| a.label(*t)).collect();
+        assert_eq!(
+            labels,
+            ["2024-01-02", "2024-01-04", "2024-01-06", "2024-01-08"]
+        );
+        let m = Axis::calendar(day("2023-11-20"), day("2024-06-10"), 0.0, 6, TimeKind::Date);
+        let labels: Vec<String> = m.ticks.iter().map(|t| m.label(*t)).collect();
+        assert_eq!(labels, ["2024-01", "2024-03", "2024-05"]);
+        let y = Axis::calendar(day("1990-06-01"), day("2024-06-01"), 0.0, 6, TimeKind::Date);
+        let labels: Vec<String> = y.ticks.iter().map(|t| y.label(*t)).collect();
+        assert_eq!(labels, ["2000", "2010", "2020"]);
+        let k = TimeKind::DateTime(None);
+        let sec = |s: &str| time::parse(s).unwrap().0;
+        let h = Axis::calendar(
+            sec("2024-03-01T06:00:00Z"),
+            sec("2024-03-01T18:00:00Z"),
+            0.0,
+            5,
+            k,
+        );
+        let labels: Vec<String> = h.ticks.iter().map(|t| h.label(*t)).collect();
+        assert_eq!(
+            labels,
+            [
+                "03-01 06:00",
+                "03-01 09:00",
+                "03-01 12:00",
+                "03-01 15:00",
+                "03-01 18:00"
+            ]
+        );
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use anyhow::{anyhow, Result};
 use clap::Args;
 
-use super::{read_overlay, render_png, render_svg, FigureArgs, PlotData};
+use super::{read_overlay, render_pdf, render_png, render_svg, FigureArgs, PlotData};
 use crate::cli::{check_alpha, usage, InputArgs, OutputArgs, ShapeArgs};
 use crate::fit::fit_points;
 use crate::model::{Fitted, Mode};
@@ -17,8 +17,8 @@ pub struct PlotArgs {
     pub input: InputArgs,
     #[command(flatten)]
     pub shape: ShapeArgs,
-    /// Output file: PNG if its name ends in `.png`, else SVG; without it, SVG on
-    /// standard output.
+    /// Output file: SVG, PNG or PDF by its name's ending (`.svg`, `.png`,
+    /// `.pdf`); without it, SVG on standard output.
     #[command(flatten)]
     pub output: OutputArgs,
     #[command(flatten)]
@@ -33,6 +33,15 @@ pub struct PlotArgs {
 /// be built, an unreadable overlay, a PNG without fonts, or a failed write.
 pub fn run(a: &PlotArgs) -> Result<()> {
     let shape = a.shape.validate()?;
+    let out = a.output.output.as_deref();
+    let format = match out.and_then(|p| p.extension()).and_then(|e| e.to_str()) {
+        None if out.is_none() => Figure::Svg,
+        Some(e) if e.eq_ignore_ascii_case("svg") => Figure::Svg,
+        Some(e) if e.eq_ignore_ascii_case("png") => Figure::Png,
+        Some(e) if e.eq_ignore_ascii_case("pdf") => Figure::Pdf,
+        Some(e) => usage!("plot writes .svg, .png or .pdf files, not .{e}"),
+        None => usage!("plot writes .svg, .png or .pdf files: give -o a name that ends in one"),
+    };
     let mut source = a.input.clone();
     if source.file.is_none() && source.example.is_none() {
         source.example = Some(1);
@@ -60,22 +69,26 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     for path in &a.figure.overlay {
         data.extend(read_overlay(path)?);
     }
-    let mut opts = a.figure.options();
+    let mut opts = a.figure.options(points.names.as_deref());
+    opts.x_time = points.time.filter(|_| shape.mode == Mode::Function);
     // A curve's shape is only right with one unit as long on both axes.
     opts.equal_aspect |= shape.mode == Mode::Curve;
     // Through the points, the knot points are the data: always shown.
     opts.through = shape.through;
     opts.show_knots |= shape.through;
-    let out = a.output.output.as_deref();
-    let is_png = out
-        .and_then(|p| p.extension())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    let bytes = if is_png {
-        render_png(&data, &opts)?
-    } else {
-        render_svg(&data, &opts).into_bytes()
+    let bytes = match format {
+        Figure::Svg => render_svg(&data, &opts).into_bytes(),
+        Figure::Png => render_png(&data, &opts)?,
+        Figure::Pdf => render_pdf(&data, &opts)?,
     };
     output::emit(out, &bytes)
+}
+
+/// The file formats of a figure.
+enum Figure {
+    Svg,
+    Png,
+    Pdf,
 }
 
 /// The figure data of a fitted spline or curve.

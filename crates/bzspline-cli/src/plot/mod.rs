@@ -22,7 +22,7 @@ pub use args::{read_overlay, FigureArgs};
 pub use axis::Axis;
 pub use command::{run, PlotArgs};
 pub use hull::convex_hull;
-pub use png::render_png;
+pub use png::{render_pdf, render_png};
 pub use svg::render_svg;
 
 /// One curve of a figure with the polygon that defines it.
@@ -160,14 +160,19 @@ pub struct PlotOptions {
     pub show_hull: bool,
     /// Mark the knot points.
     pub show_knots: bool,
-    /// Draw the control points and the dashed control polygon.
-    pub show_control: bool,
+    /// Draw the control points.
+    pub show_points: bool,
+    /// Draw the dashed control polygon.
+    pub show_polygon: bool,
     /// Dotted horizontal lines at the smallest and largest control ordinate.
     pub show_range: bool,
     /// One unit is as long on both axes (for planar curves).
     pub equal_aspect: bool,
     /// Pixels of the PNG per SVG pixel.
     pub png_scale: f32,
+    /// The x values are dates or times of this kind (days or seconds since
+    /// 1970): calendar ticks.
+    pub x_time: Option<crate::time::TimeKind>,
     /// The curves pass through the points (the interpolating variant): the
     /// knot points are the data and the control polygon is the solved one.
     pub through: bool,
@@ -184,10 +189,12 @@ impl Default for PlotOptions {
             show_tangents: true,
             show_hull: false,
             show_knots: false,
-            show_control: true,
+            show_points: true,
+            show_polygon: true,
             show_range: false,
             equal_aspect: false,
             png_scale: 1.0,
+            x_time: None,
             through: false,
         }
     }

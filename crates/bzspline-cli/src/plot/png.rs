@@ -1,10 +1,11 @@
-//! The figure as a PNG: the SVG rasterised by resvg.
+//! The figure as PNG (the SVG rasterised by resvg) and PDF (the same usvg tree
+//! converted by svg2pdf).
 
-#[cfg(feature = "png")]
+#[cfg(any(feature = "png", feature = "pdf"))]
 use std::sync::Arc;
 
 use anyhow::anyhow;
-#[cfg(feature = "png")]
+#[cfg(any(feature = "png", feature = "pdf"))]
 use anyhow::Context as _;
 
 use super::{render_svg, PlotData, PlotOptions};
@@ -41,10 +42,35 @@ pub fn svg_to_png(_svg: &str, _scale: f32) -> anyhow::Result<Vec<u8>> {
 /// As [`render_png`].
 #[cfg(feature = "png")]
 pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
-    use resvg::{tiny_skia, usvg};
+    use resvg::tiny_skia;
     if !(scale.is_finite() && scale > 0.0 && scale <= 16.0) {
         return Err(anyhow!("PNG scale {scale} is outside (0, 16]"));
     }
+    let tree = figure_tree(svg)?;
+    let size = tree
+        .size()
+        .to_int_size()
+        .scale_by(scale)
+        .context("PNG size out of range")?;
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).context("PNG size out of range")?;
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(scale, scale),
+        &mut pixmap.as_mut(),
+    );
+    pixmap.encode_png().context("encoding the PNG")
+}
+
+/// The figure's SVG parsed by usvg with a system font for its text: the tree
+/// both the PNG and the PDF are drawn from.
+///
+/// # Errors
+///
+/// No font installed, or SVG that does not parse.
+#[cfg(any(feature = "png", feature = "pdf"))]
+pub fn figure_tree(svg: &str) -> anyhow::Result<resvg::usvg::Tree> {
+    use resvg::usvg;
     let mut db = usvg::fontdb::Database::new();
     db.load_system_fonts();
     if db.is_empty() {
@@ -59,20 +85,36 @@ pub fn svg_to_png(svg: &str, scale: f32) -> anyhow::Result<Vec<u8>> {
         font_family: "DejaVu Sans".into(),
         ..usvg::Options::default()
     };
-    let tree = usvg::Tree::from_str(svg, &opt).context("parsing the figure's SVG")?;
-    let size = tree
-        .size()
-        .to_int_size()
-        .scale_by(scale)
-        .context("PNG size out of range")?;
-    let mut pixmap =
-        tiny_skia::Pixmap::new(size.width(), size.height()).context("PNG size out of range")?;
-    resvg::render(
+    usvg::Tree::from_str(svg, &opt).context("parsing the figure's SVG")
+}
+
+/// The figure as a PDF: [`render_svg`] converted by svg2pdf, vector graphics
+/// with the text's font embedded, one page the figure's size.
+///
+/// # Errors
+///
+/// As [`figure_tree`], or a failed conversion.
+#[cfg(feature = "pdf")]
+pub fn render_pdf(data: &[PlotData], opts: &PlotOptions) -> anyhow::Result<Vec<u8>> {
+    let tree = figure_tree(&render_svg(data, opts))?;
+    svg2pdf::to_pdf(
         &tree,
-        tiny_skia::Transform::from_scale(scale, scale),
-        &mut pixmap.as_mut(),
-    );
-    pixmap.encode_png().context("encoding the PNG")
+        svg2pdf::ConversionOptions::default(),
+        svg2pdf::PageOptions::default(),
+    )
+    .map_err(|e| anyhow!("converting the figure to PDF: {e}"))
+}
+
+/// As the `pdf` feature's [`render_pdf`].
+///
+/// # Errors
+///
+/// Always: this build has no PDF output.
+#[cfg(not(feature = "pdf"))]
+pub fn render_pdf(_data: &[PlotData], _opts: &PlotOptions) -> anyhow::Result<Vec<u8>> {
+    Err(anyhow!(
+        "this bzspline was built without PDF output (cargo feature `pdf`); write SVG instead"
+    ))
 }
 
 #[cfg(all(test, feature = "png"))]

@@ -130,16 +130,32 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
     // At most one tick per 55 px across and per 45 px up (the values are small).
     let x_ticks = ((width - 120.0) / 55.0).clamp(2.0, 12.0) as usize;
     let y_ticks = ((height - 130.0) / 45.0).clamp(2.0, 10.0) as usize;
-    let (mut xa, mut ya) = (
-        Axis::new(xs.0, xs.1, 0.03, x_ticks),
-        Axis::new(ys.0, ys.1, 0.05, y_ticks),
-    );
+    let x_axis = |ticks: usize| match opts.x_time {
+        Some(kind) => Axis::calendar(xs.0, xs.1, 0.03, ticks, kind),
+        None => Axis::new(xs.0, xs.1, 0.03, ticks),
+    };
+    // Fewer ticks until their labels fit side by side with a gap.
+    let mut xa = x_axis(x_ticks);
+    for fewer in (2..x_ticks).rev() {
+        let widest = xa
+            .ticks
+            .iter()
+            .map(|t| text_width(&xa.label(*t), TICK_FONT))
+            .fold(0.0, f64::max);
+        if (widest + 12.0) * xa.ticks.len() as f64 <= width - 120.0 {
+            break;
+        }
+        xa = x_axis(fewer);
+    }
+    let mut ya = Axis::new(ys.0, ys.1, 0.05, y_ticks);
 
     // Legend entries, then the layout (margins from the text they hold).
     let mut keys: Vec<(Key, String)> = Vec::new();
     let solved = if opts.through { "solved " } else { "" };
-    if opts.show_control && !all_control.is_empty() {
+    if opts.show_points && !all_control.is_empty() {
         keys.push((Key::Dot, format!("{solved}control points")));
+    }
+    if opts.show_polygon && !all_control.is_empty() {
         keys.push((
             Key::Line {
                 color: POLYGON.into(),
@@ -300,6 +316,17 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         );
     }
     write_axes(&mut s, &f);
+    // Everything drawn from the data stays inside the plot area (markers may
+    // reach a little past it).
+    let _ = writeln!(
+        s,
+        r#"<clipPath id="plot-area"><rect x="{}" y="{}" width="{}" height="{}"/></clipPath>"#,
+        Num(f.left - 6.0),
+        Num(f.top - 6.0),
+        Num(f.w + 12.0),
+        Num(f.h + 12.0)
+    );
+    let _ = writeln!(s, r#"<g clip-path="url(#plot-area)">"#);
     if opts.show_hull && all_control.len() >= 3 {
         let hull = convex_hull(&all_control);
         let _ = write!(
@@ -319,7 +346,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             );
         }
     }
-    if opts.show_control {
+    if opts.show_polygon {
         for (c, closed) in &controls {
             let tag = if *closed { "polygon" } else { "polyline" };
             let _ = write!(
@@ -357,7 +384,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             }
         }
     }
-    if opts.show_control {
+    if opts.show_points {
         for (c, _) in &controls {
             for p in c.iter().filter(|p| finite(p)) {
                 let (x, y) = f.px(*p);
@@ -365,6 +392,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             }
         }
     }
+    let _ = writeln!(s, "</g>");
     // Axis labels and legend.
     let _ = writeln!(
         s,
