@@ -1282,3 +1282,28 @@ fn bad_dates_and_columns_name_the_place() {
         &["--at value 1: a date, but x in example1.csv holds numbers"],
     );
 }
+
+/// JSON points may carry dates too, and fit's JSON of a dated series reads
+/// back as dates.
+#[test]
+fn json_dates_and_fit_output_read_back() {
+    let json = br#"[["2024-01-01", 120], ["2024-01-02", 135], ["2024-01-03", 128]]"#;
+    let o = run(&["sample", "--n", "2"], Some(&json[..]));
+    assert_eq!(
+        o.stdout, "x,y\n2024-01-01,120\n2024-01-03,128\n",
+        "{}",
+        o.stderr
+    );
+    let fit = ok(&["fit", "daily.csv"]);
+    let o = run(&["sample", "--n", "2"], Some(fit.as_bytes()));
+    assert_eq!(
+        o.stdout, "x,y\n2024-01-01,120\n2024-01-09,170\n",
+        "{}",
+        o.stderr
+    );
+    assert_data_error(
+        &["fit"],
+        Some(br#"[["2024-01-01", 1], [19724, 2]]"#),
+        &["<stdin>: points[1][0]: a number, but the first values are dates"],
+    );
+}

@@ -224,7 +224,14 @@ fn every_bad_option_value_is_a_usage_error() {
     assert!(problems.is_empty(), "\n{}", problems.join("\n"));
     // A figure in a format plot does not write.
     let jpg = dir.path().join("fig.jpg");
-    let o = run(&["plot", "--example", "1", "-o", jpg.to_str().unwrap()], None);
+    let o = run(
+        &["plot", "--example", "1", "-o", jpg.to_str().unwrap()],
+        None,
+    );
     assert_eq!(o.code, 2, "{}", o.stderr);
-    assert!(o.stderr.contains(".svg, .png or .pdf") && !jpg.exists(), "{}", o.stderr);
+    assert!(
+        o.stderr.contains(".svg, .png or .pdf") && !jpg.exists(),
+        "{}",
+        o.stderr
+    );
 }
