@@ -12,6 +12,8 @@ for ext in svg png; do
         --title "Example 2 of the paper: points of y = √(x − x²) (α = 1/2)" -o "docs/fig2.$ext"
     "$bz" plot --example 1 --alpha-sweep 1/3,1/2,2/3 \
         --title "Example 1 with α = 1/3, 1/2 and 2/3" -o "docs/alpha.$ext"
+    "$bz" plot docs/visitors.csv --no-polygon \
+        --title "Daily visitors, January 2024 (α = 1/2)" -o "docs/dated.$ext"
 done
 python3 docs/make_compare.py
 python3 docs/make_coverage.py   # coverage.png needs rsvg-convert (apt-get install librsvg2-bin)

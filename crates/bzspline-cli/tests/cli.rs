@@ -1307,3 +1307,17 @@ fn json_dates_and_fit_output_read_back() {
         &["<stdin>: points[1][0]: a number, but the first values are dates"],
     );
 }
+
+/// The README's dated series shows this output; keep it true.
+#[test]
+fn readme_dated_series_output_is_current() {
+    let visitors = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/visitors.csv");
+    assert_eq!(
+        ok(&["sample", visitors, "--n", "5"]),
+        "day,visitors\n2024-01-01,210\n2024-01-04T12:00:00Z,153.89114655213558\n2024-01-08,163.80018233344322\n2024-01-11T12:00:00Z,164.89801354404992\n2024-01-15,148\n"
+    );
+    assert_eq!(
+        ok(&["eval", visitors, "--at", "2024-01-04,2024-01-09T12:00:00Z", "--derivative", "1"]),
+        "day,visitors,dvisitors\n2024-01-04,144,16\n2024-01-09T12:00:00Z,144.0143385956696,1.266883057550963\n"
+    );
+}
