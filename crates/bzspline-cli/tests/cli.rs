@@ -1264,12 +1264,12 @@ fn bad_dates_and_columns_name_the_place() {
     assert_data_error(
         &["fit", "daily.csv", "--y", "sales"],
         None,
-        &["daily.csv: no column named 'sales' (the header names 'day', 'visitors')"],
+        &["daily.csv: no column named 'sales' (--y); the header names 'day', 'visitors'"],
     );
     assert_data_error(
         &["fit", "daily.csv", "--columns", "1,3"],
         None,
-        &["daily.csv: no column 3: the rows have 2 fields"],
+        &["daily.csv: no column 3 (--columns): the rows have 2 fields"],
     );
     assert_data_error(
         &["eval", "daily.csv", "--at", "3"],

@@ -58,17 +58,17 @@ fn resolve(
     width: usize,
     name: &str,
 ) -> Result<Option<Vec<usize>>> {
-    let find = |c: &Col| -> Result<usize> {
+    let find = |c: &Col, opt: &str| -> Result<usize> {
         match c {
             Col::Index(i) if *i <= width => Ok(i - 1),
             Col::Index(i) => Err(anyhow!(
-                "{name}: no column {i}: the rows have {width} field{}",
+                "{name}: no column {i} ({opt}): the rows have {width} field{}",
                 if width == 1 { "" } else { "s" }
             )),
             Col::Name(n) => match header {
                 Some(h) => h.iter().position(|f| f == n).ok_or_else(|| {
                     anyhow!(
-                        "{name}: no column named {c} (the header names {})",
+                        "{name}: no column named {c} ({opt}); the header names {}",
                         h.iter()
                             .map(|f| format!("'{}'", show(f)))
                             .collect::<Vec<_>>()
@@ -76,22 +76,26 @@ fn resolve(
                     )
                 }),
                 None => Err(anyhow!(
-                    "{name}: no header line to find the column named {c} in"
+                    "{name}: no header line to find the column named {c} ({opt}) in"
                 )),
             },
         }
     };
     Ok(match (&select.columns, &select.x, &select.y) {
-        (Some(cols), _, _) => Some(cols.iter().map(find).collect::<Result<_>>()?),
-        (None, Some(x), Some(y)) => Some(vec![find(x)?, find(y)?]),
+        (Some(cols), _, _) => Some(
+            cols.iter()
+                .map(|c| find(c, "--columns"))
+                .collect::<Result<_>>()?,
+        ),
+        (None, Some(x), Some(y)) => Some(vec![find(x, "--x")?, find(y, "--y")?]),
         (None, Some(x), None) => {
-            let x = find(x)?;
+            let x = find(x, "--x")?;
             let y = (0..width).find(|&j| j != x).ok_or_else(|| {
                 anyhow!("{name}: --x names the only column: no y to read beside it")
             })?;
             Some(vec![x, y])
         }
-        (None, None, Some(y)) => Some(vec![find(y)?]),
+        (None, None, Some(y)) => Some(vec![find(y, "--y")?]),
         (None, None, None) => None,
     })
 }
