@@ -1,0 +1,715 @@
+//! Python bindings: the extension module `bzspline._core`, which the
+//! pure-Python package `bzspline` re-exports. No mathematics here: every
+//! number comes from the `bzspline` crate; this file converts arrays, maps
+//! errors to Python exceptions and releases the GIL around the work.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Arc;
+
+use numpy::ndarray::{ArrayD, IxDyn};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyReadonlyArrayDyn};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyAny, PyTuple};
+
+use bzspline::{Alphas, Arclen, Extrapolate, Param, DEFAULT_ACCURACY};
+
+/// A library error as Python's `ValueError`, with the library's message
+/// (which names the index or field at fault).
+fn value_error(e: bzspline::Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// Runs `f`, turning a Rust panic (a bug) into `RuntimeError` with its message.
+fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(r) => r,
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_owned())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_owned());
+            Err(PyRuntimeError::new_err(format!(
+                "bzspline internal error (please report it): {msg}"
+            )))
+        }
+    }
+}
+
+/// Numbers of an array-like as a flat vector with the array's shape.
+fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
+    let np = x.py().import("numpy")?;
+    let arr = np
+        .call_method1("asarray", (x, "float64"))
+        .map_err(|e| PyTypeError::new_err(format!("{what}: {e}")))?;
+    let a: PyReadonlyArrayDyn<'_, f64> = arr.extract()?;
+    let view = a.as_array();
+    let shape = view.shape().to_vec();
+    let flat = match view.as_slice() {
+        Some(s) => s.to_vec(),
+        None => view.iter().copied().collect(),
+    };
+    Ok((flat, shape))
+}
+
+/// The alphas as a constructor takes them back: one number when they are
+/// all one (the same construction, bit for bit), else the array.
+fn alphas_arg<'py>(py: Python<'py>, alphas: &[f64]) -> PyResult<Bound<'py, PyAny>> {
+    match alphas.first() {
+        Some(&a) if alphas.iter().all(|&b| b == a) => Ok(a.into_pyobject(py)?.into_any()),
+        _ => Ok(PyArray1::from_slice(py, alphas).into_any()),
+    }
+}
+
+/// One alpha or one per interval.
+enum AlphaArg {
+    One(f64),
+    Each(Vec<f64>),
+}
+
+fn alpha_arg(alpha: &Bound<'_, PyAny>) -> PyResult<AlphaArg> {
+    if let Ok(a) = alpha.extract::<f64>() {
+        return Ok(AlphaArg::One(a));
+    }
+    let (v, shape) = floats(alpha, "alpha")?;
+    if shape.len() != 1 {
+        return Err(PyValueError::new_err(
+            "alpha must be a number or a 1-D array of one alpha per interval",
+        ));
+    }
+    Ok(AlphaArg::Each(v))
+}
+
+impl AlphaArg {
+    fn choice(&self) -> Alphas<'_> {
+        match self {
+            AlphaArg::One(a) => Alphas::Uniform(*a),
+            AlphaArg::Each(v) => Alphas::PerInterval(v),
+        }
+    }
+}
+
+/// What a spline does outside its knots: `True` extends the end cubics,
+/// `False` gives NaN (as scipy), `'clamp'` holds the end values.
+#[derive(Clone, Copy, PartialEq)]
+enum Outside {
+    Extend,
+    Nan,
+    Clamp,
+}
+
+fn outside_arg(v: &Bound<'_, PyAny>) -> PyResult<Outside> {
+    if let Ok(b) = v.extract::<bool>() {
+        return Ok(if b { Outside::Extend } else { Outside::Nan });
+    }
+    match v.extract::<String>().as_deref() {
+        Ok("clamp") => Ok(Outside::Clamp),
+        _ => Err(PyValueError::new_err(
+            "extrapolate must be True, False or 'clamp'",
+        )),
+    }
+}
+
+/// The third-degree Bezier-type spline y = S(x) of Stelia, Potapenko and
+/// Sirenko.
+#[pyclass(frozen, module = "bzspline._core")]
+struct Spline {
+    inner: Arc<bzspline::Spline>,
+    /// The y the spline was built from (the data; for `through`, not the
+    /// solved control values).
+    y: Vec<f64>,
+    through: bool,
+    outside: Outside,
+    /// The derivative order this object evaluates (from `derivative`).
+    nu: u32,
+}
+
+impl Spline {
+    fn eval_flat(&self, x: &[f64], nu: u32) -> PyResult<Vec<f64>> {
+        let order = nu + self.nu;
+        let s = &self.inner;
+        let mut out = vec![0.0; x.len()];
+        let (a, b) = s.domain();
+        if order > 3 {
+            for (o, &v) in out.iter_mut().zip(x) {
+                *o = if v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v)) {
+                    f64::NAN
+                } else {
+                    0.0
+                };
+            }
+            return Ok(out);
+        }
+        // NaN queries give NaN, like scipy; the library refuses them.
+        let finite = x.iter().all(|v| v.is_finite());
+        if finite {
+            s.deriv_many(x, order, &mut out).map_err(value_error)?;
+        } else {
+            for (o, &v) in out.iter_mut().zip(x) {
+                *o = if v.is_nan() {
+                    f64::NAN
+                } else {
+                    s.deriv(v, order).map_err(value_error)?
+                };
+            }
+        }
+        if self.outside == Outside::Nan {
+            for (o, &v) in out.iter_mut().zip(x) {
+                if !(a..=b).contains(&v) {
+                    *o = f64::NAN;
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+fn build_spline(
+    x: Vec<f64>,
+    y: Vec<f64>,
+    alpha: &AlphaArg,
+    through: bool,
+    outside: Outside,
+    py: Python<'_>,
+) -> PyResult<bzspline::Spline> {
+    let policy = match outside {
+        Outside::Extend | Outside::Nan => Extrapolate::Extend,
+        Outside::Clamp => Extrapolate::Clamp,
+    };
+    let built = py.allow_threads(|| {
+        if through {
+            bzspline::Spline::through(&x, &y, alpha.choice())
+        } else {
+            bzspline::Spline::build(&x, &y, alpha.choice())
+        }
+    });
+    Ok(built.map_err(value_error)?.with_extrapolation(policy))
+}
+
+#[pymethods]
+impl Spline {
+    #[new]
+    #[pyo3(signature = (x, y, alpha=None, through=false, extrapolate=None))]
+    fn new(
+        py: Python<'_>,
+        x: &Bound<'_, PyAny>,
+        y: &Bound<'_, PyAny>,
+        alpha: Option<&Bound<'_, PyAny>>,
+        through: bool,
+        extrapolate: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        guard(|| {
+            let (x, xs) = floats(x, "x")?;
+            let (y, ys) = floats(y, "y")?;
+            if xs.len() != 1 || ys.len() != 1 {
+                return Err(PyValueError::new_err("x and y must be 1-D arrays"));
+            }
+            let alpha = match alpha {
+                Some(a) => alpha_arg(a)?,
+                None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
+            };
+            let outside = match extrapolate {
+                Some(e) => outside_arg(e)?,
+                None => Outside::Extend,
+            };
+            let inner = build_spline(x, y.clone(), &alpha, through, outside, py)?;
+            Ok(Spline {
+                inner: Arc::new(inner),
+                y,
+                through,
+                outside,
+                nu: 0,
+            })
+        })
+    }
+
+    /// S(x), or its derivative of order `nu`, at every x: an array of x's shape.
+    #[pyo3(signature = (x, nu=0))]
+    fn __call__<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+        nu: i64,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        guard(|| {
+            let nu = u32::try_from(nu)
+                .map_err(|_| PyValueError::new_err(format!("nu = {nu} must be at least 0")))?;
+            let (x, shape) = floats(x, "x")?;
+            let out = py.allow_threads(|| self.eval_flat(&x, nu))?;
+            let arr = ArrayD::from_shape_vec(IxDyn(&shape), out)
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            Ok(arr.into_pyarray(py))
+        })
+    }
+
+    /// The derivative of order `nu` as a new object (evaluated by the same
+    /// pieces).
+    #[pyo3(signature = (nu=1))]
+    fn derivative(&self, nu: i64) -> PyResult<Self> {
+        let nu = u32::try_from(nu)
+            .map_err(|_| PyValueError::new_err(format!("nu = {nu} must be at least 0")))?;
+        Ok(Spline {
+            inner: Arc::clone(&self.inner),
+            y: self.y.clone(),
+            through: self.through,
+            outside: self.outside,
+            nu: self.nu + nu,
+        })
+    }
+
+    /// The integral of S from a to b (negative for b < a).
+    fn integrate(&self, a: f64, b: f64) -> PyResult<f64> {
+        if self.nu != 0 {
+            return Err(PyValueError::new_err(
+                "integrate applies to the spline, not to a derivative",
+            ));
+        }
+        let (lo, hi) = self.inner.domain();
+        if self.outside == Outside::Nan && (a < lo || b > hi || b < lo || a > hi) {
+            return Ok(f64::NAN);
+        }
+        self.inner.integral(a, b).map_err(value_error)
+    }
+
+    /// The points inside the domain where S' = 0: `(x, y, kind)` with kind
+    /// 'minimum', 'maximum' or 'stationary'.
+    fn extrema(&self) -> Vec<(f64, f64, &'static str)> {
+        self.inner
+            .extrema()
+            .into_iter()
+            .map(|e| {
+                let kind = match e.kind {
+                    bzspline::ExtremumKind::Minimum => "minimum",
+                    bzspline::ExtremumKind::Maximum => "maximum",
+                    _ => "stationary",
+                };
+                (e.x, e.y, kind)
+            })
+            .collect()
+    }
+
+    /// The knots.
+    #[getter]
+    fn x<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.inner.knots())
+    }
+
+    /// The knot values S(x_k).
+    #[getter]
+    fn knot_values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.knot_values().into_pyarray(py)
+    }
+
+    /// The shape parameters, one per interval.
+    #[getter]
+    fn alphas<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.inner.alphas())
+    }
+
+    /// The control values F_k (for `through=True`, the solved ones).
+    #[getter]
+    fn control_values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.inner.values())
+    }
+
+    /// The points where S touches each leg of the control polygon, `(n-1, 2)`.
+    #[getter]
+    fn tangent_points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows: Vec<Vec<f64>> = self
+            .inner
+            .tangent_points()
+            .into_iter()
+            .map(|(x, y)| vec![x, y])
+            .collect();
+        PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// Every piece as the four control points of a cubic Bezier segment,
+    /// `(n-1, 4, 2)`.
+    #[getter]
+    fn segments<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let segs: Vec<Vec<Vec<f64>>> = self
+            .inner
+            .segments()
+            .into_iter()
+            .map(|b| b.p.iter().map(|p| p.to_vec()).collect())
+            .collect();
+        PyArray3::from_vec3(py, &segs).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// The power-basis coefficients of piece k in `x - x_k`, lowest order
+    /// first, `(n-1, 4)` (scipy's `PPoly` wants them highest first, transposed).
+    fn power_coefficients<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows: Vec<Vec<f64>> = (0..self.inner.len())
+            .filter_map(|k| self.inner.power_coefficients(k).map(|c| c.to_vec()))
+            .collect();
+        PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// The graph as SVG path data (`M x0 y0 C ...`).
+    fn svg_path(&self) -> PyResult<String> {
+        let mut s = String::new();
+        match bzspline::write_svg_path(&*self.inner, false, &mut s) {
+            Ok(true) => Ok(s),
+            _ => Err(PyValueError::new_err(
+                "a control point of the path overflows a double",
+            )),
+        }
+    }
+
+    /// `extrapolate` as given: True, False or 'clamp'.
+    #[getter]
+    fn extrapolate(&self, py: Python<'_>) -> PyObject {
+        match self.outside {
+            Outside::Extend => true
+                .into_pyobject(py)
+                .map(|b| b.to_owned().into_any().unbind()),
+            Outside::Nan => false
+                .into_pyobject(py)
+                .map(|b| b.to_owned().into_any().unbind()),
+            Outside::Clamp => "clamp".into_pyobject(py).map(|s| s.into_any().unbind()),
+        }
+        .unwrap_or_else(|_| py.None())
+    }
+
+    /// The derivative order this object evaluates (0 for the spline).
+    #[getter]
+    fn nu(&self) -> u32 {
+        self.nu
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
+        let restore = py
+            .import("bzspline._core")?
+            .getattr("_spline_from_parts")?
+            .unbind();
+        let args = PyTuple::new(
+            py,
+            [
+                PyArray1::from_slice(py, self.inner.knots()).into_any(),
+                PyArray1::from_slice(py, &self.y).into_any(),
+                alphas_arg(py, self.inner.alphas())?,
+                self.through.into_pyobject(py)?.to_owned().into_any(),
+                self.extrapolate(py).into_bound(py),
+                self.nu.into_pyobject(py)?.into_any(),
+            ],
+        )?;
+        Ok((restore, args))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Spline(n={}, domain=({}, {}), through={}{})",
+            self.inner.knots().len(),
+            bzspline::Shortest(self.inner.domain().0),
+            bzspline::Shortest(self.inner.domain().1),
+            if self.through { "True" } else { "False" },
+            if self.nu > 0 {
+                format!(", nu={}", self.nu)
+            } else {
+                String::new()
+            }
+        )
+    }
+}
+
+fn param_arg(p: &Bound<'_, PyAny>) -> PyResult<(Param, String)> {
+    if let Ok(s) = p.extract::<String>() {
+        return match s.as_str() {
+            "uniform" => Ok((Param::Uniform, s)),
+            "chordal" => Ok((Param::Chordal, s)),
+            "centripetal" => Ok((Param::Centripetal, s)),
+            _ => Err(PyValueError::new_err(format!(
+                "param = {s:?}: expected 'uniform', 'chordal', 'centripetal' or an array of parameters"
+            ))),
+        };
+    }
+    let (v, _) = floats(p, "param")?;
+    Ok((Param::Given(v), "given".to_owned()))
+}
+
+/// A curve in R^d through the method: open or closed, any parametrisation.
+#[pyclass(frozen, module = "bzspline._core")]
+struct Curve {
+    inner: Arc<bzspline::Curve>,
+    points: Vec<f64>,
+    closed: bool,
+    through: bool,
+    param: String,
+}
+
+#[pymethods]
+impl Curve {
+    #[new]
+    #[pyo3(signature = (points, closed=false, param=None, alpha=None, through=false))]
+    fn new(
+        py: Python<'_>,
+        points: &Bound<'_, PyAny>,
+        closed: bool,
+        param: Option<&Bound<'_, PyAny>>,
+        alpha: Option<&Bound<'_, PyAny>>,
+        through: bool,
+    ) -> PyResult<Self> {
+        guard(|| {
+            let (pts, shape) = floats(points, "points")?;
+            if shape.len() != 2 || shape[1] == 0 {
+                return Err(PyValueError::new_err(
+                    "points must be an (n, d) array: one row per point",
+                ));
+            }
+            let dim = shape[1];
+            let (param, name) = match param {
+                Some(p) => param_arg(p)?,
+                None => (Param::Centripetal, "centripetal".to_owned()),
+            };
+            let alpha = match alpha {
+                Some(a) => alpha_arg(a)?,
+                None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
+            };
+            let built = py.allow_threads(|| {
+                bzspline::CurveBuilder::new(&pts, dim)
+                    .closed(closed)
+                    .param(param)
+                    .alpha_choice(alpha.choice())
+                    .through(through)
+                    .build()
+            });
+            Ok(Curve {
+                inner: Arc::new(built.map_err(value_error)?),
+                points: pts,
+                closed,
+                through,
+                param: name,
+            })
+        })
+    }
+
+    /// The point (or derivative of order `nu`) at every parameter t: an array
+    /// of shape `t.shape + (d,)`.
+    #[pyo3(signature = (t, nu=0))]
+    fn __call__<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+        nu: i64,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        guard(|| {
+            let nu = u32::try_from(nu)
+                .map_err(|_| PyValueError::new_err(format!("nu = {nu} must be at least 0")))?;
+            let (t, mut shape) = floats(t, "t")?;
+            let dim = self.inner.dim();
+            let c = &self.inner;
+            let out = py.allow_threads(|| -> PyResult<Vec<f64>> {
+                let mut out = vec![0.0; t.len() * dim];
+                for (o, &s) in out.chunks_mut(dim).zip(&t) {
+                    c.deriv_into(s, nu, o).map_err(value_error)?;
+                }
+                Ok(out)
+            })?;
+            shape.push(dim);
+            let arr = ArrayD::from_shape_vec(IxDyn(&shape), out)
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            Ok(arr.into_pyarray(py))
+        })
+    }
+
+    /// The parameters of the knots.
+    #[getter]
+    fn knots<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.inner.knots())
+    }
+
+    /// The curve's points at the knots, `(m, d)`.
+    #[getter]
+    fn knot_points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        PyArray2::from_vec2(py, &self.inner.knot_points())
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// The dimension d.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+
+    /// The arc length, to `accuracy`.
+    #[pyo3(signature = (accuracy=DEFAULT_ACCURACY))]
+    fn arclen(&self, py: Python<'_>, accuracy: f64) -> PyResult<f64> {
+        let c = &self.inner;
+        py.allow_threads(|| Arclen::arclen(&**c, accuracy))
+            .map_err(value_error)
+    }
+
+    /// Points at equal arc-length steps: `n` of them, or one every `step`
+    /// (and the end); `(m, d)`.
+    #[pyo3(signature = (n=None, step=None, accuracy=DEFAULT_ACCURACY))]
+    fn resample<'py>(
+        &self,
+        py: Python<'py>,
+        n: Option<usize>,
+        step: Option<f64>,
+        accuracy: f64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let c = &self.inner;
+        let rows: Vec<Vec<f64>> = match (n, step) {
+            (Some(n), None) => {
+                let p = py
+                    .allow_threads(|| c.resample(n, accuracy))
+                    .map_err(value_error)?;
+                (0..p.len())
+                    .filter_map(|i| p.point(i).map(<[f64]>::to_vec))
+                    .collect()
+            }
+            (None, Some(step)) if step.is_finite() && step > 0.0 => {
+                let total = Arclen::arclen(&**c, accuracy).map_err(value_error)?;
+                let count = (total / step).floor();
+                if count > 1e7 {
+                    return Err(PyValueError::new_err(format!(
+                        "step = {step} gives more than 10^7 points"
+                    )));
+                }
+                let mut lengths: Vec<f64> = (0..=count as usize).map(|i| i as f64 * step).collect();
+                lengths.retain(|l| total - l > accuracy);
+                let mut ts = c
+                    .params_at_lengths(&lengths, accuracy)
+                    .map_err(value_error)?;
+                ts.push(c.domain().1);
+                ts.iter()
+                    .map(|&t| c.eval(t).map_err(value_error))
+                    .collect::<PyResult<_>>()?
+            }
+            _ => {
+                return Err(PyValueError::new_err(
+                    "give one of n (at least 2) or step (a positive number)",
+                ))
+            }
+        };
+        PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// The point of the curve nearest to `p`: `(t, point, distance)`.
+    fn nearest<'py>(
+        &self,
+        py: Python<'py>,
+        p: &Bound<'py, PyAny>,
+    ) -> PyResult<(f64, Bound<'py, PyArray1<f64>>, f64)> {
+        let (q, _) = floats(p, "p")?;
+        let n = self.inner.nearest(&q).map_err(value_error)?;
+        Ok((n.param, n.point.into_pyarray(py), n.distance))
+    }
+
+    /// The exact bounding box: `(min, max)`.
+    fn bbox<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>) {
+        let b = self.inner.bbox();
+        (b.min.into_pyarray(py), b.max.into_pyarray(py))
+    }
+
+    /// The curvature at every t (planar: signed; in space: its magnitude).
+    fn curvature<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let (t, shape) = floats(t, "t")?;
+        let c = &self.inner;
+        let out = py.allow_threads(|| {
+            t.iter()
+                .map(|&s| c.curvature(s).map_err(value_error))
+                .collect::<PyResult<Vec<f64>>>()
+        })?;
+        let arr = ArrayD::from_shape_vec(IxDyn(&shape), out)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(arr.into_pyarray(py))
+    }
+
+    /// A polyline within `tolerance` of the curve, `(m, d)`.
+    fn flatten<'py>(&self, py: Python<'py>, tolerance: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let c = &self.inner;
+        let p = py
+            .allow_threads(|| c.flatten(tolerance))
+            .map_err(value_error)?;
+        let rows: Vec<Vec<f64>> = (0..p.len())
+            .filter_map(|i| p.point(i).map(<[f64]>::to_vec))
+            .collect();
+        PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// Every segment as four control points, `(m, 4, d)`.
+    #[getter]
+    fn segments<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f64>>> {
+        let d = self.inner.dim();
+        let segs: Vec<Vec<Vec<f64>>> = (0..self.inner.len())
+            .filter_map(|k| self.inner.segment_points(k))
+            .map(|p| p.chunks(d).map(<[f64]>::to_vec).collect())
+            .collect();
+        PyArray3::from_vec3(py, &segs).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// SVG path data of a planar curve (`Z` at the end of a closed one).
+    fn svg_path(&self) -> PyResult<String> {
+        self.inner.to_svg_path().map_err(value_error)
+    }
+
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
+        let cls = py.get_type::<Curve>().into_any().unbind();
+        let d = self.inner.dim();
+        let rows: Vec<Vec<f64>> = self.points.chunks(d).map(<[f64]>::to_vec).collect();
+        let points = PyArray2::from_vec2(py, &rows)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?
+            .into_any();
+        let param = if self.param == "given" {
+            PyArray1::from_slice(py, self.inner.knots()).into_any()
+        } else {
+            self.param.clone().into_pyobject(py)?.into_any()
+        };
+        let args = PyTuple::new(
+            py,
+            [
+                points,
+                self.closed.into_pyobject(py)?.to_owned().into_any(),
+                param,
+                alphas_arg(py, self.inner.alphas())?,
+                self.through.into_pyobject(py)?.to_owned().into_any(),
+            ],
+        )?;
+        Ok((cls, args))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Curve(points={}, dim={}, closed={}, param='{}')",
+            self.inner.point_count(),
+            self.inner.dim(),
+            if self.closed { "True" } else { "False" },
+            self.param
+        )
+    }
+}
+
+/// A spline (or its derivative of order `nu`) from the parts `__reduce__`
+/// gives: how a pickled `Spline` is rebuilt.
+#[pyfunction]
+fn _spline_from_parts(
+    py: Python<'_>,
+    x: &Bound<'_, PyAny>,
+    y: &Bound<'_, PyAny>,
+    alpha: &Bound<'_, PyAny>,
+    through: bool,
+    extrapolate: &Bound<'_, PyAny>,
+    nu: u32,
+) -> PyResult<Spline> {
+    let s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
+    Ok(Spline { nu, ..s })
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("ALPHA_MIN", bzspline::ALPHA_MIN)?;
+    m.add("ALPHA_MAX", bzspline::ALPHA_MAX)?;
+    m.add_class::<Spline>()?;
+    m.add_class::<Curve>()?;
+    m.add_function(wrap_pyfunction!(_spline_from_parts, m)?)?;
+    Ok(())
+}
