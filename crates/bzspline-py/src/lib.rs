@@ -37,6 +37,18 @@ fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     }
 }
 
+/// An array-like as a float64 numpy array (the same object when it is one).
+fn as_float_array<'py>(
+    x: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
+    let np = x.py().import("numpy")?;
+    let arr = np
+        .call_method1("asarray", (x, "float64"))
+        .map_err(|e| PyTypeError::new_err(format!("{what}: {e}")))?;
+    arr.extract()
+}
+
 /// Numbers of an array-like as a flat vector with the array's shape.
 fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
     let np = x.py().import("numpy")?;
@@ -116,8 +128,8 @@ fn outside_arg(v: &Bound<'_, PyAny>) -> PyResult<Outside> {
 #[pyclass(frozen, module = "bzspline._core")]
 struct Spline {
     inner: Arc<bzspline::Spline>,
-    /// The y the spline was built from (the data; for `through`, not the
-    /// solved control values).
+    /// For `through`, the y it passes through (its control values are
+    /// solved); empty otherwise, where the control values are the data.
     y: Vec<f64>,
     through: bool,
     outside: Outside,
@@ -141,11 +153,9 @@ impl Spline {
             }
             return Ok(out);
         }
-        // NaN queries give NaN, like scipy; the library refuses them.
-        let finite = x.iter().all(|v| v.is_finite());
-        if finite {
-            s.deriv_many(x, order, &mut out).map_err(value_error)?;
-        } else {
+        // NaN queries give NaN, like scipy; the library refuses them, and
+        // then they are taken one by one.
+        if s.deriv_many(x, order, &mut out).is_err() {
             for (o, &v) in out.iter_mut().zip(x) {
                 *o = if v.is_nan() {
                     f64::NAN
@@ -166,8 +176,8 @@ impl Spline {
 }
 
 fn build_spline(
-    x: Vec<f64>,
-    y: Vec<f64>,
+    x: &[f64],
+    y: &[f64],
     alpha: &AlphaArg,
     through: bool,
     outside: Outside,
@@ -179,9 +189,9 @@ fn build_spline(
     };
     let built = py.allow_threads(|| {
         if through {
-            bzspline::Spline::through(&x, &y, alpha.choice())
+            bzspline::Spline::through(x, y, alpha.choice())
         } else {
-            bzspline::Spline::build(&x, &y, alpha.choice())
+            bzspline::Spline::build(x, y, alpha.choice())
         }
     });
     Ok(built.map_err(value_error)?.with_extrapolation(policy))
@@ -200,11 +210,27 @@ impl Spline {
         extrapolate: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         guard(|| {
-            let (x, xs) = floats(x, "x")?;
-            let (y, ys) = floats(y, "y")?;
-            if xs.len() != 1 || ys.len() != 1 {
+            // Contiguous float64 arrays are read where they lie (no copy).
+            let (xa, ya) = (as_float_array(x, "x")?, as_float_array(y, "y")?);
+            let (xv, yv) = (xa.as_array(), ya.as_array());
+            if xv.ndim() != 1 || yv.ndim() != 1 {
                 return Err(PyValueError::new_err("x and y must be 1-D arrays"));
             }
+            let (xc, yc);
+            let x = match xv.as_slice() {
+                Some(s) => s,
+                None => {
+                    xc = xv.iter().copied().collect::<Vec<f64>>();
+                    &xc
+                }
+            };
+            let y = match yv.as_slice() {
+                Some(s) => s,
+                None => {
+                    yc = yv.iter().copied().collect::<Vec<f64>>();
+                    &yc
+                }
+            };
             let alpha = match alpha {
                 Some(a) => alpha_arg(a)?,
                 None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
@@ -213,10 +239,10 @@ impl Spline {
                 Some(e) => outside_arg(e)?,
                 None => Outside::Extend,
             };
-            let inner = build_spline(x, y.clone(), &alpha, through, outside, py)?;
+            let inner = build_spline(x, y, &alpha, through, outside, py)?;
             Ok(Spline {
                 inner: Arc::new(inner),
-                y,
+                y: if through { y.to_vec() } else { Vec::new() },
                 through,
                 outside,
                 nu: 0,
@@ -235,8 +261,17 @@ impl Spline {
         guard(|| {
             let nu = u32::try_from(nu)
                 .map_err(|_| PyValueError::new_err(format!("nu = {nu} must be at least 0")))?;
-            let (x, shape) = floats(x, "x")?;
-            let out = py.allow_threads(|| self.eval_flat(&x, nu))?;
+            // A contiguous float64 array is read where it lies (no copy).
+            let arr = as_float_array(x, "x")?;
+            let view = arr.as_array();
+            let shape = view.shape().to_vec();
+            let out = match view.as_slice() {
+                Some(xs) => py.allow_threads(|| self.eval_flat(xs, nu))?,
+                None => {
+                    let xs: Vec<f64> = view.iter().copied().collect();
+                    py.allow_threads(|| self.eval_flat(&xs, nu))?
+                }
+            };
             let arr = ArrayD::from_shape_vec(IxDyn(&shape), out)
                 .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
             Ok(arr.into_pyarray(py))
@@ -388,7 +423,16 @@ impl Spline {
             py,
             [
                 PyArray1::from_slice(py, self.inner.knots()).into_any(),
-                PyArray1::from_slice(py, &self.y).into_any(),
+                // The data: for `through` kept aside, else the control values.
+                PyArray1::from_slice(
+                    py,
+                    if self.through {
+                        &self.y
+                    } else {
+                        self.inner.values()
+                    },
+                )
+                .into_any(),
                 alphas_arg(py, self.inner.alphas())?,
                 self.through.into_pyobject(py)?.to_owned().into_any(),
                 self.extrapolate(py).into_bound(py),
