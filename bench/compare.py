@@ -14,6 +14,9 @@ runs after one warm-up (a single timed run when the warm-up took over 2 s).
 make_interp_spline's random-order queries, four orders of magnitude slower
 than the others, are timed on the first 10,000 of the random queries.
 
+With --python it also installs the Python package (crates/bzspline-py) into the
+venv and times bzspline.Spline in the same process as scipy, on the same arrays.
+
 With --rounds R > 1 bzspline and scipy are timed alternately R times and each
 figure is the smallest of its R medians, which keeps a machine whose speed
 drifts (shared cores, other tenants) from favouring whichever ran first.
@@ -201,6 +204,57 @@ def run_scipy(n, m, mr, repeats):
     return res
 
 
+def ensure_package():
+    """Installs the Python package (crates/bzspline-py) into this venv, built
+    with maturin in release mode, when it is not importable."""
+    try:
+        import bzspline  # noqa: F401
+    except ImportError:
+        subprocess.run([sys.executable, "-m", "pip", "install", "--quiet",
+                        os.path.join(ROOT, "crates", "bzspline-py")], check=True)
+
+
+def run_python(n, m, mr, repeats):
+    """The Python package on the data of `run_scipy`, in this process."""
+    import numpy as np
+    import bzspline
+
+    rng = np.random.default_rng(1)
+    x = np.concatenate(([0.0], np.cumsum(0.5 + rng.random(n - 1))))
+    y = 100.0 * np.sin(0.01 * x) + rng.random(n) - 0.5
+    lo, hi = x[0], x[-1]
+    sorted_q = lo + (hi - lo) * (np.arange(m) + 0.5) / m
+    random_q = lo + (hi - lo) * rng.random(mr)
+    s = bzspline.Spline(x, y)
+    s(random_q)  # forms the search index, as the Rust figures' runs do
+    return {
+        "construct": median_ns(lambda: bzspline.Spline(x, y), repeats) / n,
+        "eval_sorted": median_ns(lambda: s(sorted_q), repeats) / m,
+        "eval_random": median_ns(lambda: s(random_q), repeats) / mr,
+        "deriv1_sorted": median_ns(lambda: s(sorted_q, 1), repeats) / m,
+        "deriv1_random": median_ns(lambda: s(random_q, 1), repeats) / mr,
+    }
+
+
+def print_python(py, sp, bz):
+    """The Python package against CubicSpline (same process, same arrays) and
+    against the Rust throughput example (which writes into a reused buffer;
+    Python returns a new array, whose page faults it pays)."""
+    print()
+    print("The Python package (bzspline.Spline) in the same process as scipy:")
+    print(f"| {'':24} | {'Python':>8} | {'CubicSpline':>18} | {'Rust example':>20} |")
+    print("|" + "-" * 26 + "|" + "-" * 10 + "|" + "-" * 20 + "|" + "-" * 22 + "|")
+    for label, key, rust in [
+        ("construct (ns/point)", "construct", "construct_fresh_ns_per_point"),
+        ("eval sorted (ns/query)", "eval_sorted", "eval_sorted_ns_per_point"),
+        ("eval random (ns/query)", "eval_random", "eval_random_ns_per_point"),
+        ("deriv1 sorted (ns/query)", "deriv1_sorted", "deriv1_sorted_ns_per_point"),
+        ("deriv1 random (ns/query)", "deriv1_random", "deriv1_random_ns_per_point"),
+    ]:
+        v, c, r = py[key], sp["CubicSpline"][key], bz[rust]
+        print(f"| {label:24} | {v:8.2f} | {c:9.2f} {c / v:6.1f}x | {r:9.2f} {v / r:6.2f}x slower |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=float, default=1e6)
@@ -208,11 +262,15 @@ def main():
     ap.add_argument("--mr", type=float, default=None)
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--rounds", type=int, default=1)
+    ap.add_argument("--python", action="store_true",
+                    help="also time the Python package (pip-installed into bench/.venv)")
     a = ap.parse_args()
     n, m = int(a.n), int(a.m)
     mr = int(a.mr) if a.mr is not None else min(m, 1_000_000)
     ensure_venv()
-    bz, sp, base = None, None, None
+    if a.python:
+        ensure_package()
+    bz, sp, base, py = None, None, None, None
     for _ in range(max(1, a.rounds)):
         b, s = run_bzspline(n, m, mr, a.repeats), run_scipy(n, m, mr, a.repeats)
         k = run_baselines(n, m, mr, a.repeats)
@@ -221,6 +279,9 @@ def main():
         base = k if base is None else {
             key: (max if key.endswith("gb_per_s") else smaller)(base[key], v)
             for key, v in k.items()}
+        if a.python:
+            p = run_python(n, m, mr, a.repeats)
+            py = p if py is None else {q: min(py[q], t) for q, t in p.items()}
         if sp is None:
             sp = s
         else:
@@ -256,6 +317,8 @@ def main():
         bs = f"{b:9.2f}" if b is not None else f"{'-':>9}"
         print(f"| {label:30} | {bs} | " + " | ".join(f"{c:>18}" for c in cells) + " |")
     print_targets(print_machine(base, sp, n, m, mr), bz)
+    if py is not None:
+        print_python(py, sp, bz)
     print()
     print("bzspline:", json.dumps(bz))
     print("baselines:", json.dumps(base))

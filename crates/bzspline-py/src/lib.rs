@@ -3,6 +3,8 @@
 //! number comes from the `bzspline` crate; this file converts arrays, maps
 //! errors to Python exceptions and releases the GIL around the work.
 
+mod geo;
+
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
 
@@ -755,5 +757,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Spline>()?;
     m.add_class::<Curve>()?;
     m.add_function(wrap_pyfunction!(_spline_from_parts, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_smooth_ragged, m)?)?;
     Ok(())
 }
