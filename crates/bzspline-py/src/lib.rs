@@ -9,7 +9,10 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
 
 use numpy::ndarray::{ArrayD, IxDyn};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyReadonlyArrayDyn};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyTuple};
@@ -141,9 +144,15 @@ struct Spline {
 
 impl Spline {
     fn eval_flat(&self, x: &[f64], nu: u32) -> PyResult<Vec<f64>> {
+        let mut out = vec![0.0; x.len()];
+        self.eval_into(x, nu, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Spline::eval_flat`] into `out` (as long as `x`).
+    fn eval_into(&self, x: &[f64], nu: u32, out: &mut [f64]) -> PyResult<()> {
         let order = nu + self.nu;
         let s = &self.inner;
-        let mut out = vec![0.0; x.len()];
         let (a, b) = s.domain();
         if order > 3 {
             for (o, &v) in out.iter_mut().zip(x) {
@@ -153,11 +162,11 @@ impl Spline {
                     0.0
                 };
             }
-            return Ok(out);
+            return Ok(());
         }
         // NaN queries give NaN, like scipy; the library refuses them, and
         // then they are taken one by one.
-        if s.deriv_many(x, order, &mut out).is_err() {
+        if s.deriv_many(x, order, out).is_err() {
             for (o, &v) in out.iter_mut().zip(x) {
                 *o = if v.is_nan() {
                     f64::NAN
@@ -173,7 +182,7 @@ impl Spline {
                 }
             }
         }
-        Ok(out)
+        Ok(())
     }
 }
 
@@ -253,12 +262,15 @@ impl Spline {
     }
 
     /// S(x), or its derivative of order `nu`, at every x: an array of x's shape.
-    #[pyo3(signature = (x, nu=0))]
+    /// With `out` (a writable, contiguous float64 array of x's shape) the
+    /// results go there and `out` is returned: no new array.
+    #[pyo3(signature = (x, nu=0, out=None))]
     fn __call__<'py>(
         &self,
         py: Python<'py>,
         x: &Bound<'py, PyAny>,
         nu: i64,
+        out: Option<Bound<'py, PyArrayDyn<f64>>>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         guard(|| {
             let nu = u32::try_from(nu)
@@ -267,6 +279,30 @@ impl Spline {
             let arr = as_float_array(x, "x")?;
             let view = arr.as_array();
             let shape = view.shape().to_vec();
+            if let Some(o) = out {
+                {
+                    let mut w = o.try_readwrite().map_err(|e| {
+                        PyValueError::new_err(format!("out must be writable and not x: {e}"))
+                    })?;
+                    if w.shape() != shape.as_slice() {
+                        return Err(PyValueError::new_err(format!(
+                            "out has shape {:?}, x has {shape:?}",
+                            w.shape()
+                        )));
+                    }
+                    let dst = w
+                        .as_slice_mut()
+                        .map_err(|_| PyValueError::new_err("out must be C-contiguous"))?;
+                    match view.as_slice() {
+                        Some(xs) => py.allow_threads(|| self.eval_into(xs, nu, dst))?,
+                        None => {
+                            let xs: Vec<f64> = view.iter().copied().collect();
+                            py.allow_threads(|| self.eval_into(&xs, nu, dst))?
+                        }
+                    }
+                }
+                return Ok(o);
+            }
             let out = match view.as_slice() {
                 Some(xs) => py.allow_threads(|| self.eval_flat(xs, nu))?,
                 None => {

@@ -64,6 +64,19 @@ def test_shapes_and_dtypes_follow_the_input():
     assert np.array_equal(s(strided), s(strided.copy()))
 
 
+def test_out_receives_the_results():
+    s = bzspline.Spline(TAU, F)
+    q = np.linspace(1, 11, 101).reshape(101, 1)
+    out = np.empty_like(q)
+    assert s(q, 1, out=out) is out and np.array_equal(out, s(q, 1))
+    with pytest.raises(ValueError, match="shape"):
+        s(q, out=np.empty(101))
+    with pytest.raises(ValueError):
+        s(q, out=q)  # the input itself
+    with pytest.raises(TypeError):
+        s(q, out=np.empty((101, 1), dtype=np.float32))
+
+
 def test_extrapolation_as_scipy():
     s = bzspline.Spline(TAU, F)
     assert np.isfinite(s(0.0)) and np.isfinite(s(12.0))
