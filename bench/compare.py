@@ -205,13 +205,11 @@ def run_scipy(n, m, mr, repeats):
 
 
 def ensure_package():
-    """Installs the Python package (crates/bzspline-py) into this venv, built
-    with maturin in release mode, when it is not importable."""
-    try:
-        import bzspline  # noqa: F401
-    except ImportError:
-        subprocess.run([sys.executable, "-m", "pip", "install", "--quiet",
-                        os.path.join(ROOT, "crates", "bzspline-py")], check=True)
+    """Installs this tree's Python package (crates/bzspline-py) into the venv,
+    built by maturin in release mode (again each run, so that the figures are
+    of the current code)."""
+    subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--force-reinstall",
+                    "--no-deps", os.path.join(ROOT, "crates", "bzspline-py")], check=True)
 
 
 def run_python(n, m, mr, repeats):
