@@ -21,6 +21,7 @@
 //! warm-up run, or the smallest with `BZ_MIN=1`), `--seed` (default 1). The
 //! streams run over `--stream` doubles (default 2^25, 256 MiB an array).
 
+#[allow(dead_code)] // the benchmarks' data, which these kernels do not use
 mod common;
 
 use std::hint::{black_box, select_unpredictable};

@@ -26,7 +26,7 @@ mod common;
 use std::hint::black_box;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Spline};
-use common::Rng;
+use common::{Data, Rng};
 
 const N: usize = 100_000;
 const M: usize = 1_000_000;
@@ -38,22 +38,13 @@ fn main() {
         std::process::exit(2);
     };
     let mut rng = Rng::seeded(1);
-    let mut knots = Vec::with_capacity(N);
-    let mut t = 0.0;
-    for _ in 0..N {
-        knots.push(t);
-        t += 0.5 + rng.next();
-    }
-    let values: Vec<f64> = knots
-        .iter()
-        .map(|x| 100.0 * (0.01 * x).sin() + rng.next() - 0.5)
-        .collect();
-    let alphas: Vec<f64> = (0..N - 1).map(|_| 0.35 + 0.3 * rng.next()).collect();
-    let (lo, hi) = (knots[0], knots[N - 1]);
-    let sorted: Vec<f64> = (0..M)
-        .map(|i| lo + (hi - lo) * (i as f64 + 0.5) / M as f64)
-        .collect();
-    let random: Vec<f64> = (0..M).map(|_| lo + (hi - lo) * rng.next()).collect();
+    let Data {
+        knots,
+        values,
+        alphas,
+        sorted,
+        random,
+    } = Data::new(&mut rng, N, M, M);
     let pts: Vec<[f64; 2]> = knots.iter().zip(&values).map(|(x, y)| [*x, *y]).collect();
     let spiral: Vec<[f64; 2]> = (0..N)
         .map(|i| {

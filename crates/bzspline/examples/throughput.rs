@@ -17,7 +17,7 @@ mod common;
 use std::hint::black_box;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Spline};
-use common::{args_or_exit, f_median, median_ns, median_of, time_ns, Rng};
+use common::{args_or_exit, f_median, median_ns, median_of, time_ns, Data, Rng};
 
 /// Control points of the flattening benchmark's spiral.
 const SPIRAL: usize = 100_000;
@@ -26,22 +26,13 @@ fn main() {
     let args = args_or_exit("throughput", 2, false);
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
     let mut rng = Rng::seeded(args.seed);
-    let mut knots = Vec::with_capacity(n);
-    let mut t = 0.0;
-    for _ in 0..n {
-        knots.push(t);
-        t += 0.5 + rng.next();
-    }
-    let values: Vec<f64> = knots
-        .iter()
-        .map(|x| 100.0 * (0.01 * x).sin() + rng.next() - 0.5)
-        .collect();
-    let alphas: Vec<f64> = (0..n - 1).map(|_| 0.35 + 0.3 * rng.next()).collect();
-    let (lo, hi) = (knots[0], knots[n - 1]);
-    let sorted: Vec<f64> = (0..m)
-        .map(|i| lo + (hi - lo) * (i as f64 + 0.5) / m as f64)
-        .collect();
-    let random: Vec<f64> = (0..mr).map(|_| lo + (hi - lo) * rng.next()).collect();
+    let Data {
+        knots,
+        values,
+        alphas,
+        sorted,
+        random,
+    } = Data::new(&mut rng, n, m, mr);
 
     // A fresh build, page faults of its new allocations included; the release
     // of the previous spline's memory is not timed.

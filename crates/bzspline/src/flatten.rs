@@ -64,13 +64,13 @@ pub(crate) fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::curve::Curve;
     use crate::spline::Spline;
 
     /// Distance from `p` to the segment `a`-`b`.
-    fn seg_dist(p: &[f64], a: &[f64], b: &[f64]) -> f64 {
+    pub(crate) fn seg_dist(p: &[f64], a: &[f64], b: &[f64]) -> f64 {
         let ab: Vec<f64> = a.iter().zip(b).map(|(a, b)| b - a).collect();
         let ap: Vec<f64> = a.iter().zip(p).map(|(a, p)| p - a).collect();
         let l2: f64 = ab.iter().map(|v| v * v).sum();

@@ -122,3 +122,43 @@ pub fn pick(sorted: &[f64]) -> f64 {
         sorted[sorted.len() / 2]
     }
 }
+
+/// The benchmarks' data: `n` knots with random widths in `[0.5, 1.5)`, values
+/// a sine plus noise, one alpha per interval in `[0.35, 0.65)`, `m` queries
+/// evenly spaced over the domain and `mr` uniformly random ones, drawn from
+/// `rng` in that order.
+pub struct Data {
+    pub knots: Vec<f64>,
+    pub values: Vec<f64>,
+    pub alphas: Vec<f64>,
+    pub sorted: Vec<f64>,
+    pub random: Vec<f64>,
+}
+
+impl Data {
+    pub fn new(rng: &mut Rng, n: usize, m: usize, mr: usize) -> Self {
+        let mut knots = Vec::with_capacity(n);
+        let mut t = 0.0;
+        for _ in 0..n {
+            knots.push(t);
+            t += 0.5 + rng.next();
+        }
+        let values: Vec<f64> = knots
+            .iter()
+            .map(|x| 100.0 * (0.01 * x).sin() + rng.next() - 0.5)
+            .collect();
+        let alphas: Vec<f64> = (0..n - 1).map(|_| 0.35 + 0.3 * rng.next()).collect();
+        let (lo, hi) = (knots[0], knots[n - 1]);
+        let sorted: Vec<f64> = (0..m)
+            .map(|i| lo + (hi - lo) * (i as f64 + 0.5) / m as f64)
+            .collect();
+        let random: Vec<f64> = (0..mr).map(|_| lo + (hi - lo) * rng.next()).collect();
+        Data {
+            knots,
+            values,
+            alphas,
+            sorted,
+            random,
+        }
+    }
+}

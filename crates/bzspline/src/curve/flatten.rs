@@ -633,23 +633,7 @@ impl Curve {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Distance from `p` to the segment `a`-`b`.
-    fn seg_dist(p: &[f64], a: &[f64], b: &[f64]) -> f64 {
-        let ab: Vec<f64> = a.iter().zip(b).map(|(a, b)| b - a).collect();
-        let ap: Vec<f64> = a.iter().zip(p).map(|(a, p)| p - a).collect();
-        let l2: f64 = ab.iter().map(|v| v * v).sum();
-        let t = if l2 > 0.0 {
-            (ab.iter().zip(&ap).map(|(u, v)| u * v).sum::<f64>() / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        ap.iter()
-            .zip(&ab)
-            .map(|(v, u)| (v - t * u) * (v - t * u))
-            .sum::<f64>()
-            .sqrt()
-    }
+    use crate::flatten::tests::seg_dist;
 
     fn segment(c: &Curve, k: usize, rel: [f64; 2]) -> Segment {
         let q = c.coefficients();
