@@ -1,0 +1,51 @@
+"""bzspline.geo.smooth on a dask LocalCluster of two worker processes: the
+functions and objects travel to other processes (pickling), and every feature
+comes back as one process smooths it."""
+
+import numpy as np
+import pytest
+
+dask_geopandas = pytest.importorskip("dask_geopandas")
+distributed = pytest.importorskip("distributed")
+geopandas = pytest.importorskip("geopandas")
+shapely = pytest.importorskip("shapely")
+
+import bzspline  # noqa: E402
+
+
+def wiggly_lines(n, seed=0):
+    rng = np.random.default_rng(seed)
+    lines = []
+    for i in range(n):
+        x = np.linspace(0, 10, 30)
+        y = np.sin(x + i) + rng.normal(scale=0.1, size=x.size) + 3 * i
+        lines.append(shapely.LineString(np.column_stack([x, y])))
+    return geopandas.GeoSeries(lines, crs="EPSG:3857")
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as c:
+            yield c
+
+
+def test_partitions_smooth_each_feature_as_one_process_does(client):
+    s = wiggly_lines(40)
+    want = bzspline.geo.smooth(s, tolerance=1e-3, coverage=False)
+    d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=4)
+    got = d.geometry.map_partitions(
+        bzspline.geo.smooth, tolerance=1e-3, coverage=False, meta=d.geometry._meta
+    ).compute()
+    assert list(got.index) == list(want.index)
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(got, want))
+
+
+def test_splines_travel_to_workers(client):
+    x = np.arange(1.0, 12.0)
+    s = bzspline.Spline(x, [1, 3, 3, 1, 2, 7, 1.5, 1, 10, 2, 1.5])
+    q = np.linspace(1, 11, 1001)
+    futures = [client.submit(lambda s, q, nu: s(q, nu), s, q, nu) for nu in range(3)]
+    for nu, f in enumerate(futures):
+        assert np.array_equal(f.result(), s(q, nu))
