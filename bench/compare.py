@@ -173,10 +173,10 @@ def print_targets(here, bz):
             label = ""
 
 
-def run_scipy(n, m, mr, repeats):
+def bench_data(n, m, mr):
+    """Knots with random widths in [0.5, 1.5), values a sine plus noise, `m`
+    sorted queries evenly spaced over the domain and `mr` random ones."""
     import numpy as np
-    import scipy
-    from scipy.interpolate import CubicSpline, PchipInterpolator, make_interp_spline
 
     rng = np.random.default_rng(1)
     x = np.concatenate(([0.0], np.cumsum(0.5 + rng.random(n - 1))))
@@ -184,6 +184,15 @@ def run_scipy(n, m, mr, repeats):
     lo, hi = x[0], x[-1]
     sorted_q = lo + (hi - lo) * (np.arange(m) + 0.5) / m
     random_q = lo + (hi - lo) * rng.random(mr)
+    return x, y, sorted_q, random_q
+
+
+def run_scipy(n, m, mr, repeats):
+    import numpy as np
+    import scipy
+    from scipy.interpolate import CubicSpline, PchipInterpolator, make_interp_spline
+
+    x, y, sorted_q, random_q = bench_data(n, m, mr)
     res = {"scipy_version": scipy.__version__, "numpy_version": np.__version__}
     makers = {
         "CubicSpline": lambda: CubicSpline(x, y),
@@ -217,12 +226,7 @@ def run_python(n, m, mr, repeats):
     import numpy as np
     import bzspline
 
-    rng = np.random.default_rng(1)
-    x = np.concatenate(([0.0], np.cumsum(0.5 + rng.random(n - 1))))
-    y = 100.0 * np.sin(0.01 * x) + rng.random(n) - 0.5
-    lo, hi = x[0], x[-1]
-    sorted_q = lo + (hi - lo) * (np.arange(m) + 0.5) / m
-    random_q = lo + (hi - lo) * rng.random(mr)
+    x, y, sorted_q, random_q = bench_data(n, m, mr)
     s = bzspline.Spline(x, y)
     s(random_q)  # forms the search index, as the Rust figures' runs do
     out = np.empty(m)

@@ -46,13 +46,7 @@ fn main() {
         random,
     } = Data::new(&mut rng, N, M, M);
     let pts: Vec<[f64; 2]> = knots.iter().zip(&values).map(|(x, y)| [*x, *y]).collect();
-    let spiral: Vec<[f64; 2]> = (0..N)
-        .map(|i| {
-            let th = i as f64 * (200.0 * std::f64::consts::PI / N as f64);
-            let rad = 1.0 + th + 0.3 * rng.next();
-            [rad * th.cos(), rad * th.sin()]
-        })
-        .collect();
+    let spiral = common::spiral(&mut rng, N);
     let (Ok(mut s), Ok(mut c), Ok(sc)) = (
         Spline::new(&knots, &values),
         Curve::open(&pts),

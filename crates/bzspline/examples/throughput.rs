@@ -78,13 +78,7 @@ fn main() {
     // Flattening as the target states it: a 1e5-point planar curve (a jittered
     // spiral of 100 turns) to a tolerance of 1e-3 of its size (the diagonal of
     // its bounding box), against building the same curve.
-    let spiral: Vec<[f64; 2]> = (0..SPIRAL)
-        .map(|i| {
-            let th = i as f64 * (200.0 * std::f64::consts::PI / SPIRAL as f64);
-            let rad = 1.0 + th + 0.3 * rng.next();
-            [rad * th.cos(), rad * th.sin()]
-        })
-        .collect();
+    let spiral = common::spiral(&mut rng, SPIRAL);
     let spiral_build = {
         let mut keep = Vec::new();
         f_median(r, &mut keep, || Curve::open(&spiral))

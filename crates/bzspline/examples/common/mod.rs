@@ -162,3 +162,15 @@ impl Data {
         }
     }
 }
+
+/// The flattening benchmark's curve: `n` points of a spiral of 100 turns,
+/// the radius jittered by up to 0.3 (drawn from `rng`).
+pub fn spiral(rng: &mut Rng, n: usize) -> Vec<[f64; 2]> {
+    (0..n)
+        .map(|i| {
+            let th = i as f64 * (200.0 * std::f64::consts::PI / n as f64);
+            let rad = 1.0 + th + 0.3 * rng.next();
+            [rad * th.cos(), rad * th.sin()]
+        })
+        .collect()
+}
