@@ -5,6 +5,7 @@ use geo_types::{Coord, Geometry, GeometryCollection, Line, LineString, MultiLine
 use geo_types::{MultiPolygon, Polygon};
 
 use crate::error::Error;
+use crate::nodes::Nodes;
 use crate::smooth::{SmoothOptions, Stats};
 use crate::topology::{snap, ChainKind, Topology};
 
@@ -64,46 +65,30 @@ impl Coverage {
     /// ([`Coverage::describe`] names the geometry); [`Error::InvalidOption`]
     /// for a snap distance that is not a finite non-negative number.
     pub fn new(geometries: Vec<Geometry<f64>>, snap_distance: Option<f64>) -> Result<Self, Error> {
-        let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
-        let mut origins: Vec<Origin> = Vec::new();
-        let mut polygons: Vec<Vec<usize>> = Vec::new();
-        for (gi, g) in geometries.iter().enumerate() {
-            let mut member = 0;
-            visit(g, &mut |part| {
-                match part {
-                    Part::Line(coords) => {
-                        origins.push(Origin {
-                            geometry: gi,
-                            member,
-                            ring: 0,
-                            polygon: false,
-                        });
-                        chains.push((ChainKind::Line, coords));
-                    }
-                    Part::Polygon(p) => {
-                        let first = chains.len();
-                        for (ri, r) in std::iter::once(p.exterior())
-                            .chain(p.interiors())
-                            .enumerate()
-                        {
-                            origins.push(Origin {
-                                geometry: gi,
-                                member,
-                                ring: ri,
-                                polygon: true,
-                            });
-                            chains.push((ChainKind::Ring, r.0.clone()));
-                        }
-                        polygons.push((first..chains.len()).collect());
-                    }
-                }
-                member += 1;
-            });
-        }
+        Coverage::with_nodes(geometries, snap_distance, Nodes::default())
+    }
+
+    /// As [`Coverage::new`] for one part of a larger coverage, with the nodes
+    /// of the whole ([`crate::nodes`]): the part's lines and rings are cut
+    /// and smoothed exactly as the whole coverage would cut and smooth them,
+    /// and with the nodes' extent the default tolerance is the whole's.
+    ///
+    /// Snapping is done within the part; snap the whole first when parts
+    /// must agree on it.
+    ///
+    /// # Errors
+    ///
+    /// As [`Coverage::new`].
+    pub fn with_nodes(
+        geometries: Vec<Geometry<f64>>,
+        snap_distance: Option<f64>,
+        nodes: Nodes,
+    ) -> Result<Self, Error> {
+        let (mut chains, origins, polygons) = gather(&geometries);
         if let Some(eps) = snap_distance {
             snap(&mut chains, eps)?;
         }
-        let topology = Topology::from_chains(&chains, polygons)?;
+        let topology = Topology::from_chains_with_nodes(&chains, polygons, nodes)?;
         Ok(Coverage {
             geometries,
             topology,
@@ -197,6 +182,58 @@ impl std::fmt::Display for Location {
         }
         Ok(())
     }
+}
+
+/// The lines and rings of `geometries`, in the order a [`Coverage`] holds
+/// them: for [`crate::nodes::meetings`] and [`crate::nodes::Nodes::of`].
+#[must_use]
+pub fn coverage_chains(geometries: &[Geometry<f64>]) -> Vec<(ChainKind, Vec<Coord>)> {
+    gather(geometries).0
+}
+
+/// The chains of `geometries`, where each comes from, and which rings form
+/// each polygon.
+#[allow(clippy::type_complexity)] // three parallel results, used once
+fn gather(
+    geometries: &[Geometry<f64>],
+) -> (Vec<(ChainKind, Vec<Coord>)>, Vec<Origin>, Vec<Vec<usize>>) {
+    let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
+    let mut origins: Vec<Origin> = Vec::new();
+    let mut polygons: Vec<Vec<usize>> = Vec::new();
+    for (gi, g) in geometries.iter().enumerate() {
+        let mut member = 0;
+        visit(g, &mut |part| {
+            match part {
+                Part::Line(coords) => {
+                    origins.push(Origin {
+                        geometry: gi,
+                        member,
+                        ring: 0,
+                        polygon: false,
+                    });
+                    chains.push((ChainKind::Line, coords));
+                }
+                Part::Polygon(p) => {
+                    let first = chains.len();
+                    for (ri, r) in std::iter::once(p.exterior())
+                        .chain(p.interiors())
+                        .enumerate()
+                    {
+                        origins.push(Origin {
+                            geometry: gi,
+                            member,
+                            ring: ri,
+                            polygon: true,
+                        });
+                        chains.push((ChainKind::Ring, r.0.clone()));
+                    }
+                    polygons.push((first..chains.len()).collect());
+                }
+            }
+            member += 1;
+        });
+    }
+    (chains, origins, polygons)
 }
 
 enum Part<'a> {

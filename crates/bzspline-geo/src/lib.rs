@@ -40,10 +40,12 @@
 mod coverage;
 mod crossings;
 mod error;
+pub mod nodes;
 pub mod smooth;
 pub mod topology;
 
-pub use coverage::{Coverage, Location};
+pub use coverage::{coverage_chains, Coverage, Location};
 pub use error::Error;
+pub use nodes::Nodes;
 pub use smooth::{SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL};
 pub use topology::{ArcRef, Chain, ChainKind, Topology};

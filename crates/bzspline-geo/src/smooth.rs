@@ -21,7 +21,7 @@
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use bzspline::{CurveBuilder, Param};
-use geo_types::Coord;
+use geo_types::{Coord, Rect};
 
 use crate::crossings::{key, Lines, SegId};
 use crate::error::Error;
@@ -216,7 +216,10 @@ impl Topology {
     pub fn smooth(&self, opts: &SmoothOptions) -> Result<Smoothed, Error> {
         opts.check()?;
         let arcs = self.arcs();
-        let tolerance = opts.tolerance.unwrap_or_else(|| default_tolerance(arcs));
+        let extent = self.nodes().extent();
+        let tolerance = opts
+            .tolerance
+            .unwrap_or_else(|| default_tolerance(arcs, extent));
         let uses = self.uses();
         let mut stats = Stats {
             lines: self
@@ -239,7 +242,7 @@ impl Topology {
         stats.closed_arcs = plans.iter().filter(|p| p.closed_curve).count();
         let closed: Vec<bool> = arcs.iter().map(|a| is_closed(a)).collect();
 
-        let shoelace = Shoelace::about(arcs);
+        let shoelace = Shoelace::about(arcs, extent);
         let cross_in: Vec<f64> = arcs.iter().map(|a| shoelace.arc(a)).collect();
         let mut cross_out: Vec<f64> = vec![0.0; arcs.len()];
         let rings = RingFacts::of(self, &shoelace, &cross_in);
@@ -407,17 +410,20 @@ impl Topology {
             .filter(|&(_, &n)| n >= 2)
             .map(|(&k, _)| k)
             .collect();
+        // A node: met by two arcs here, or by the whole coverage's (given).
+        let given = self.nodes();
+        let is_node = |c: Coord| count.get(&key(c)).is_some_and(|&n| n >= 2) || given.contains(c);
         let mut plans = Vec::with_capacity(arcs.len());
         for (ai, a) in arcs.iter().enumerate() {
             let closed = is_closed(a);
-            let first_node = count.get(&key(a[0])).is_some_and(|&n| n >= 2) || in_line[ai];
+            let first_node = is_node(a[0]) || in_line[ai];
             let closed_curve = closed && !first_node && a.len() >= 4;
             if !closed_curve {
                 nodes.insert(key(a[0]));
                 nodes.insert(key(a[a.len() - 1]));
             }
             let n = if closed { a.len() - 1 } else { a.len() };
-            let mut fixed: Vec<bool> = (0..n).map(|i| count[&key(a[i])] >= 2).collect();
+            let mut fixed: Vec<bool> = (0..n).map(|i| is_node(a[i])).collect();
             if let Some(deg) = keep_angle {
                 for i in 0..n {
                     let (prev, next) = match (closed, i) {
@@ -532,12 +538,21 @@ fn is_closed(a: &[Coord]) -> bool {
     a.len() >= 2 && key(a[0]) == key(a[a.len() - 1])
 }
 
-fn default_tolerance(arcs: &[Vec<Coord>]) -> f64 {
+/// The corners of `extent`, or of the arcs' bounding box.
+fn bounds(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> ([f64; 2], [f64; 2]) {
+    if let Some(r) = extent {
+        return ([r.min().x, r.min().y], [r.max().x, r.max().y]);
+    }
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for c in arcs.iter().flatten() {
         lo = [lo[0].min(c.x), lo[1].min(c.y)];
         hi = [hi[0].max(c.x), hi[1].max(c.y)];
     }
+    (lo, hi)
+}
+
+fn default_tolerance(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> f64 {
+    let (lo, hi) = bounds(arcs, extent);
     let diag = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     if diag.is_finite() && diag > 0.0 {
         diag * DEFAULT_TOLERANCE_FRACTION
@@ -565,12 +580,8 @@ struct Shoelace {
 }
 
 impl Shoelace {
-    fn about(arcs: &[Vec<Coord>]) -> Shoelace {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for c in arcs.iter().flatten() {
-            lo = [lo[0].min(c.x), lo[1].min(c.y)];
-            hi = [hi[0].max(c.x), hi[1].max(c.y)];
-        }
+    fn about(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> Shoelace {
+        let (lo, hi) = bounds(arcs, extent);
         let mid = |a: f64, b: f64| {
             if a.is_finite() {
                 a / 2.0 + b / 2.0

@@ -18,6 +18,7 @@ use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
 use crate::error::Error;
+use crate::nodes::Nodes;
 
 /// One arc of a chain, in its stored direction or reversed (TopoJSON writes
 /// the reversed arc `k` as `!k`, that is `-k - 1`).
@@ -82,30 +83,25 @@ pub struct Topology {
     arcs: Vec<Vec<Coord>>,
     chains: Vec<Chain>,
     polygons: Vec<Vec<usize>>,
+    nodes: Nodes,
 }
 
 /// Bits of a coordinate for exact comparison; `-0.0` counts as `0.0`.
-fn key(c: Coord) -> (u64, u64) {
+pub(crate) fn key(c: Coord) -> (u64, u64) {
     ((c.x + 0.0).to_bits(), (c.y + 0.0).to_bits())
 }
 
-impl Topology {
-    /// Finds the arcs of `chains` (lines and rings, each as its positions; a
-    /// ring's first position is repeated at its end or not, either is
-    /// accepted). `polygons` lists, for each polygon, the indices of its
-    /// rings in `chains`, the shell first. Consecutive equal positions are
-    /// merged.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NonFinite`] for a coordinate that is not finite;
-    /// [`Error::Polygon`] for a polygon that names a chain that is not a ring.
-    pub fn from_chains(
-        chains: &[(ChainKind, Vec<Coord>)],
-        polygons: Vec<Vec<usize>>,
-    ) -> Result<Topology, Error> {
-        check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
-        // Positions by identity, and each chain as their ids.
+/// Chains as ids of their distinct positions.
+pub(crate) struct Paths {
+    /// Each distinct position once.
+    pub(crate) points: Vec<Coord>,
+    /// Each chain as ids into `points`, consecutive repeats merged and a
+    /// ring's closing repeat dropped.
+    pub(crate) paths: Vec<(ChainKind, Vec<u32>)>,
+}
+
+impl Paths {
+    pub(crate) fn of(chains: &[(ChainKind, Vec<Coord>)]) -> Result<Paths, Error> {
         let mut ids: FxHashMap<(u64, u64), u32> = FxHashMap::default();
         let mut points: Vec<Coord> = Vec::new();
         let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.len());
@@ -133,8 +129,54 @@ impl Topology {
             }
             paths.push((*kind, path));
         }
-        let junction = junctions(points.len(), &paths);
-        let mut b = Builder::default();
+        Ok(Paths { points, paths })
+    }
+}
+
+impl Topology {
+    /// Finds the arcs of `chains` (lines and rings, each as its positions; a
+    /// ring's first position is repeated at its end or not, either is
+    /// accepted). `polygons` lists, for each polygon, the indices of its
+    /// rings in `chains`, the shell first. Consecutive equal positions are
+    /// merged.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a coordinate that is not finite;
+    /// [`Error::Polygon`] for a polygon that names a chain that is not a ring.
+    pub fn from_chains(
+        chains: &[(ChainKind, Vec<Coord>)],
+        polygons: Vec<Vec<usize>>,
+    ) -> Result<Topology, Error> {
+        Topology::from_chains_with_nodes(chains, polygons, Nodes::default())
+    }
+
+    /// As [`Topology::from_chains`], with `nodes` as junctions too: the
+    /// chains are also cut there, and smoothing keeps them as it keeps the
+    /// nodes it finds. This is how one part of a coverage is smoothed exactly
+    /// as the whole would be ([`Nodes`]); the nodes' extent, when set, also
+    /// stands in for the data's bounding box (the default tolerance).
+    ///
+    /// # Errors
+    ///
+    /// As [`Topology::from_chains`].
+    pub fn from_chains_with_nodes(
+        chains: &[(ChainKind, Vec<Coord>)],
+        polygons: Vec<Vec<usize>>,
+        nodes: Nodes,
+    ) -> Result<Topology, Error> {
+        check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
+        let Paths { points, paths } = Paths::of(chains)?;
+        let mut junction = junctions(points.len(), &paths).0;
+        if !nodes.is_empty() {
+            for (j, p) in junction.iter_mut().zip(&points) {
+                *j |= nodes.contains(*p);
+            }
+        }
+        let mut b = Builder {
+            keys: points.iter().map(|&p| key(p)).collect(),
+            ..Builder::default()
+        };
         let mut out_chains = Vec::with_capacity(paths.len());
         for (kind, path) in &paths {
             let arcs = match kind {
@@ -152,6 +194,7 @@ impl Topology {
             arcs,
             chains: out_chains,
             polygons,
+            nodes,
         })
     }
 
@@ -197,6 +240,7 @@ impl Topology {
             arcs,
             chains,
             polygons,
+            nodes: Nodes::default(),
         })
     }
 
@@ -204,6 +248,12 @@ impl Topology {
     #[must_use]
     pub fn arcs(&self) -> &[Vec<Coord>] {
         &self.arcs
+    }
+
+    /// The nodes given ([`Topology::from_chains_with_nodes`]); none otherwise.
+    #[must_use]
+    pub fn nodes(&self) -> &Nodes {
+        &self.nodes
     }
 
     /// The lines and rings, in the order given.
@@ -301,10 +351,15 @@ fn check_polygons(
     Ok(())
 }
 
+/// A position's neighbours before any chain has met it.
+pub(crate) const UNMET: (u32, u32) = (u32::MAX, u32::MAX);
+
 /// Marks every position that ends a line or is met with two different pairs
-/// of neighbours.
-fn junctions(n: usize, paths: &[(ChainKind, Vec<u32>)]) -> Vec<bool> {
-    const NONE: (u32, u32) = (u32::MAX, u32::MAX);
+/// of neighbours; also returns, for each position, the first pair it was
+/// met with (ids, smaller first; [`UNMET`] for a position only a line's end
+/// or a ring of one position has).
+pub(crate) fn junctions(n: usize, paths: &[(ChainKind, Vec<u32>)]) -> (Vec<bool>, Vec<(u32, u32)>) {
+    const NONE: (u32, u32) = UNMET;
     let mut seen = vec![NONE; n];
     let mut junction = vec![false; n];
     let mut meet = |p: u32, a: u32, b: u32| {
@@ -341,42 +396,56 @@ fn junctions(n: usize, paths: &[(ChainKind, Vec<u32>)]) -> Vec<bool> {
             }
         }
     }
-    junction
+    (junction, seen)
 }
 
 /// Cuts chains into arcs and finds each arc again when another chain runs
 /// along it.
+///
+/// Every arc is stored in a canonical form that depends only on its
+/// positions, not on which chain met it first: an open arc in the direction
+/// whose sequence of positions (compared by their bits) is the smaller, a
+/// closed one from its smallest position in its smaller direction. So a part
+/// of a coverage holds each of its arcs exactly as the whole does.
 #[derive(Default)]
 struct Builder {
+    /// Each position's bits, by id.
+    keys: Vec<(u64, u64)>,
     arcs: Vec<Vec<u32>>,
     /// Open arcs by their ids; closed ones by a canonical rotation behind a
     /// marker.
-    /// (arc, whether the stored closed arc runs against its canonical order).
-    index: FxHashMap<Vec<u32>, (usize, bool)>,
+    index: FxHashMap<Vec<u32>, usize>,
 }
 
 impl Builder {
     fn open_arc(&mut self, run: &[u32]) -> ArcRef {
-        if let Some(&(arc, _)) = self.index.get(run) {
+        if let Some(&arc) = self.index.get(run) {
             return ArcRef {
                 arc,
                 reversed: false,
             };
         }
         let rev: Vec<u32> = run.iter().rev().copied().collect();
-        if let Some(&(arc, _)) = self.index.get(&rev) {
+        if let Some(&arc) = self.index.get(&rev) {
             return ArcRef {
                 arc,
                 reversed: true,
             };
         }
-        self.arcs.push(run.to_vec());
-        let arc = self.arcs.len() - 1;
-        self.index.insert(run.to_vec(), (arc, false));
-        ArcRef {
-            arc,
-            reversed: false,
+        let k = &self.keys;
+        let reversed = rev
+            .iter()
+            .map(|&i| k[i as usize])
+            .lt(run.iter().map(|&i| k[i as usize]));
+        let arc = self.arcs.len();
+        if reversed {
+            self.index.insert(rev.clone(), arc);
+            self.arcs.push(rev);
+        } else {
+            self.index.insert(run.to_vec(), arc);
+            self.arcs.push(run.to_vec());
         }
+        ArcRef { arc, reversed }
     }
 
     fn cut_line(&mut self, path: &[u32], junction: &[bool]) -> Vec<ArcRef> {
@@ -417,28 +486,25 @@ impl Builder {
     /// and in either direction.
     fn closed_arc(&mut self, path: &[u32]) -> ArcRef {
         let k = path.len();
-        let m = (0..k).min_by_key(|&i| path[i]).unwrap_or(0);
+        let keys = &self.keys;
+        let m = (0..k).min_by_key(|&i| keys[path[i] as usize]).unwrap_or(0);
         let fwd: Vec<u32> = (0..k).map(|j| path[(m + j) % k]).collect();
         let bwd: Vec<u32> = (0..k).map(|j| path[(m + k - j) % k]).collect();
-        let (canon, reversed) = if bwd < fwd { (bwd, true) } else { (fwd, false) };
-        let mut key = Vec::with_capacity(k + 1);
-        key.push(u32::MAX);
-        key.extend_from_slice(&canon);
-        if let Some(&(arc, stored_reversed)) = self.index.get(&key) {
-            return ArcRef {
-                arc,
-                reversed: stored_reversed != reversed,
-            };
+        let reversed = bwd
+            .iter()
+            .map(|&i| keys[i as usize])
+            .lt(fwd.iter().map(|&i| keys[i as usize]));
+        let mut canon = if reversed { bwd } else { fwd };
+        canon.insert(0, u32::MAX);
+        if let Some(&arc) = self.index.get(&canon) {
+            return ArcRef { arc, reversed };
         }
-        let mut closed = path.to_vec();
-        closed.push(path[0]);
+        let mut closed = canon[1..].to_vec();
+        closed.push(closed[0]);
+        let arc = self.arcs.len();
         self.arcs.push(closed);
-        let arc = self.arcs.len() - 1;
-        self.index.insert(key, (arc, reversed));
-        ArcRef {
-            arc,
-            reversed: false,
-        }
+        self.index.insert(canon, arc);
+        ArcRef { arc, reversed }
     }
 }
 
