@@ -2,12 +2,13 @@
 //! offsets, innermost first, as `shapely.to_ragged_array` gives them) to
 //! geo-types, through `bzspline-geo`, and back in the same layout.
 
-use geo_types::{Coord, Geometry, LineString, MultiLineString, MultiPolygon, Polygon};
+use geo_types::{Coord, Geometry, LineString, MultiLineString, MultiPolygon, Polygon, Rect};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
-use bzspline_geo::{Coverage, SmoothOptions};
+use bzspline_geo::nodes::{across, extent, meetings, Meeting, Nodes};
+use bzspline_geo::{coverage_chains, Coverage, SmoothOptions};
 
 /// Coordinates and offsets (innermost first) of a ragged array.
 type Ragged = (Vec<[f64; 2]>, Vec<Vec<i64>>);
@@ -166,60 +167,268 @@ fn ragged(kind: u8, geoms: &[Geometry<f64>]) -> PyResult<Ragged> {
     Ok((coords, offsets))
 }
 
-/// Smooths the geometries of a ragged array: as one coverage (shared borders
-/// smoothed once) or each on its own. Returns the ragged array of the result.
+/// Nodes for Python: positions `(n, 2)` and the extent.
+type PyNodes<'py> = (Bound<'py, PyArray2<f64>>, Option<[f64; 4]>);
+
+/// One ragged array from Python: shapely's geometry type, coordinates
+/// `(n, 2)`, offsets innermost first, and each geometry's index in the
+/// caller's array (for error messages).
+type Group<'py> = (
+    u8,
+    PyReadonlyArray2<'py, f64>,
+    Vec<PyReadonlyArray1<'py, i64>>,
+    PyReadonlyArray1<'py, i64>,
+);
+
+/// The geometries of every group, in order, and each one's index in the
+/// caller's array.
+fn gather(groups: &[Group<'_>]) -> PyResult<(Vec<Geometry<f64>>, Vec<i64>)> {
+    let (mut geoms, mut index) = (Vec::new(), Vec::new());
+    for (kind, coords, offsets, idx) in groups {
+        let view = coords.as_array();
+        if view.ncols() != 2 {
+            return Err(PyValueError::new_err("coordinates must be 2-D (x, y)"));
+        }
+        let pts: Vec<[f64; 2]> = view.rows().into_iter().map(|r| [r[0], r[1]]).collect();
+        let offs: Vec<Vec<i64>> = offsets.iter().map(|o| o.as_array().to_vec()).collect();
+        let gs = geometries(*kind, &pts, &offs)?;
+        let idx = idx.as_array();
+        if idx.len() != gs.len() {
+            return Err(PyValueError::new_err(
+                "one index per geometry of the ragged array",
+            ));
+        }
+        for (g, &i) in gs.iter().zip(idx.iter()) {
+            if let Some(k) = first_non_finite(g) {
+                return Err(PyValueError::new_err(format!(
+                    "geometry {i}, coordinate {k}: not a finite number"
+                )));
+            }
+        }
+        geoms.extend(gs);
+        index.extend(idx.iter().copied());
+    }
+    Ok((geoms, index))
+}
+
+/// The position (counted over the geometry's lines and rings in order) of
+/// the first coordinate that is not finite.
+fn first_non_finite(g: &Geometry<f64>) -> Option<usize> {
+    let lines: Vec<&LineString<f64>> = match g {
+        Geometry::LineString(l) => vec![l],
+        Geometry::MultiLineString(m) => m.0.iter().collect(),
+        Geometry::Polygon(p) => std::iter::once(p.exterior()).chain(p.interiors()).collect(),
+        Geometry::MultiPolygon(m) => {
+            m.0.iter()
+                .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    lines
+        .iter()
+        .flat_map(|l| l.0.iter())
+        .position(|c| !(c.x.is_finite() && c.y.is_finite()))
+}
+
+/// The coordinates as a numpy `(n, 2)` array.
+fn coords_array<'py>(py: Python<'py>, c: &[[f64; 2]]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    if c.is_empty() {
+        return Ok(PyArray2::zeros(py, [0, 2], false));
+    }
+    let rows: Vec<Vec<f64>> = c.iter().map(|p| p.to_vec()).collect();
+    PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// An error of a coverage, naming the geometry by its index in the caller's
+/// array.
+fn coverage_error(c: &Coverage, index: &[i64], e: &bzspline_geo::Error) -> String {
+    match c.locate(e) {
+        Some(l) => {
+            let at = index.get(l.geometry).copied().unwrap_or(l.geometry as i64);
+            let mut msg = format!("geometry {at}, member {}", l.member);
+            if let Some(r) = l.ring {
+                msg.push_str(&format!(", ring {r}"));
+            }
+            format!("{msg}: {e}")
+        }
+        None => e.to_string(),
+    }
+}
+
+/// The nodes handed to a part: positions `(n, 2)` and the whole's extent
+/// `(xmin, ymin, xmax, ymax)`.
+fn given_nodes(
+    positions: Option<PyReadonlyArray2<'_, f64>>,
+    extent: Option<[f64; 4]>,
+) -> PyResult<Nodes> {
+    let mut nodes = match positions {
+        None => Nodes::default(),
+        Some(p) => {
+            let v = p.as_array();
+            if v.ncols() != 2 {
+                return Err(PyValueError::new_err("nodes must be an (n, 2) array"));
+            }
+            Nodes::new(v.rows().into_iter().map(|r| Coord { x: r[0], y: r[1] }))
+        }
+    };
+    if let Some([x0, y0, x1, y1]) = extent {
+        if !([x0, y0, x1, y1].iter().all(|v| v.is_finite()) && x0 <= x1 && y0 <= y1) {
+            return Err(PyValueError::new_err(format!(
+                "extent ({x0}, {y0}, {x1}, {y1}) is not a finite box"
+            )));
+        }
+        nodes = nodes.with_extent(Rect::new(Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 }));
+    }
+    Ok(nodes)
+}
+
+fn extent_tuple(r: Option<Rect<f64>>) -> Option<[f64; 4]> {
+    r.map(|r| [r.min().x, r.min().y, r.max().x, r.max().y])
+}
+
+/// Smooths the geometries of ragged arrays (lines and polygons in one
+/// coverage: shared borders smoothed once), or each geometry on its own;
+/// with `nodes` (and `extent`) as one part of a larger coverage. Returns each
+/// group's ragged array of the result.
 #[pyfunction]
-#[pyo3(signature = (kind, coords, offsets, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5))]
+#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_ragged<'py>(
     py: Python<'py>,
-    kind: u8,
-    coords: PyReadonlyArray2<'py, f64>,
-    offsets: Vec<PyReadonlyArray1<'py, i64>>,
+    groups: Vec<Group<'py>>,
     tolerance: Option<f64>,
     coverage: bool,
     through: bool,
     keep_angle: Option<f64>,
     alpha: f64,
-) -> PyResult<PyRagged<'py>> {
-    let view = coords.as_array();
-    if view.ncols() != 2 {
-        return Err(PyValueError::new_err("coordinates must be 2-D (x, y)"));
-    }
-    let pts: Vec<[f64; 2]> = view.rows().into_iter().map(|r| [r[0], r[1]]).collect();
-    let offs: Vec<Vec<i64>> = offsets.iter().map(|o| o.as_array().to_vec()).collect();
-    let geoms = geometries(kind, &pts, &offs)?;
-    let mut opts = SmoothOptions::default().alpha(alpha).through(through);
-    if let Some(t) = tolerance {
-        opts = opts.tolerance(t);
-    }
-    if let Some(k) = keep_angle {
-        opts = opts.keep_angle(k);
-    }
-    let smoothed = py.allow_threads(|| -> Result<Vec<Geometry<f64>>, String> {
-        let run = |gs: Vec<Geometry<f64>>| -> Result<Vec<Geometry<f64>>, String> {
-            let c = Coverage::new(gs, None).map_err(|e| e.to_string())?;
-            c.smooth(&opts)
-                .map(|(out, _)| out)
-                .map_err(|e| c.describe(&e))
-        };
-        if coverage {
-            run(geoms)
-        } else {
-            let mut out = Vec::with_capacity(geoms.len());
-            for g in geoms {
-                out.extend(run(vec![g])?);
-            }
-            Ok(out)
+    nodes: Option<PyReadonlyArray2<'py, f64>>,
+    extent: Option<[f64; 4]>,
+) -> PyResult<Vec<PyRagged<'py>>> {
+    crate::guard(|| {
+        let (geoms, index) = gather(&groups)?;
+        let nodes = given_nodes(nodes, extent)?;
+        let mut opts = SmoothOptions::default().alpha(alpha).through(through);
+        if let Some(t) = tolerance {
+            opts = opts.tolerance(t);
         }
-    });
-    let smoothed = smoothed.map_err(PyValueError::new_err)?;
-    let (c, o) = ragged(kind, &smoothed)?;
-    let rows: Vec<Vec<f64>> = c.iter().map(|p| p.to_vec()).collect();
-    let coords = if rows.is_empty() {
-        PyArray2::zeros(py, [0, 2], false)
-    } else {
-        PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))?
-    };
-    Ok((coords, o.into_iter().map(|v| v.into_pyarray(py)).collect()))
+        if let Some(k) = keep_angle {
+            opts = opts.keep_angle(k);
+        }
+        let smoothed = py.allow_threads(|| -> Result<Vec<Geometry<f64>>, String> {
+            let run = |gs: Vec<Geometry<f64>>,
+                       index: &[i64]|
+             -> Result<Vec<Geometry<f64>>, String> {
+                let c = Coverage::with_nodes(gs, None, nodes.clone()).map_err(|e| e.to_string())?;
+                c.smooth(&opts)
+                    .map(|(out, _)| out)
+                    .map_err(|e| coverage_error(&c, index, &e))
+            };
+            if coverage {
+                run(geoms, &index)
+            } else {
+                let mut out = Vec::with_capacity(geoms.len());
+                for (g, i) in geoms.into_iter().zip(&index) {
+                    out.extend(run(vec![g], std::slice::from_ref(i))?);
+                }
+                Ok(out)
+            }
+        });
+        let smoothed = smoothed.map_err(PyValueError::new_err)?;
+        let mut out = Vec::with_capacity(groups.len());
+        let mut start = 0;
+        for (kind, _, _, idx) in &groups {
+            let n = idx.as_array().len();
+            let (c, o) = ragged(*kind, &smoothed[start..start + n])?;
+            start += n;
+            out.push((
+                coords_array(py, &c)?,
+                o.into_iter().map(|v| v.into_pyarray(py)).collect(),
+            ));
+        }
+        Ok(out)
+    })
+}
+
+/// Every junction of the coverage the groups make, and its extent.
+#[pyfunction]
+pub fn _nodes_of<'py>(
+    py: Python<'py>,
+    groups: Vec<Group<'py>>,
+) -> PyResult<PyNodes<'py>> {
+    crate::guard(|| {
+        let (geoms, _) = gather(&groups)?;
+        let chains = coverage_chains(&geoms);
+        let nodes = py
+            .allow_threads(|| Nodes::of(&chains))
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let p: Vec<[f64; 2]> = nodes.positions().iter().map(|c| [c.x, c.y]).collect();
+        Ok((coords_array(py, &p)?, extent_tuple(nodes.extent())))
+    })
+}
+
+/// How one part meets each of its positions: positions `(m, 2)`, the hash of
+/// the pair they are met between, whether each is a junction of the part;
+/// and the part's extent.
+#[pyfunction]
+#[allow(clippy::type_complexity)] // a tuple of numpy arrays for Python
+pub fn _meetings<'py>(
+    py: Python<'py>,
+    groups: Vec<Group<'py>>,
+) -> PyResult<(
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<bool>>,
+    Option<[f64; 4]>,
+)> {
+    crate::guard(|| {
+        let (geoms, _) = gather(&groups)?;
+        let chains = coverage_chains(&geoms);
+        let met = py
+            .allow_threads(|| meetings(&chains))
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let p: Vec<[f64; 2]> = met.iter().map(|m| [m.position.x, m.position.y]).collect();
+        let between: Vec<u64> = met.iter().map(|m| m.between.unwrap_or(0)).collect();
+        let junction: Vec<bool> = met.iter().map(|m| m.between.is_none()).collect();
+        Ok((
+            coords_array(py, &p)?,
+            between.into_pyarray(py),
+            junction.into_pyarray(py),
+            extent_tuple(extent(&chains)),
+        ))
+    })
+}
+
+/// The nodes where parts meet, from all parts' meetings concatenated.
+#[pyfunction]
+pub fn _across<'py>(
+    py: Python<'py>,
+    positions: PyReadonlyArray2<'py, f64>,
+    between: PyReadonlyArray1<'py, u64>,
+    junction: PyReadonlyArray1<'py, bool>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    crate::guard(|| {
+        let (p, b, j) = (
+            positions.as_array(),
+            between.as_array(),
+            junction.as_array(),
+        );
+        if p.ncols() != 2 || p.nrows() != b.len() || b.len() != j.len() {
+            return Err(PyValueError::new_err(
+                "meetings: positions (m, 2), between (m,) and junction (m,) must agree",
+            ));
+        }
+        let met: Vec<Meeting> = (0..b.len())
+            .map(|i| Meeting {
+                position: Coord {
+                    x: p[[i, 0]],
+                    y: p[[i, 1]],
+                },
+                between: (!j[i]).then_some(b[i]),
+            })
+            .collect();
+        let nodes = py.allow_threads(|| across(met));
+        let out: Vec<[f64; 2]> = nodes.positions().iter().map(|c| [c.x, c.y]).collect();
+        coords_array(py, &out)
+    })
 }

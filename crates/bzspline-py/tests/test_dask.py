@@ -49,3 +49,26 @@ def test_splines_travel_to_workers(client):
     futures = [client.submit(lambda s, q, nu: s(q, nu), s, q, nu) for nu in range(3)]
     for nu, f in enumerate(futures):
         assert np.array_equal(f.result(), s(q, nu))
+
+
+def test_a_coverage_over_partitions_smooths_as_one_process(client):
+    from test_geo import grid
+
+    cells = grid(8, 6, seed=5)
+    # Partitions in an order that splits neighbours apart.
+    order = np.random.default_rng(1).permutation(len(cells))
+    s = geopandas.GeoSeries(cells[order], crs="EPSG:3857")
+    want = bzspline.geo.smooth(s)
+    d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=4)
+    nodes = bzspline.geo.nodes(d.geometry)
+    assert len(nodes) > 0
+    got = d.geometry.map_partitions(bzspline.geo.smooth, nodes=nodes, meta=d.geometry._meta).compute()
+    assert list(got.index) == list(want.index)
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(got, want))
+    # The reduction finds what the whole coverage's junctions are at the
+    # partitions' seams: all of them are junctions of the whole.
+    whole = {tuple(p) for p in bzspline.geo.nodes(s).positions}
+    assert {tuple(p) for p in nodes.positions} <= whole
+    # Without the nodes, borders across partitions differ.
+    naive = d.geometry.map_partitions(bzspline.geo.smooth, meta=d.geometry._meta).compute()
+    assert not all(a.equals_exact(b, 0.0) for a, b in zip(naive, want))

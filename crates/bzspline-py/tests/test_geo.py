@@ -76,3 +76,58 @@ def test_bad_options_raise_value_error():
         bzspline.geo.smooth(line, tolerance=-1.0)
     with pytest.raises(ValueError):
         bzspline.geo.smooth(line, alpha=0.9)
+
+
+def test_a_road_along_a_border_is_smoothed_with_it():
+    cells = grid(2, 1, seed=3)
+    # The road runs along the border the two cells share, then away.
+    ring1 = set(map(tuple, shapely.get_coordinates(cells[1])))
+    shared = [p for p in map(tuple, shapely.get_coordinates(cells[0])) if p in ring1]
+    road = shapely.LineString(shared + [(1.5, -1.0)])
+    assert len(shared) >= 3
+    out = bzspline.geo.smooth(np.array([*cells, road], dtype=object), tolerance=1e-3)
+    # Where the road follows the border, both cells and the road have the
+    # same smoothed positions.
+    on_road = set(map(tuple, shapely.get_coordinates(out[2])))
+    common = on_road & set(map(tuple, shapely.get_coordinates(out[0]))) & set(map(tuple, shapely.get_coordinates(out[1])))
+    assert len(common) > len(shared), "the shared stretch was not smoothed once for all three"
+    assert shapely.is_valid(out[:2]).all()
+
+
+def test_parts_smoothed_with_the_whole_nodes_are_the_whole():
+    cells = grid(5, 4, seed=1)
+    want = bzspline.geo.smooth(cells)
+    n = bzspline.geo.nodes(cells)
+    assert len(n) > 0 and n.extent == tuple(shapely.total_bounds(cells))
+    order = np.random.default_rng(0).permutation(len(cells))
+    got = np.empty_like(cells)
+    for chunk in np.array_split(order, 4):
+        got[chunk] = bzspline.geo.smooth(cells[chunk], nodes=n)
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(got, want))
+    # Without the whole's nodes the parts part ways along their borders.
+    alone = np.empty_like(cells)
+    for chunk in np.array_split(order, 4):
+        alone[chunk] = bzspline.geo.smooth(cells[chunk])
+    assert not all(a.equals_exact(b, 0.0) for a, b in zip(alone, want))
+
+
+def test_nodes_are_immutable_and_pickle():
+    import pickle
+
+    n = bzspline.geo.nodes(grid(2, 2))
+    m = pickle.loads(pickle.dumps(n))
+    assert np.array_equal(m.positions, n.positions) and m.extent == n.extent
+    with pytest.raises(AttributeError):
+        n.extent = None
+    with pytest.raises(ValueError):
+        n.positions[0, 0] = 1.0
+    with pytest.raises(TypeError):
+        bzspline.geo.smooth(grid(1, 1), nodes=n.positions)
+
+
+@pytest.mark.filterwarnings("ignore:invalid value:RuntimeWarning")
+def test_bad_coordinates_name_the_geometry():
+    cells = list(grid(2, 1))
+    line = shapely.LineString([(0, 0), (1, np.nan), (2, 0)])
+    with pytest.raises(ValueError, match="geometry 3, coordinate 1"):
+        bzspline.geo.smooth(np.array([cells[0], None, cells[1], line], dtype=object))
