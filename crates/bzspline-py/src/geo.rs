@@ -352,10 +352,7 @@ pub fn _smooth_ragged<'py>(
 
 /// Every junction of the coverage the groups make, and its extent.
 #[pyfunction]
-pub fn _nodes_of<'py>(
-    py: Python<'py>,
-    groups: Vec<Group<'py>>,
-) -> PyResult<PyNodes<'py>> {
+pub fn _nodes_of<'py>(py: Python<'py>, groups: Vec<Group<'py>>) -> PyResult<PyNodes<'py>> {
     crate::guard(|| {
         let (geoms, _) = gather(&groups)?;
         let chains = coverage_chains(&geoms);

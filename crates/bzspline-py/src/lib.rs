@@ -138,8 +138,14 @@ struct Spline {
     y: Vec<f64>,
     through: bool,
     outside: Outside,
-    /// The derivative order this object evaluates (from `derivative`).
-    nu: u32,
+    /// The derivative order this object evaluates: from `derivative`, or -1
+    /// for the antiderivative.
+    nu: i32,
+    /// The antiderivative, when `nu` is -1.
+    anti: Option<Arc<bzspline::Antiderivative>>,
+    /// Subtracted from the values of order `nu` (from `antiderivative` of a
+    /// derivative: scipy's constant, which makes them 0 at the first knot).
+    offset: f64,
 }
 
 impl Spline {
@@ -151,9 +157,31 @@ impl Spline {
 
     /// [`Spline::eval_flat`] into `out` (as long as `x`).
     fn eval_into(&self, x: &[f64], nu: u32, out: &mut [f64]) -> PyResult<()> {
-        let order = nu + self.nu;
+        self.eval_order(x, self.nu + nu as i32, out)?;
+        if nu == 0 && self.offset != 0.0 {
+            out.iter_mut().for_each(|o| *o -= self.offset);
+        }
+        Ok(())
+    }
+
+    /// Values of the derivative of order `order` (-1: the antiderivative).
+    fn eval_order(&self, x: &[f64], order: i32, out: &mut [f64]) -> PyResult<()> {
         let s = &self.inner;
         let (a, b) = s.domain();
+        let Ok(order) = u32::try_from(order) else {
+            let anti = self
+                .anti
+                .as_ref()
+                .ok_or_else(|| PyRuntimeError::new_err("the antiderivative is missing"))?;
+            for (o, &v) in out.iter_mut().zip(x) {
+                *o = if v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v)) {
+                    f64::NAN
+                } else {
+                    anti.eval(v).map_err(value_error)?
+                };
+            }
+            return Ok(());
+        };
         if order > 3 {
             for (o, &v) in out.iter_mut().zip(x) {
                 *o = if v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v)) {
@@ -257,6 +285,8 @@ impl Spline {
                 through,
                 outside,
                 nu: 0,
+                anti: None,
+                offset: 0.0,
             })
         })
     }
@@ -318,16 +348,82 @@ impl Spline {
 
     /// The derivative of order `nu` as a new object (evaluated by the same
     /// pieces).
+    ///
+    /// Parameters
+    /// ----------
+    /// nu : int, default 1
+    ///     The order, at least 0. Orders above 3 are 0 everywhere.
+    ///
+    /// Returns
+    /// -------
+    /// Spline
+    ///     Calling it gives the derivative; of an antiderivative, `derivative()`
+    ///     is the spline again.
     #[pyo3(signature = (nu=1))]
     fn derivative(&self, nu: i64) -> PyResult<Self> {
         let nu = u32::try_from(nu)
             .map_err(|_| PyValueError::new_err(format!("nu = {nu} must be at least 0")))?;
+        let order = self
+            .nu
+            .saturating_add(i32::try_from(nu).unwrap_or(i32::MAX));
         Ok(Spline {
             inner: Arc::clone(&self.inner),
             y: self.y.clone(),
             through: self.through,
             outside: self.outside,
-            nu: self.nu + nu,
+            nu: order,
+            anti: if order < 0 { self.anti.clone() } else { None },
+            offset: if nu == 0 { self.offset } else { 0.0 },
+        })
+    }
+
+    /// The antiderivative as a new object: `F(x)`, the integral of S from
+    /// the first knot to x, a quartic on every interval (as scipy, `F` is 0 at
+    /// the first knot; outside the knots it integrates what `extrapolate`
+    /// gives). Of a derivative of order k, the derivative of order k - 1 less
+    /// its value at the first knot.
+    ///
+    /// Parameters
+    /// ----------
+    /// nu : int, default 1
+    ///     The order; only 1 (one integration) is offered. For more, use
+    ///     `to_ppoly().antiderivative(nu)`.
+    ///
+    /// Returns
+    /// -------
+    /// Spline
+    ///     Calling it gives F; `derivative()` of it is the spline again.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     For `nu` other than 1, or the antiderivative of an antiderivative.
+    #[pyo3(signature = (nu=1))]
+    fn antiderivative(&self, py: Python<'_>, nu: i64) -> PyResult<Self> {
+        if nu != 1 || self.nu < 0 {
+            return Err(PyValueError::new_err(format!(
+                "antiderivative(nu={nu}) of order {}: one integration of the spline or a derivative is offered; to_ppoly().antiderivative(nu) gives more",
+                self.nu
+            )));
+        }
+        let order = self.nu - 1;
+        let (anti, offset) = if order < 0 {
+            let inner = Arc::clone(&self.inner);
+            let a = py.allow_threads(move || guard(|| Ok(inner.antiderivative())))?;
+            (Some(Arc::new(a)), 0.0)
+        } else {
+            let x0 = self.inner.domain().0;
+            let v = self.inner.deriv(x0, order as u32).map_err(value_error)?;
+            (None, v)
+        };
+        Ok(Spline {
+            inner: Arc::clone(&self.inner),
+            y: self.y.clone(),
+            through: self.through,
+            outside: self.outside,
+            nu: order,
+            anti,
+            offset,
         })
     }
 
@@ -335,14 +431,15 @@ impl Spline {
     fn integrate(&self, a: f64, b: f64) -> PyResult<f64> {
         if self.nu != 0 {
             return Err(PyValueError::new_err(
-                "integrate applies to the spline, not to a derivative",
+                "integrate applies to the spline, not to a derivative or antiderivative",
             ));
         }
         let (lo, hi) = self.inner.domain();
         if self.outside == Outside::Nan && (a < lo || b > hi || b < lo || a > hi) {
             return Ok(f64::NAN);
         }
-        self.inner.integral(a, b).map_err(value_error)
+        let v = self.inner.integral(a, b).map_err(value_error)?;
+        Ok(v - self.offset * (b - a))
     }
 
     /// The points inside the domain where S' = 0: `(x, y, kind)` with kind
@@ -446,10 +543,18 @@ impl Spline {
         .unwrap_or_else(|_| py.None())
     }
 
-    /// The derivative order this object evaluates (0 for the spline).
+    /// The derivative order this object evaluates: 0 for the spline, -1 for
+    /// its antiderivative.
     #[getter]
-    fn nu(&self) -> u32 {
+    fn nu(&self) -> i32 {
         self.nu
+    }
+
+    /// The constant subtracted from the values (the antiderivative of a
+    /// derivative: its value at the first knot); 0 otherwise.
+    #[getter]
+    fn _offset(&self) -> f64 {
+        self.offset
     }
 
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
@@ -475,6 +580,7 @@ impl Spline {
                 self.through.into_pyobject(py)?.to_owned().into_any(),
                 self.extrapolate(py).into_bound(py),
                 self.nu.into_pyobject(py)?.into_any(),
+                self.offset.into_pyobject(py)?.into_any(),
             ],
         )?;
         Ok((restore, args))
@@ -487,7 +593,7 @@ impl Spline {
             bzspline::Shortest(self.inner.domain().0),
             bzspline::Shortest(self.inner.domain().1),
             if self.through { "True" } else { "False" },
-            if self.nu > 0 {
+            if self.nu != 0 {
                 format!(", nu={}", self.nu)
             } else {
                 String::new()
@@ -772,6 +878,8 @@ impl Curve {
 /// A spline (or its derivative of order `nu`) from the parts `__reduce__`
 /// gives: how a pickled `Spline` is rebuilt.
 #[pyfunction]
+#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0))]
+#[allow(clippy::too_many_arguments)] // the parts of a pickled Spline
 fn _spline_from_parts(
     py: Python<'_>,
     x: &Bound<'_, PyAny>,
@@ -779,10 +887,17 @@ fn _spline_from_parts(
     alpha: &Bound<'_, PyAny>,
     through: bool,
     extrapolate: &Bound<'_, PyAny>,
-    nu: u32,
+    nu: i32,
+    offset: f64,
 ) -> PyResult<Spline> {
     let s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
-    Ok(Spline { nu, ..s })
+    let anti = (nu < 0).then(|| Arc::new(s.inner.antiderivative()));
+    Ok(Spline {
+        nu: nu.max(-1),
+        anti,
+        offset,
+        ..s
+    })
 }
 
 #[pymodule]

@@ -160,3 +160,45 @@ def test_bad_input_raises_value_error_naming_the_index():
 def test_svg_path_ends_at_the_end_point():
     s = bzspline.Spline([0.0, 1.0, 2.0], [0.0, 1.0, 0.0])
     assert s.svg_path().startswith("M 0 0 C ") and s.svg_path().endswith(" 2 0")
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_antiderivative_is_scipys_integration_of_the_same_pieces(seed):
+    scipy = pytest.importorskip("scipy")
+    rng = np.random.default_rng(seed)
+    x, y = random_data(rng, int(rng.integers(2, 60)))
+    s = bzspline.Spline(x, y, alpha=rng.uniform(1 / 3, 2 / 3, len(x) - 1))
+    f = s.antiderivative()
+    assert f.nu == -1 and f(x[0]) == 0.0
+    q = np.concatenate([x, rng.uniform(x[0] - 1, x[-1] + 1, 200)])
+    want = s.to_ppoly().antiderivative()(q)
+    scale = np.abs(want).max() + 1.0
+    assert np.allclose(f(q), want, rtol=0, atol=1e-12 * scale * len(x))
+    # F' = S, the antiderivative's derivative is the spline, differences are
+    # integrals.
+    assert np.array_equal(f(q, nu=1), s(q)) and np.array_equal(f.derivative()(q), s(q))
+    a, b = rng.uniform(x[0], x[-1], 2)
+    assert np.isclose(f(b) - f(a), s.integrate(a, b), rtol=0, atol=1e-12 * scale * len(x))
+    # Of a derivative: the spline less its first value, as scipy.
+    d = s.derivative().antiderivative()
+    assert np.allclose(d(q), s(q) - s(x[0]), rtol=0, atol=1e-12 * scale)
+    assert np.allclose(d.to_ppoly()(q), d(q), rtol=0, atol=1e-12 * scale)
+    assert np.allclose(f.to_bpoly()(q), f(q), rtol=0, atol=1e-11 * scale)
+
+
+def test_antiderivative_outside_and_its_errors():
+    s = bzspline.Spline(TAU, F, extrapolate=False).antiderivative()
+    assert np.isnan(s([0.0, 12.0])).all() and np.isfinite(s(TAU)).all()
+    c = bzspline.Spline(TAU, F, extrapolate="clamp").antiderivative()
+    end = c(11.0)
+    assert np.isclose(c(13.0), end + 2 * F[-1]) and np.isclose(c(0.0), -F[0])
+    assert np.isnan(s(np.nan))
+    with pytest.raises(ValueError, match="to_ppoly"):
+        s.antiderivative()
+    with pytest.raises(ValueError):
+        bzspline.Spline(TAU, F).antiderivative(nu=2)
+    back = pickle.loads(pickle.dumps(c))
+    q = np.linspace(-1, 13, 57)
+    assert np.array_equal(back(q), c(q)) and back.nu == -1
+    d = pickle.loads(pickle.dumps(bzspline.Spline(TAU, F).derivative().antiderivative()))
+    assert np.array_equal(d(q), bzspline.Spline(TAU, F).derivative().antiderivative()(q))

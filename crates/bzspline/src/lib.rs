@@ -99,8 +99,8 @@ pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
 pub use num::Shortest;
 pub use spline::{
-    Alphas, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA,
-    MIN_RELATIVE_INTERVAL,
+    Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN,
+    DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,
 };
 pub use traits::{write_svg_path, Arclen, BezierPieces, Bounds, Flatten, ParamCurve};
 pub use tridiag::{CyclicThomas, Thomas};

@@ -26,6 +26,9 @@ use crate::poly::{deriv_of, horner, quadratic_roots};
 use crate::polyline::Polyline;
 use crate::traits::{check_out, Arclen, BBox, BezierPieces, Bounds, Flatten, ParamCurve};
 use crate::validate::{check_finite, resolve_alphas, validate_knots};
+mod antiderivative;
+pub use antiderivative::Antiderivative;
+
 pub use crate::validate::{Alphas, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL};
 
 /// What evaluation does outside `[tau_0, tau_{N-1}]`.
@@ -694,7 +697,7 @@ impl Spline {
 
     /// The one scale of the values (see [`Pieces`]).
     #[inline]
-    fn scale(&self) -> f64 {
+    pub(crate) fn scale(&self) -> f64 {
         self.pieces.unit()
     }
 
@@ -979,7 +982,7 @@ impl Spline {
     }
 
     /// Integral of piece `k`'s cubic (scaled) from `x0` to `x1`.
-    fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
+    pub(crate) fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
         let c = &self.pieces.coefs()[k].0;
         let h = self.pieces.width(k);
         let prim = |t: f64| t * (c[0] + t * (c[1] / 2.0 + t * (c[2] / 3.0 + t * c[3] / 4.0)));

@@ -456,3 +456,84 @@ proptest! {
         }
     }
 }
+
+/// Simpson's rule, exact for a cubic: the integral of one piece of `s` over
+/// `[a, b]` from three of its values.
+fn simpson(s: &Spline, a: f64, b: f64) -> Result<f64, bzspline::Error> {
+    Ok((b - a) / 6.0 * (s.eval(a)? + 4.0 * s.eval(0.5 * (a + b))? + s.eval(b)?))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 256,
+        failure_persistence: Some(Box::new(FileFailurePersistence::Off)),
+        ..ProptestConfig::default()
+    })]
+
+    /// F(tau_0) = 0 and F is the integral of S, checked against Simpson's rule
+    /// on every piece (exact for cubics) from values of S alone.
+    #[test]
+    fn the_antiderivative_integrates_every_piece(d in moderate(), u in vec(0.0..1.0f64, 8)) {
+        let s = d.spline();
+        let f = s.antiderivative();
+        let n = d.knots.len();
+        prop_assert_eq!(f.eval(d.knots[0])?, 0.0);
+        let span = d.knots[n - 1] - d.knots[0];
+        let tol = 1e-12 * n as f64 * d.max_abs() * span;
+        let mut total = 0.0;
+        for k in 0..n - 1 {
+            let (a, b) = (d.knots[k], d.knots[k + 1]);
+            let x = a + u[k % 8] * (b - a);
+            let want = total + simpson(&s, a, x)?;
+            prop_assert!((f.eval(x)? - want).abs() <= tol, "F({x}) = {} against {want}", f.eval(x)?);
+            total += simpson(&s, a, b)?;
+            prop_assert!((f.eval(b)? - total).abs() <= tol, "F({b}) = {} against {total}", f.eval(b)?);
+        }
+        let knots = f.knot_values();
+        prop_assert_eq!(knots.len(), n);
+        prop_assert!((knots[n - 1] - total).abs() <= tol);
+        // Differences of F are the spline's integrals.
+        let (a, b) = (d.knots[0] + u[0] * span, d.knots[0] + u[1] * span);
+        prop_assert!((f.eval(b)? - f.eval(a)? - s.integral(a, b)?).abs() <= tol);
+        let xs: Vec<f64> = u.iter().map(|t| d.knots[0] + t * span).collect();
+        let mut out = vec![0.0; xs.len()];
+        f.eval_many(&xs, &mut out)?;
+        for (x, o) in xs.iter().zip(&out) {
+            prop_assert_eq!(*o, f.eval(*x)?);
+        }
+    }
+
+    /// Outside the knots F integrates what the extrapolation gives: the end
+    /// cubics, or the end values held; under the default policy it refuses.
+    #[test]
+    fn the_antiderivative_follows_the_extrapolation(d in moderate(), t in 0.01..2.0f64) {
+        let n = d.knots.len();
+        let (lo, hi) = (d.knots[0], d.knots[n - 1]);
+        let span = hi - lo;
+        let (left, right) = (lo - t * span, hi + t * span);
+        let tol = 1e-11 * n as f64 * d.max_abs() * span * (1.0 + t).powi(4);
+        prop_assert!(d.spline().antiderivative().eval(right).is_err());
+        let clamp = d.spline().with_extrapolation(Extrapolate::Clamp).antiderivative();
+        let end = clamp.eval(hi)?;
+        prop_assert!((clamp.eval(right)? - (end + (right - hi) * d.values[n - 1])).abs() <= tol);
+        prop_assert!((clamp.eval(left)? + (lo - left) * d.values[0]).abs() <= tol);
+        // The end cubics grow as (distance / width)^3: compare relative to the
+        // integral's size.
+        let s = d.spline().with_extrapolation(Extrapolate::Extend);
+        let f = s.antiderivative();
+        let (r, l) = (simpson(&s, hi, right)?, simpson(&s, left, lo)?);
+        prop_assert!((f.eval(right)? - (end + r)).abs() <= tol + 1e-12 * r.abs());
+        prop_assert!((f.eval(left)? + l).abs() <= tol + 1e-12 * l.abs(), "{} against {}", f.eval(left)?, -l);
+    }
+}
+
+#[test]
+fn the_antiderivative_names_a_bad_query() {
+    let s = Spline::with_alpha(&[0.0, 1.0, 2.0, 4.0], &[1.0, 3.0, 2.0, 2.0], 0.5).unwrap();
+    let f = s.antiderivative();
+    let mut out = [0.0; 3];
+    let e = f.eval_many(&[0.5, f64::NAN, 1.0], &mut out).unwrap_err();
+    assert!(e.to_string().contains("[1]"), "{e}");
+    assert!(f.eval_many(&[0.5], &mut out).is_err());
+    assert!(f.eval(f64::INFINITY).is_err());
+}

@@ -29,12 +29,13 @@ def to_ppoly(spline):
     -------
     scipy.interpolate.PPoly
         Breakpoints ``spline.x``; coefficients highest power first, in
-        ``x - x[i]``.
+        ``x - x[i]``. Of a derivative or antiderivative, scipy's own
+        derivative or antiderivative of the spline's pieces.
     """
     from scipy.interpolate import PPoly
 
     c = spline.power_coefficients().T[::-1].copy()
-    return PPoly(c, spline.x, extrapolate=spline.extrapolate is not False)
+    return _order(PPoly(c, spline.x, extrapolate=spline.extrapolate is not False), spline)
 
 
 def to_bpoly(spline):
@@ -52,7 +53,24 @@ def to_bpoly(spline):
     from scipy.interpolate import BPoly
 
     c = spline.segments[:, :, 1].T.copy()
-    return BPoly(c, spline.x, extrapolate=spline.extrapolate is not False)
+    return _order(BPoly(c, spline.x, extrapolate=spline.extrapolate is not False), spline)
+
+
+def _order(p, spline):
+    """``p`` (the pieces of the spline) as the derivative or antiderivative
+    ``spline`` evaluates."""
+    if spline.nu > 0:
+        p = p.derivative(spline.nu)
+    elif spline.nu < 0:
+        p = p.antiderivative(-spline.nu)
+    if spline._offset:
+        # PPoly: the constant term; BPoly: every Bernstein coefficient (they
+        # sum to one).
+        if type(p).__name__ == "PPoly":
+            p.c[-1] -= spline._offset
+        else:
+            p.c -= spline._offset
+    return p
 
 
 Spline.to_ppoly = to_ppoly
