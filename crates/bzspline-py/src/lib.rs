@@ -130,6 +130,49 @@ fn outside_arg(v: &Bound<'_, PyAny>) -> PyResult<Outside> {
 
 /// The third-degree Bezier-type spline y = S(x) of Stelia, Potapenko and
 /// Sirenko.
+///
+/// A C1 piecewise cubic through the first and last points that touches every
+/// leg of the control polygon (x, y) and stays within the range of y; every
+/// piece is one cubic Bezier segment. Built from one diagonally dominant
+/// tridiagonal system, O(n).
+///
+/// Parameters
+/// ----------
+/// x : array_like, shape (n,)
+///     Strictly increasing, finite knots; n >= 2.
+/// y : array_like, shape (n,)
+///     The control values (with ``through=True``, the values to pass through).
+/// alpha : float or array_like, shape (n - 1,), default 0.5
+///     The shape parameter in [1/3, 2/3], one for all intervals or one each:
+///     where on its leg the curve touches the control polygon.
+/// through : bool, default False
+///     Pass through every (x, y) instead (the interpolating variant: the control
+///     values are solved for).
+/// extrapolate : {True, False, 'clamp'}, default True
+///     Outside [x[0], x[-1]]: extend the end cubics, give NaN (as scipy), or
+///     hold the end values.
+///
+/// Attributes
+/// ----------
+/// x, knot_values, alphas, control_values, tangent_points, segments, nu,
+/// extrapolate
+///
+/// Raises
+/// ------
+/// ValueError
+///     For knots that are not increasing or not finite, mismatched lengths, an
+///     alpha outside [1/3, 2/3], naming the index at fault.
+///
+/// Notes
+/// -----
+/// Immutable: safe to share between threads; pickles. The GIL is released while
+/// it is built and evaluated.
+///
+/// Examples
+/// --------
+/// >>> s = Spline([1, 2, 3, 4], [1, 3, 3, 1])
+/// >>> float(s(2.5))
+/// 3.0
 #[pyclass(frozen, module = "bzspline._core")]
 struct Spline {
     inner: Arc<bzspline::Spline>,
@@ -240,6 +283,7 @@ fn build_spline(
 impl Spline {
     #[new]
     #[pyo3(signature = (x, y, alpha=None, through=false, extrapolate=None))]
+    #[pyo3(text_signature = "(x, y, alpha=0.5, through=False, extrapolate=True)")]
     fn new(
         py: Python<'_>,
         x: &Bound<'_, PyAny>,
@@ -291,9 +335,23 @@ impl Spline {
         })
     }
 
-    /// S(x), or its derivative of order `nu`, at every x: an array of x's shape.
-    /// With `out` (a writable, contiguous float64 array of x's shape) the
-    /// results go there and `out` is returned: no new array.
+    /// S(x), or its derivative of order `nu`, at every x.
+    ///
+    /// Parameters
+    /// ----------
+    /// x : array_like
+    ///     Any shape; float64 contiguous input is read in place.
+    /// nu : int, default 0
+    ///     The derivative order (at least 0); orders above 3 are 0.
+    /// out : numpy.ndarray, optional
+    ///     A writable, contiguous float64 array of x's shape: the results go there
+    ///     and `out` is returned, no new array.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Of x's shape (a 0-d input gives a 0-d array). NaN for NaN queries, and
+    ///     outside the knots when ``extrapolate=False``.
     #[pyo3(signature = (x, nu=0, out=None))]
     fn __call__<'py>(
         &self,
@@ -427,7 +485,18 @@ impl Spline {
         })
     }
 
-    /// The integral of S from a to b (negative for b < a).
+    /// The integral of S from a to b.
+    ///
+    /// Parameters
+    /// ----------
+    /// a, b : float
+    ///     The bounds; b < a gives the negative.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     Exact up to rounding; NaN when a bound is outside the knots and
+    ///     ``extrapolate=False``.
     fn integrate(&self, a: f64, b: f64) -> PyResult<f64> {
         if self.nu != 0 {
             return Err(PyValueError::new_err(
@@ -442,8 +511,13 @@ impl Spline {
         Ok(v - self.offset * (b - a))
     }
 
-    /// The points inside the domain where S' = 0: `(x, y, kind)` with kind
-    /// 'minimum', 'maximum' or 'stationary'.
+    /// The points inside the domain where S' = 0.
+    ///
+    /// Returns
+    /// -------
+    /// list of (float, float, str)
+    ///     ``(x, y, kind)`` in increasing x, kind 'minimum', 'maximum' or
+    ///     'stationary'.
     fn extrema(&self) -> Vec<(f64, f64, &'static str)> {
         self.inner
             .extrema()
@@ -508,8 +582,13 @@ impl Spline {
         PyArray3::from_vec3(py, &segs).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// The power-basis coefficients of piece k in `x - x_k`, lowest order
-    /// first, `(n-1, 4)` (scipy's `PPoly` wants them highest first, transposed).
+    /// The power-basis coefficients of every piece.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray, shape (n - 1, 4)
+    ///     Row k: piece k in powers of ``x - x[k]``, lowest order first (scipy's
+    ///     ``PPoly`` wants them highest first, transposed: see ``to_ppoly``).
     fn power_coefficients<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows: Vec<Vec<f64>> = (0..self.inner.len())
             .filter_map(|k| self.inner.power_coefficients(k).map(|c| c.to_vec()))
@@ -517,7 +596,17 @@ impl Spline {
         PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// The graph as SVG path data (`M x0 y0 C ...`).
+    /// The graph as SVG path data, exactly: one ``C`` command per piece.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     ``M x0 y0 C ...``, each number the shortest that reads back the same.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     When a control point overflows a double.
     fn svg_path(&self) -> PyResult<String> {
         let mut s = String::new();
         match bzspline::write_svg_path(&*self.inner, false, &mut s) {
@@ -617,7 +706,45 @@ fn param_arg(p: &Bound<'_, PyAny>) -> PyResult<(Param, String)> {
     Ok((Param::Given(v), "given".to_owned()))
 }
 
-/// A curve in R^d through the method: open or closed, any parametrisation.
+/// A curve in R^d by the method: open or closed, any parametrisation.
+///
+/// Each coordinate is the method's spline of the parameter; the curve starts
+/// and ends at the end points (an open curve), touches every leg of the control
+/// polygon and stays in the convex hull of the points.
+///
+/// Parameters
+/// ----------
+/// points : array_like, shape (n, d)
+///     The control points, d >= 1 (n >= 2 open, n >= 3 closed).
+/// closed : bool, default False
+///     A closed curve (the points as a ring; do not repeat the first).
+/// param : {'centripetal', 'chordal', 'uniform'} or array_like, default 'centripetal'
+///     How the knots follow the points, or the knots themselves (n of them;
+///     n + 1 for a closed curve).
+/// alpha : float or array_like, default 0.5
+///     The shape parameter in [1/3, 2/3], one for all legs or one each.
+/// through : bool, default False
+///     Pass through every point instead (the interpolating variant).
+///
+/// Attributes
+/// ----------
+/// knots, knot_points, dim, segments
+///
+/// Raises
+/// ------
+/// ValueError
+///     For too few or non-finite points, repeated consecutive points, bad knots
+///     or alphas, naming the index at fault.
+///
+/// Notes
+/// -----
+/// Immutable: safe to share between threads; pickles.
+///
+/// Examples
+/// --------
+/// >>> c = Curve([[0, 0], [1, 0], [1, 1], [0, 1]], closed=True)
+/// >>> c.dim
+/// 2
 #[pyclass(frozen, module = "bzspline._core")]
 struct Curve {
     inner: Arc<bzspline::Curve>,
@@ -631,6 +758,9 @@ struct Curve {
 impl Curve {
     #[new]
     #[pyo3(signature = (points, closed=false, param=None, alpha=None, through=false))]
+    #[pyo3(
+        text_signature = "(points, closed=False, param='centripetal', alpha=0.5, through=False)"
+    )]
     fn new(
         py: Python<'_>,
         points: &Bound<'_, PyAny>,
@@ -673,8 +803,20 @@ impl Curve {
         })
     }
 
-    /// The point (or derivative of order `nu`) at every parameter t: an array
-    /// of shape `t.shape + (d,)`.
+    /// The point, or derivative of order `nu`, at every parameter t.
+    ///
+    /// Parameters
+    /// ----------
+    /// t : array_like
+    ///     Parameters, any shape, within ``knots[0]`` .. ``knots[-1]`` (a closed
+    ///     curve wraps).
+    /// nu : int, default 0
+    ///     The derivative order, at least 0.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Shape ``t.shape + (d,)``.
     #[pyo3(signature = (t, nu=0))]
     fn __call__<'py>(
         &self,
@@ -721,7 +863,16 @@ impl Curve {
         self.inner.dim()
     }
 
-    /// The arc length, to `accuracy`.
+    /// The arc length.
+    ///
+    /// Parameters
+    /// ----------
+    /// accuracy : float, optional
+    ///     The largest error allowed, relative to the length.
+    ///
+    /// Returns
+    /// -------
+    /// float
     #[pyo3(signature = (accuracy=DEFAULT_ACCURACY))]
     fn arclen(&self, py: Python<'_>, accuracy: f64) -> PyResult<f64> {
         let c = &self.inner;
@@ -729,8 +880,25 @@ impl Curve {
             .map_err(value_error)
     }
 
-    /// Points at equal arc-length steps: `n` of them, or one every `step`
-    /// (and the end); `(m, d)`.
+    /// Points at equal arc-length steps along the curve.
+    ///
+    /// Parameters
+    /// ----------
+    /// n : int, optional
+    ///     How many points, at least 2, from start to end.
+    /// step : float, optional
+    ///     Or one point every `step` of arc length (and the end point).
+    /// accuracy : float, optional
+    ///     Relative accuracy of the lengths.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray, shape (m, d)
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     Unless exactly one of `n` (at least 2) and `step` (positive) is given.
     #[pyo3(signature = (n=None, step=None, accuracy=DEFAULT_ACCURACY))]
     fn resample<'py>(
         &self,
@@ -776,7 +944,16 @@ impl Curve {
         PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// The point of the curve nearest to `p`: `(t, point, distance)`.
+    /// The point of the curve nearest to `p`.
+    ///
+    /// Parameters
+    /// ----------
+    /// p : array_like, shape (d,)
+    ///
+    /// Returns
+    /// -------
+    /// (float, numpy.ndarray, float)
+    ///     ``(t, point, distance)``: the parameter, the point ``c(t)``, its distance.
     fn nearest<'py>(
         &self,
         py: Python<'py>,
@@ -787,13 +964,29 @@ impl Curve {
         Ok((n.param, n.point.into_pyarray(py), n.distance))
     }
 
-    /// The exact bounding box: `(min, max)`.
+    /// The exact bounding box of the curve (not of its control points).
+    ///
+    /// Returns
+    /// -------
+    /// (numpy.ndarray, numpy.ndarray)
+    ///     ``(min, max)``, each of shape (d,).
     fn bbox<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>) {
         let b = self.inner.bbox();
         (b.min.into_pyarray(py), b.max.into_pyarray(py))
     }
 
-    /// The curvature at every t (planar: signed; in space: its magnitude).
+    /// The curvature at every parameter t.
+    ///
+    /// Parameters
+    /// ----------
+    /// t : array_like
+    ///     Any shape.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     Of t's shape: ``|c' x c''| / |c'|^3``, unsigned, 0 on a straight
+    ///     part, in the plane and in space alike.
     fn curvature<'py>(
         &self,
         py: Python<'py>,
@@ -811,7 +1004,17 @@ impl Curve {
         Ok(arr.into_pyarray(py))
     }
 
-    /// A polyline within `tolerance` of the curve, `(m, d)`.
+    /// A polyline within `tolerance` of the curve.
+    ///
+    /// Parameters
+    /// ----------
+    /// tolerance : float
+    ///     Positive: the largest distance between the curve and the polyline.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray, shape (m, d)
+    ///     Starts and ends at the curve's ends (a closed curve's end is its start).
     fn flatten<'py>(&self, py: Python<'py>, tolerance: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let c = &self.inner;
         let p = py
@@ -834,7 +1037,17 @@ impl Curve {
         PyArray3::from_vec3(py, &segs).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// SVG path data of a planar curve (`Z` at the end of a closed one).
+    /// SVG path data of a planar curve, exactly: one ``C`` command per segment.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     ``M x y C ...``, with ``Z`` at the end of a closed curve.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     For a curve that is not planar.
     fn svg_path(&self) -> PyResult<String> {
         self.inner.to_svg_path().map_err(value_error)
     }
