@@ -3,7 +3,11 @@
 //! number comes from the `bzspline` crate; this file converts arrays, maps
 //! errors to Python exceptions and releases the GIL around the work.
 
+mod alloc;
 mod geo;
+
+#[global_allocator]
+static ALLOCATOR: alloc::HugePages = alloc::HugePages;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
@@ -192,13 +196,8 @@ struct Spline {
 }
 
 impl Spline {
-    fn eval_flat(&self, x: &[f64], nu: u32) -> PyResult<Vec<f64>> {
-        let mut out = vec![0.0; x.len()];
-        self.eval_into(x, nu, &mut out)?;
-        Ok(out)
-    }
-
-    /// [`Spline::eval_flat`] into `out` (as long as `x`).
+    /// S(x) or its derivative of order `nu` (beyond the object's own) at
+    /// every x, into `out` (as long as `x`).
     fn eval_into(&self, x: &[f64], nu: u32, out: &mut [f64]) -> PyResult<()> {
         self.eval_order(x, self.nu + nu as i32, out)?;
         if nu == 0 && self.offset != 0.0 {
@@ -391,16 +390,23 @@ impl Spline {
                 }
                 return Ok(o);
             }
-            let out = match view.as_slice() {
-                Some(xs) => py.allow_threads(|| self.eval_flat(xs, nu))?,
-                None => {
-                    let xs: Vec<f64> = view.iter().copied().collect();
-                    py.allow_threads(|| self.eval_flat(&xs, nu))?
+            // numpy allocates the result: it asks for huge pages for large
+            // arrays, which makes first writing them several times cheaper.
+            let fresh = PyArrayDyn::<f64>::zeros(py, IxDyn(&shape), false);
+            {
+                let mut w = fresh.readwrite();
+                let dst = w
+                    .as_slice_mut()
+                    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+                match view.as_slice() {
+                    Some(xs) => py.allow_threads(|| self.eval_into(xs, nu, dst))?,
+                    None => {
+                        let xs: Vec<f64> = view.iter().copied().collect();
+                        py.allow_threads(|| self.eval_into(&xs, nu, dst))?
+                    }
                 }
-            };
-            let arr = ArrayD::from_shape_vec(IxDyn(&shape), out)
-                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-            Ok(arr.into_pyarray(py))
+            }
+            Ok(fresh)
         })
     }
 
