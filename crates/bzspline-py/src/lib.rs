@@ -834,19 +834,18 @@ impl Curve {
             let nu = u32::try_from(nu)
                 .map_err(|_| PyValueError::new_err(format!("nu = {nu} must be at least 0")))?;
             let (t, mut shape) = floats(t, "t")?;
-            let dim = self.inner.dim();
             let c = &self.inner;
-            let out = py.allow_threads(|| -> PyResult<Vec<f64>> {
-                let mut out = vec![0.0; t.len() * dim];
-                for (o, &s) in out.chunks_mut(dim).zip(&t) {
-                    c.deriv_into(s, nu, o).map_err(value_error)?;
-                }
-                Ok(out)
-            })?;
-            shape.push(dim);
-            let arr = ArrayD::from_shape_vec(IxDyn(&shape), out)
-                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-            Ok(arr.into_pyarray(py))
+            shape.push(c.dim());
+            let fresh = PyArrayDyn::<f64>::zeros(py, IxDyn(&shape), false);
+            {
+                let mut w = fresh.readwrite();
+                let dst = w
+                    .as_slice_mut()
+                    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+                py.allow_threads(|| c.deriv_many(&t, nu, dst))
+                    .map_err(value_error)?;
+            }
+            Ok(fresh)
         })
     }
 

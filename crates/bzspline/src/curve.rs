@@ -1012,6 +1012,13 @@ impl Curve {
 
     /// Segment and local parameter of `s`.
     fn locate(&self, s: f64) -> Result<(usize, f64), Error> {
+        self.locate_near(s, usize::MAX)
+    }
+
+    /// [`Curve::locate`], trying segment `hint` and the next one before the
+    /// search (queries in order mostly stay in one segment or move to the
+    /// next); the segment found is the one the search finds.
+    fn locate_near(&self, s: f64, hint: usize) -> Result<(usize, f64), Error> {
         if !s.is_finite() {
             return Err(Error::NonFinite {
                 field: Field::Query,
@@ -1034,8 +1041,18 @@ impl Curve {
                 s = lo;
             }
         }
-        let k = self.pieces.locate(s);
-        let t = ((s - self.pieces.knots()[k]) / self.pieces.width(k)).clamp(0.0, 1.0);
+        let knots = self.pieces.knots();
+        // Segment k answers on [tau_k, tau_{k+1}); the search gives the same.
+        let within = |k: usize| k < knots.len() - 1 && knots[k] <= s && s < knots[k + 1];
+        let next = hint.wrapping_add(1);
+        let k = if within(hint) {
+            hint
+        } else if within(next) {
+            next
+        } else {
+            self.pieces.locate(s)
+        };
+        let t = ((s - knots[k]) / self.pieces.width(k)).clamp(0.0, 1.0);
         Ok((k, t))
     }
 
@@ -1076,6 +1093,12 @@ impl Curve {
     pub fn eval_into(&self, s: f64, out: &mut [f64]) -> Result<(), Error> {
         check_out(out, self.dim())?;
         let (k, t) = self.locate(s)?;
+        self.point_at(k, t, out);
+        Ok(())
+    }
+
+    /// The point at local `t` of segment `k` into `out` (`dim` numbers).
+    fn point_at(&self, k: usize, t: f64, out: &mut [f64]) {
         let dim = self.dim();
         let n = self.n_points();
         let j = (k + 1) % n;
@@ -1084,7 +1107,7 @@ impl Curve {
             // one of them underflowed in scaling beside a much larger one.
             let i = if t == 0.0 { 0 } else { n - 1 };
             out.copy_from_slice(&self.points[i * dim..(i + 1) * dim]);
-            return Ok(());
+            return;
         }
         for (c, o) in out.iter_mut().enumerate() {
             let v = if t == 1.0 {
@@ -1100,7 +1123,6 @@ impl Curve {
                 v
             };
         }
-        Ok(())
     }
 
     /// The derivative of order `order` (0..=3; higher ones are 0) with respect
@@ -1124,11 +1146,17 @@ impl Curve {
     /// As [`Curve::deriv`]; [`Error::InvalidArgument`] when `out` does not hold
     /// [`Curve::dim`] numbers.
     pub fn deriv_into(&self, s: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
-        if order == 0 {
-            return self.eval_into(s, out);
-        }
         check_out(out, self.dim())?;
         let (k, t) = self.locate(s)?;
+        self.deriv_at(k, t, order, out)
+    }
+
+    /// The derivative of order `order` at local `t` of segment `k` into `out`.
+    fn deriv_at(&self, k: usize, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error> {
+        if order == 0 {
+            self.point_at(k, t, out);
+            return Ok(());
+        }
         let h = self.pieces.width(k);
         for (c, o) in out.iter_mut().enumerate() {
             let mut v = self.pieces.value(k, c, t, order);
@@ -1141,6 +1169,53 @@ impl Curve {
                 });
             }
             *o = v;
+        }
+        Ok(())
+    }
+
+    /// [`Curve::deriv`] at every parameter of `ss`, into `out` (`dim` numbers
+    /// a parameter, parameter after parameter): the same numbers as one call
+    /// a parameter, found faster when the parameters come in order (each
+    /// search starts from the segment of the one before).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] when `out` does not hold `dim` numbers for
+    /// every parameter; otherwise as [`Curve::deriv`], naming the parameter's
+    /// index. `out` is then written up to that parameter.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Curve;
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])?;
+    /// let ts = [0.0, 0.5, 1.5, 2.5];
+    /// let mut out = [0.0; 8];
+    /// c.deriv_many(&ts, 0, &mut out)?;
+    /// assert_eq!(&out[2..4], c.eval(0.5)?.as_slice());
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn deriv_many(&self, ss: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
+        let dim = self.dim();
+        if out.len() != ss.len() * dim {
+            return Err(Error::LengthMismatch {
+                field: Field::Query,
+                expected: ss.len() * dim,
+                found: out.len(),
+            });
+        }
+        let mut hint = usize::MAX;
+        for (i, (&s, o)) in ss.iter().zip(out.chunks_exact_mut(dim)).enumerate() {
+            let (k, t) = self.locate_near(s, hint).map_err(|e| match e {
+                Error::NonFinite { field, value, .. } => Error::NonFinite {
+                    field,
+                    index: i,
+                    value,
+                },
+                e => e,
+            })?;
+            self.deriv_at(k, t, order, o)?;
+            hint = k;
         }
         Ok(())
     }

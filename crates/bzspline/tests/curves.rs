@@ -580,3 +580,60 @@ fn straight_polygon_length_is_the_sum_of_its_legs() {
         assert!((got - 1.75).abs() <= 1e-12, "want 1.75, got {got}");
     }
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The batch evaluation gives, number for number, what one call a
+    /// parameter gives: in order (the walk from segment to segment), shuffled
+    /// (the search), at the knots and, for a closed curve, past the ends.
+    #[test]
+    fn deriv_many_is_deriv_at_every_parameter(
+        dim in 1usize..=3,
+        (pts, closed, param, alphas) in curve_strategy(3),
+        us in prop::collection::vec(0.0f64..1.0, 0..40),
+        order in 0u32..=4,
+    ) {
+        let pts = &pts[..pts.len() / 3 * dim];
+        let Some(c) = build(pts, dim, closed, param, &alphas) else { return Ok(()) };
+        let (lo, hi) = c.domain();
+        let mut ts: Vec<f64> = us.iter().map(|u| lo + u * (hi - lo)).collect();
+        ts.extend_from_slice(c.knots());
+        ts.sort_by(f64::total_cmp);
+        if closed {
+            ts.extend(us.iter().map(|u| lo + (u * 3.0 - 1.0) * (hi - lo)));
+        }
+        // Sorted first, then the same reversed.
+        let rev: Vec<f64> = ts.iter().rev().copied().collect();
+        ts.extend(rev);
+        let mut out = vec![0.0; ts.len() * dim];
+        c.deriv_many(&ts, order, &mut out)?;
+        for (i, &t) in ts.iter().enumerate() {
+            let want = c.deriv(t, order)?;
+            prop_assert_eq!(&out[i * dim..(i + 1) * dim], want.as_slice(), "t = {}", t);
+        }
+    }
+}
+
+#[test]
+fn deriv_many_names_the_bad_parameter() {
+    let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).unwrap();
+    let mut out = [0.0; 6];
+    let e = c
+        .deriv_many(&[0.5, f64::NAN, 1.0], 0, &mut out)
+        .unwrap_err();
+    assert!(matches!(e, Error::NonFinite { index: 1, .. }), "{e}");
+    let (_, hi) = c.domain();
+    let e = c
+        .deriv_many(&[0.5, hi + 1.0, 1.0], 1, &mut out)
+        .unwrap_err();
+    assert!(matches!(e, Error::OutOfDomain { .. }), "{e}");
+    assert!(matches!(
+        c.deriv_many(&[0.5], 0, &mut out),
+        Err(Error::LengthMismatch {
+            expected: 2,
+            found: 6,
+            ..
+        })
+    ));
+}
