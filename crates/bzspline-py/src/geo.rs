@@ -289,10 +289,11 @@ fn extent_tuple(r: Option<Rect<f64>>) -> Option<[f64; 4]> {
 
 /// Smooths the geometries of ragged arrays (lines and polygons in one
 /// coverage: shared borders smoothed once), or each geometry on its own;
-/// with `nodes` (and `extent`) as one part of a larger coverage. Returns each
+/// with `nodes` (and `extent`) as one part of a larger coverage; with `snap`,
+/// positions closer than that are merged first. Returns each
 /// group's ragged array of the result.
 #[pyfunction]
-#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None))]
+#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_ragged<'py>(
     py: Python<'py>,
@@ -304,6 +305,7 @@ pub fn _smooth_ragged<'py>(
     alpha: f64,
     nodes: Option<PyReadonlyArray2<'py, f64>>,
     extent: Option<[f64; 4]>,
+    snap: Option<f64>,
 ) -> PyResult<Vec<PyRagged<'py>>> {
     crate::guard(|| {
         let (geoms, index) = gather(&groups)?;
@@ -319,7 +321,7 @@ pub fn _smooth_ragged<'py>(
             let run = |gs: Vec<Geometry<f64>>,
                        index: &[i64]|
              -> Result<Vec<Geometry<f64>>, String> {
-                let c = Coverage::with_nodes(gs, None, nodes.clone()).map_err(|e| e.to_string())?;
+                let c = Coverage::with_nodes(gs, snap, nodes.clone()).map_err(|e| e.to_string())?;
                 c.smooth(&opts)
                     .map(|(out, _)| out)
                     .map_err(|e| coverage_error(&c, index, &e))

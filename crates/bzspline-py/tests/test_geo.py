@@ -131,3 +131,17 @@ def test_bad_coordinates_name_the_geometry():
     line = shapely.LineString([(0, 0), (1, np.nan), (2, 0)])
     with pytest.raises(ValueError, match="geometry 3, coordinate 1"):
         bzspline.geo.smooth(np.array([cells[0], None, cells[1], line], dtype=object))
+
+
+def test_snap_joins_borders_digitised_twice():
+    left = shapely.Polygon([(0, 0), (1, 0), (1.2, 0.5), (1, 1), (0, 1)])
+    # The neighbour's copy of the border is off by a nanometre.
+    e = 1e-9
+    right = shapely.Polygon([(1 + e, 0), (2, 0), (2, 1), (1 - e, 1), (1.2 + e, 0.5)])
+    cells = np.array([left, right], dtype=object)
+    apart = bzspline.geo.smooth(cells, tolerance=1e-3)
+    joined = bzspline.geo.smooth(cells, tolerance=1e-3, snap=1e-6)
+    shared = lambda a, b: set(map(tuple, shapely.get_coordinates(a))) & set(map(tuple, shapely.get_coordinates(b)))
+    assert len(shared(*apart)) == 0
+    assert len(shared(*joined)) > 3
+    assert joined[0].intersection(joined[1]).area < 1e-12

@@ -102,7 +102,7 @@ def _groups(arr):
     return groups, picks
 
 
-def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes):
+def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, snap):
     import shapely
 
     if nodes is not None and not isinstance(nodes, Nodes):
@@ -120,6 +120,7 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes):
         alpha=alpha,
         nodes=None if nodes is None else np.ascontiguousarray(nodes.positions),
         extent=None if nodes is None else nodes.extent,
+        snap=snap,
     )
     for (kind, _, _, _), pick, (c, o) in zip(groups, picks, results):
         back = shapely.from_ragged_array(kind, c, tuple(o))
@@ -226,7 +227,8 @@ def nodes(obj):
     return Nodes(positions, extent)
 
 
-def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, alpha=0.5, nodes=None):
+def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, alpha=0.5, nodes=None,
+           snap=None):
     """Smooth lines and polygon rings with the method, keeping coverages valid.
 
     Parameters
@@ -254,10 +256,16 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
         wherever that needed no refinement across parts: refinement, where a
         smoothed arc would come too close to another, is decided within the
         part).
+    snap : float, optional
+        Merge positions closer than this distance first (each to the first met
+        within it), so that borders digitised twice with small differences
+        become one. Within ``obj`` only: snap a whole coverage before
+        splitting it into parts.
 
     Returns
     -------
-    The same kind as ``obj``.
+    The same kind as ``obj``, in two dimensions: smoothing is planar, and
+    z coordinates are dropped.
 
     Raises
     ------
@@ -269,7 +277,7 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
     """
     import shapely
 
-    args = (tolerance, coverage, through, keep_angle, alpha, nodes)
+    args = (tolerance, coverage, through, keep_angle, alpha, nodes, snap)
     if isinstance(obj, shapely.Geometry):
         return _smooth_array(np.array([obj], dtype=object), *args)[0]
     try:
