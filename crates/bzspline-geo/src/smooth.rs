@@ -412,7 +412,9 @@ impl Topology {
             .collect();
         // A node: met by two arcs here, or by the whole coverage's (given).
         let given = self.nodes();
-        let is_node = |c: Coord| count.get(&key(c)).is_some_and(|&n| n >= 2) || given.contains(c);
+        let is_node = |c: Coord| {
+            count.get(&key(c)).is_some_and(|&n| n >= 2) || (!given.is_empty() && given.contains(c))
+        };
         let mut plans = Vec::with_capacity(arcs.len());
         for (ai, a) in arcs.iter().enumerate() {
             let closed = is_closed(a);

@@ -196,6 +196,25 @@ struct Spline {
 }
 
 impl Spline {
+    /// The same spline evaluating order `nu` (with its antiderivative when
+    /// `nu` is -1), less `offset`.
+    fn of_order(
+        &self,
+        nu: i32,
+        anti: Option<Arc<bzspline::Antiderivative>>,
+        offset: f64,
+    ) -> Spline {
+        Spline {
+            inner: Arc::clone(&self.inner),
+            y: self.y.clone(),
+            through: self.through,
+            outside: self.outside,
+            nu,
+            anti,
+            offset,
+        }
+    }
+
     /// S(x) or its derivative of order `nu` (beyond the object's own) at
     /// every x, into `out` (as long as `x`).
     fn eval_into(&self, x: &[f64], nu: u32, out: &mut [f64]) -> PyResult<()> {
@@ -430,15 +449,8 @@ impl Spline {
         let order = self
             .nu
             .saturating_add(i32::try_from(nu).unwrap_or(i32::MAX));
-        Ok(Spline {
-            inner: Arc::clone(&self.inner),
-            y: self.y.clone(),
-            through: self.through,
-            outside: self.outside,
-            nu: order,
-            anti: if order < 0 { self.anti.clone() } else { None },
-            offset: if nu == 0 { self.offset } else { 0.0 },
-        })
+        let anti = if order < 0 { self.anti.clone() } else { None };
+        Ok(self.of_order(order, anti, if nu == 0 { self.offset } else { 0.0 }))
     }
 
     /// The antiderivative as a new object: `F(x)`, the integral of S from
@@ -480,15 +492,7 @@ impl Spline {
             let v = self.inner.deriv(x0, order as u32).map_err(value_error)?;
             (None, v)
         };
-        Ok(Spline {
-            inner: Arc::clone(&self.inner),
-            y: self.y.clone(),
-            through: self.through,
-            outside: self.outside,
-            nu: order,
-            anti,
-            offset,
-        })
+        Ok(self.of_order(order, anti, offset))
     }
 
     /// The integral of S from a to b.
