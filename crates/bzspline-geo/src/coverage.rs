@@ -5,6 +5,7 @@ use geo_types::{Coord, Geometry, GeometryCollection, Line, LineString, MultiLine
 use geo_types::{MultiPolygon, Polygon};
 
 use crate::error::Error;
+use crate::levels::Levels;
 use crate::nodes::Nodes;
 use crate::smooth::{SmoothOptions, Stats};
 use crate::topology::{snap, ChainKind, Topology};
@@ -117,6 +118,21 @@ impl Coverage {
     pub fn smooth(&self, opts: &SmoothOptions) -> Result<(Vec<Geometry<f64>>, Stats), Error> {
         let s = self.topology.smooth(opts)?;
         Ok((self.assemble(&s.arcs), s.stats))
+    }
+
+    /// As [`Coverage::smooth`], starting from the refinement levels `start`
+    /// ([`Topology::smooth_from`]); also returns the levels the arcs end at.
+    ///
+    /// # Errors
+    ///
+    /// As [`Topology::smooth`].
+    pub fn smooth_from(
+        &self,
+        opts: &SmoothOptions,
+        start: &Levels,
+    ) -> Result<(Vec<Geometry<f64>>, Stats, Levels), Error> {
+        let s = self.topology.smooth_from(opts, start)?;
+        Ok((self.assemble(&s.arcs), s.stats, s.levels))
     }
 
     /// The geometries with every line and ring put together from `arcs` (the

@@ -40,12 +40,14 @@
 mod coverage;
 mod crossings;
 mod error;
+pub mod levels;
 pub mod nodes;
 pub mod smooth;
 pub mod topology;
 
 pub use coverage::{coverage_chains, Coverage, Location};
 pub use error::Error;
+pub use levels::{arc_key, Levels};
 pub use nodes::Nodes;
 pub use smooth::{SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL};
 pub use topology::{ArcRef, Chain, ChainKind, Topology};

@@ -25,6 +25,7 @@ use geo_types::{Coord, Rect};
 
 use crate::crossings::{key, Lines, SegId};
 use crate::error::Error;
+use crate::levels::{arc_key, Levels};
 use crate::topology::{ChainKind, Topology};
 
 /// The default flattening tolerance as a fraction of the diagonal of the
@@ -183,6 +184,8 @@ pub struct Smoothed {
     pub arcs: Vec<Vec<Coord>>,
     /// What was done.
     pub stats: Stats,
+    /// The levels each refined arc ended at ([`Topology::smooth_from`]).
+    pub levels: Levels,
 }
 
 /// Which original legs one output segment lies along, and whether it is an
@@ -214,6 +217,19 @@ impl Topology {
     /// when a smoothed arc leaves the range of a double; [`Error::Spline`]
     /// when the tolerance asks for more vertices than a flattening may have.
     pub fn smooth(&self, opts: &SmoothOptions) -> Result<Smoothed, Error> {
+        self.smooth_from(opts, &Levels::default())
+    }
+
+    /// As [`Topology::smooth`], with every arc that `start` lists refined at
+    /// least to its levels there from the first round on (by [`arc_key`]);
+    /// [`Smoothed::levels`] gives the levels the arcs end at. Parts of a
+    /// coverage smoothed apart pass them between each other until no part
+    /// raises any: then every arc two parts hold is smoothed the same in both.
+    ///
+    /// # Errors
+    ///
+    /// As [`Topology::smooth`].
+    pub fn smooth_from(&self, opts: &SmoothOptions, start: &Levels) -> Result<Smoothed, Error> {
         opts.check()?;
         let arcs = self.arcs();
         let extent = self.nodes().extent();
@@ -249,6 +265,13 @@ impl Topology {
         stats.area_in = shoelace.polygons(self, &cross_in);
 
         let mut levels: Vec<Vec<u8>> = arcs.iter().map(|a| vec![0; a.len() - 1]).collect();
+        if !start.is_empty() {
+            for (a, l) in arcs.iter().zip(levels.iter_mut()) {
+                if let Some(given) = start.get(arc_key(a)).filter(|g| g.len() == l.len()) {
+                    l.copy_from_slice(given);
+                }
+            }
+        }
         let mut out: Vec<Vec<Coord>> = vec![Vec::new(); arcs.len()];
         let mut segs: Vec<Vec<Seg>> = vec![Vec::new(); arcs.len()];
         let mut dirty = vec![true; arcs.len()];
@@ -319,7 +342,17 @@ impl Topology {
             .sum();
         stats.positions_out = self.positions(&out);
         stats.area_out = shoelace.polygons(self, &cross_out);
-        Ok(Smoothed { arcs: out, stats })
+        let mut ended = Levels::default();
+        for (a, l) in arcs.iter().zip(levels) {
+            if l.iter().any(|&v| v > 0) {
+                ended.insert(arc_key(a), l);
+            }
+        }
+        Ok(Smoothed {
+            arcs: out,
+            stats,
+            levels: ended,
+        })
     }
 
     /// Adds to `bump` every leg of the rings that turned over and of the

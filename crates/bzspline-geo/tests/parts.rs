@@ -175,3 +175,169 @@ proptest! {
         prop_assert_eq!(by_parts(&gs, &part, &opts), all);
     }
 }
+
+/// The features of the other parts whose bounding box meets part `p`'s
+/// extent: all that can come near what part `p` holds.
+fn context(gs: &[Geometry<f64>], part: &[usize], p: usize) -> Vec<usize> {
+    use geo::BoundingRect;
+    let own: Vec<_> = (0..gs.len())
+        .filter(|&i| part[i] == p)
+        .filter_map(|i| gs[i].bounding_rect())
+        .collect();
+    let Some(mut ext) = own.first().copied() else {
+        return Vec::new();
+    };
+    for r in &own[1..] {
+        ext = geo::Rect::new(
+            geo::coord! { x: ext.min().x.min(r.min().x), y: ext.min().y.min(r.min().y) },
+            geo::coord! { x: ext.max().x.max(r.max().x), y: ext.max().y.max(r.max().y) },
+        );
+    }
+    (0..gs.len())
+        .filter(|&i| part[i] != p)
+        .filter(|&i| {
+            gs[i].bounding_rect().is_some_and(|r| {
+                r.min().x <= ext.max().x
+                    && r.max().x >= ext.min().x
+                    && r.min().y <= ext.max().y
+                    && r.max().y >= ext.min().y
+            })
+        })
+        .collect()
+}
+
+/// Smooths each part with its context and the whole's nodes, passing the
+/// refinement levels between the parts until no part raises any; returns
+/// the features in their order and how many passes it took.
+fn by_parts_agreeing(
+    gs: &[Geometry<f64>],
+    part: &[usize],
+    opts: &SmoothOptions,
+) -> (Vec<Geometry<f64>>, usize) {
+    let k = part.iter().max().map_or(0, |&p| p + 1);
+    let nodes = Nodes::of(&coverage_chains(gs)).unwrap();
+    let mut levels = bzspline_geo::Levels::default();
+    for pass in 1..=8 {
+        let mut out: Vec<Option<Geometry<f64>>> = vec![None; gs.len()];
+        let mut merged = levels.clone();
+        for p in 0..k {
+            let own: Vec<usize> = (0..gs.len()).filter(|&i| part[i] == p).collect();
+            let held: Vec<usize> = own.iter().copied().chain(context(gs, part, p)).collect();
+            let cov = Coverage::with_nodes(
+                held.iter().map(|&i| gs[i].clone()).collect(),
+                None,
+                nodes.clone(),
+            )
+            .unwrap();
+            let (smoothed, _, ended) = cov.smooth_from(opts, &levels).unwrap();
+            merged.merge(&ended);
+            for (&i, g) in own.iter().zip(smoothed) {
+                out[i] = Some(g);
+            }
+        }
+        if merged == levels {
+            return (out.into_iter().map(Option::unwrap).collect(), pass);
+        }
+        levels = merged;
+    }
+    panic!("the parts did not agree in 8 passes");
+}
+
+/// Checks that features of different parts share their borders exactly, and
+/// that nothing crosses.
+fn check_parts(input: &[Geometry<f64>], out: &[Geometry<f64>]) {
+    for (a, b) in neighbours(input) {
+        share_border(&out[a], &out[b]).unwrap_or_else(|e| panic!("neighbours {a} and {b}: {e}"));
+    }
+    assert_eq!(brute_force_crossings(out), 0, "segments cross");
+    valid_stays_valid(input, out).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn parts_that_refine_agree_on_their_borders() {
+    // An L-shaped polygon, a road along the two edges of its notch, and a
+    // square in the notch, each in a part of its own: the corner's curve,
+    // which the polygon and the road share, cuts through the square unless
+    // refined, which only a part that sees the square can tell.
+    let l_shape = poly(
+        vec![
+            c(0.0, 0.0),
+            c(4.0, 0.0),
+            c(4.0, 1.0),
+            c(2.5, 1.0),
+            c(1.0, 1.0),
+            c(1.0, 2.5),
+            c(1.0, 4.0),
+            c(0.0, 4.0),
+            c(0.0, 0.0),
+        ],
+        vec![],
+    );
+    let road = Geometry::LineString(LineString(vec![c(2.5, 1.0), c(1.0, 1.0), c(1.0, 2.5)]));
+    let square = poly(
+        vec![
+            c(1.05, 1.05),
+            c(1.6, 1.05),
+            c(1.6, 1.6),
+            c(1.05, 1.6),
+            c(1.05, 1.05),
+        ],
+        vec![],
+    );
+    let gs = vec![l_shape, road, square];
+    let opts = SmoothOptions::default().tolerance(1e-3);
+    let (all, stats) = whole(&gs, &opts);
+    assert!(
+        stats.refined_legs > 0,
+        "the case needs no refinement: {stats:?}"
+    );
+    check_parts(&gs, &all);
+    // Parts without each other's context cross.
+    let alone = by_parts(&gs, &[0, 1, 2], &opts);
+    assert!(
+        brute_force_crossings(&alone) > 0,
+        "the parts alone do not cross"
+    );
+    let (agreed, passes) = by_parts_agreeing(&gs, &[0, 1, 2], &opts);
+    assert!(passes >= 2, "{passes} passes");
+    check_parts(&gs, &agreed);
+    // The road, smoothed in its own part, is the polygon's smoothed stretch.
+    let shell = polygons(&agreed[0]);
+    let ring = &shell[0].exterior().0;
+    let Geometry::LineString(road) = &agreed[1] else {
+        unreachable!()
+    };
+    assert!(road.0.len() > 3);
+    assert!(
+        road.0.iter().all(|p| ring.contains(p)),
+        "the road left the border"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    /// With their contexts and the levels passed round, parts agree on every
+    /// border and nothing crosses, refined or not; where the whole refined
+    /// nothing they are the whole.
+    #[test]
+    fn parts_passing_levels_keep_a_valid_coverage(
+        nx in 1usize..5,
+        ny in 1usize..4,
+        m in 0usize..5,
+        amp in 0.0f64..0.14,
+        seed in any::<u64>(),
+        k in 2usize..5,
+        tol_exp in -3i32..-1,
+    ) {
+        let gs = mosaic(nx, ny, m, amp, seed);
+        let opts = SmoothOptions::default().tolerance(10f64.powi(tol_exp));
+        let part: Vec<usize> = (0..gs.len()).map(|i| i * k / gs.len()).collect();
+        let (agreed, _) = by_parts_agreeing(&gs, &part, &opts);
+        check_parts(&gs, &agreed);
+        let (all, stats) = whole(&gs, &opts);
+        if stats.refined_legs == 0 {
+            prop_assert_eq!(agreed, all);
+        }
+    }
+}
