@@ -9,14 +9,14 @@ once (every border shared exactly by its two cells), 4 vertices per cell side.
 Three runs, each timed from the GeoSeries in memory to the smoothed GeoSeries:
 
 - one process: ``bzspline.geo.smooth(series)``;
-- the cluster: ``bzspline.geo.nodes`` over the dask-geopandas partitions, then
-  ``map_partitions(bzspline.geo.smooth, nodes=...)`` on a
+- the cluster: ``bzspline.geo.smooth`` of the dask-geopandas series on a
   ``distributed.LocalCluster`` of --workers processes, one thread each, with
   the partitions already on the workers (``persist``, as when the workers read
   the data themselves; neither the cluster's start-up nor that persist is
-  timed); timed alone, with the result left on the workers (as before writing
-  it out from them), and with the result gathered into the client;
-- the same with the partitions smoothed without the nodes, to show the
+  timed): the nodes alone, the smoothing with the result left on the workers
+  (as before writing it out from them), and with the result gathered into the
+  client;
+- the partitions smoothed each on its own (``map_partitions``), to show the
   borders that then part.
 
 Prints seconds per run (best of --repeats), positions per second, and how many
@@ -118,9 +118,11 @@ def main():
         d = dask_geopandas.from_geopandas(frame, npartitions=args.npartitions).geometry.persist()
         distributed.wait(d)
 
-        def cluster_run(with_nodes, gather=True):
-            kw = {"nodes": bzspline.geo.nodes(d)} if with_nodes else {}
-            out = d.map_partitions(bzspline.geo.smooth, meta=d._meta, **kw)
+        def cluster_run(together, gather=True):
+            if together:
+                out = bzspline.geo.smooth(d)
+            else:
+                out = d.map_partitions(bzspline.geo.smooth, meta=d._meta)
             if gather:
                 return out.compute()
             return distributed.wait(out.persist())
@@ -135,9 +137,9 @@ def main():
     rows = [
         ("one process", one, 0),
         ("cluster, the nodes alone", reduction, None),
-        ("cluster, nodes + smooth, kept on workers", kept, None),
-        ("cluster, nodes + smooth + gather", many, differing(got)),
-        (f"cluster, {args.npartitions} partitions, no nodes", naive, differing(got_naive)),
+        ("cluster, smooth, kept on workers", kept, None),
+        ("cluster, smooth + gather", many, differing(got)),
+        (f"cluster, {args.npartitions} partitions each alone", naive, differing(got_naive)),
     ]
     print(f"{'run':<40} {'seconds':>8} {'Mpos/s':>7} {'vs one':>7} {'features differing':>19}")
     for name, s, diff in rows:

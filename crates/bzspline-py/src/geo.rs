@@ -8,7 +8,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 use bzspline_geo::nodes::{across, extent, meetings, Meeting, Nodes};
-use bzspline_geo::{coverage_chains, Coverage, SmoothOptions};
+use bzspline_geo::{coverage_chains, Coverage, Levels, SmoothOptions};
 
 /// Coordinates and offsets (innermost first) of a ragged array.
 type Ragged = (Vec<[f64; 2]>, Vec<Vec<i64>>);
@@ -293,7 +293,7 @@ fn extent_tuple(r: Option<Rect<f64>>) -> Option<[f64; 4]> {
 /// positions closer than that are merged first. Returns each
 /// group's ragged array of the result.
 #[pyfunction]
-#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None))]
+#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None, levels=None))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_ragged<'py>(
     py: Python<'py>,
@@ -306,7 +306,8 @@ pub fn _smooth_ragged<'py>(
     nodes: Option<PyReadonlyArray2<'py, f64>>,
     extent: Option<[f64; 4]>,
     snap: Option<f64>,
-) -> PyResult<Vec<PyRagged<'py>>> {
+    levels: Option<PyLevelsIn<'py>>,
+) -> PyResult<(Vec<PyRagged<'py>>, PyLevels<'py>)> {
     crate::guard(|| {
         let (geoms, index) = gather(&groups)?;
         let nodes = given_nodes(nodes, extent)?;
@@ -317,26 +318,32 @@ pub fn _smooth_ragged<'py>(
         if let Some(k) = keep_angle {
             opts = opts.keep_angle(k);
         }
-        let smoothed = py.allow_threads(|| -> Result<Vec<Geometry<f64>>, String> {
+        let start = match levels {
+            Some(l) => levels_from(l)?,
+            None => Levels::default(),
+        };
+        let smoothed = py.allow_threads(|| -> Result<(Vec<Geometry<f64>>, Levels), String> {
             let run = |gs: Vec<Geometry<f64>>,
                        index: &[i64]|
-             -> Result<Vec<Geometry<f64>>, String> {
+             -> Result<(Vec<Geometry<f64>>, Levels), String> {
                 let c = Coverage::with_nodes(gs, snap, nodes.clone()).map_err(|e| e.to_string())?;
-                c.smooth(&opts)
-                    .map(|(out, _)| out)
+                c.smooth_from(&opts, &start)
+                    .map(|(out, _, ended)| (out, ended))
                     .map_err(|e| coverage_error(&c, index, &e))
             };
             if coverage {
                 run(geoms, &index)
             } else {
-                let mut out = Vec::with_capacity(geoms.len());
+                let (mut out, mut ended) = (Vec::with_capacity(geoms.len()), Levels::default());
                 for (g, i) in geoms.into_iter().zip(&index) {
-                    out.extend(run(vec![g], std::slice::from_ref(i))?);
+                    let (o, l) = run(vec![g], std::slice::from_ref(i))?;
+                    out.extend(o);
+                    ended.merge(&l);
                 }
-                Ok(out)
+                Ok((out, ended))
             }
         });
-        let smoothed = smoothed.map_err(PyValueError::new_err)?;
+        let (smoothed, ended) = smoothed.map_err(PyValueError::new_err)?;
         let mut out = Vec::with_capacity(groups.len());
         let mut start = 0;
         for (kind, _, _, idx) in &groups {
@@ -348,7 +355,72 @@ pub fn _smooth_ragged<'py>(
                 o.into_iter().map(|v| v.into_pyarray(py)).collect(),
             ));
         }
-        Ok(out)
+        Ok((out, levels_to(py, &ended)))
+    })
+}
+
+/// Refinement levels for Python: arc keys `(m,)`, offsets `(m + 1,)` into the
+/// legs' levels.
+type PyLevels<'py> = (
+    Bound<'py, PyArray1<u64>>,
+    Bound<'py, PyArray1<i64>>,
+    Bound<'py, PyArray1<u8>>,
+);
+
+/// Refinement levels from Python, as [`PyLevels`].
+type PyLevelsIn<'py> = (
+    PyReadonlyArray1<'py, u64>,
+    PyReadonlyArray1<'py, i64>,
+    PyReadonlyArray1<'py, u8>,
+);
+
+fn levels_from(l: PyLevelsIn<'_>) -> PyResult<Levels> {
+    let (keys, offs, vals) = (l.0.as_array(), l.1.as_array(), l.2.as_array());
+    let offs = offs.to_vec();
+    let vals = vals.to_vec();
+    let spans = spans(&offs, vals.len())?;
+    if spans.len() != keys.len() {
+        return Err(PyValueError::new_err("levels: one offset span per arc key"));
+    }
+    let mut out = Levels::default();
+    for (&k, (a, b)) in keys.iter().zip(spans) {
+        out.insert(k, vals[a..b].to_vec());
+    }
+    Ok(out)
+}
+
+fn levels_to<'py>(py: Python<'py>, l: &Levels) -> PyLevels<'py> {
+    let mut rows: Vec<(u64, &[u8])> = l.iter().collect();
+    rows.sort_unstable_by_key(|r| r.0);
+    let mut offs = vec![0i64];
+    let mut vals = Vec::new();
+    for (_, v) in &rows {
+        vals.extend_from_slice(v);
+        offs.push(vals.len() as i64);
+    }
+    let keys: Vec<u64> = rows.iter().map(|r| r.0).collect();
+    (
+        keys.into_pyarray(py),
+        offs.into_pyarray(py),
+        vals.into_pyarray(py),
+    )
+}
+
+/// The levels of every part merged (each leg at its highest), and whether
+/// they differ from the first.
+#[pyfunction]
+pub fn _merge_levels<'py>(
+    py: Python<'py>,
+    base: PyLevelsIn<'py>,
+    parts: Vec<PyLevelsIn<'py>>,
+) -> PyResult<(PyLevels<'py>, bool)> {
+    crate::guard(|| {
+        let mut merged = levels_from(base)?;
+        let mut changed = false;
+        for p in parts {
+            changed |= merged.merge(&levels_from(p)?);
+        }
+        Ok((levels_to(py, &merged), changed))
     })
 }
 

@@ -1134,5 +1134,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geo::_nodes_of, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_meetings, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_across, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_merge_levels, m)?)?;
     Ok(())
 }

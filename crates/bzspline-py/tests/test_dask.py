@@ -60,15 +60,38 @@ def test_a_coverage_over_partitions_smooths_as_one_process(client):
     s = geopandas.GeoSeries(cells[order], crs="EPSG:3857")
     want = bzspline.geo.smooth(s)
     d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=4)
-    nodes = bzspline.geo.nodes(d.geometry)
-    assert len(nodes) > 0
-    got = d.geometry.map_partitions(bzspline.geo.smooth, nodes=nodes, meta=d.geometry._meta).compute()
-    assert list(got.index) == list(want.index)
+    got = bzspline.geo.smooth(d.geometry)
+    assert isinstance(got, dask_geopandas.GeoSeries)
+    got = got.compute()
+    assert list(got.index) == list(want.index) and got.crs == want.crs
     assert all(a.equals_exact(b, 0.0) for a, b in zip(got, want))
-    # The reduction finds what the whole coverage's junctions are at the
-    # partitions' seams: all of them are junctions of the whole.
-    whole = {tuple(p) for p in bzspline.geo.nodes(s).positions}
-    assert {tuple(p) for p in nodes.positions} <= whole
+    # The nodes alone, passed to map_partitions, give the same here (nothing
+    # needed refinement); the reduction finds junctions of the whole.
+    nodes = bzspline.geo.nodes(d.geometry)
+    assert {tuple(p) for p in nodes.positions} <= {tuple(p) for p in bzspline.geo.nodes(s).positions}
+    mapped = d.geometry.map_partitions(bzspline.geo.smooth, nodes=nodes, meta=d.geometry._meta).compute()
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(mapped, want))
     # Without the nodes, borders across partitions differ.
     naive = d.geometry.map_partitions(bzspline.geo.smooth, meta=d.geometry._meta).compute()
     assert not all(a.equals_exact(b, 0.0) for a, b in zip(naive, want))
+
+
+def test_partitions_that_refine_agree_on_their_borders(client):
+    # An L-shaped polygon, a road along its notch and a square in the notch,
+    # one a partition: the shared corner must be refined in both the
+    # polygon's and the road's partition, though only the square's shows why.
+    l_shape = shapely.Polygon([(0, 0), (4, 0), (4, 1), (2.5, 1), (1, 1), (1, 2.5), (1, 4), (0, 4)])
+    road = shapely.LineString([(2.5, 1), (1, 1), (1, 2.5)])
+    square = shapely.box(1.05, 1.05, 1.6, 1.6)
+    s = geopandas.GeoSeries([l_shape, road, square])
+    d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=3)
+    assert d.npartitions == 3
+    got = bzspline.geo.smooth(d.geometry, tolerance=1e-3).compute()
+    assert shapely.is_valid(got.values).all()
+    assert not got[0].intersects(got[2]) and not got[1].intersects(got[2])
+    ring = set(map(tuple, shapely.get_coordinates(got[0])))
+    assert all(tuple(p) in ring for p in shapely.get_coordinates(got[1])), "the road left the border"
+    # Alone, each partition crosses the square.
+    alone = d.geometry.map_partitions(bzspline.geo.smooth, tolerance=1e-3, nodes=bzspline.geo.nodes(d.geometry),
+                                      meta=d.geometry._meta).compute()
+    assert alone[0].intersects(alone[2])

@@ -9,11 +9,14 @@ way for both, and valid polygons stay valid, as ``bzspline smooth`` does;
 Rust library through shapely's ragged arrays (``shapely.to_ragged_array``),
 not one Python call per vertex.
 
-A coverage too large for one process is smoothed in parts (the partitions of
-a dask-geopandas GeoSeries, say): ``nodes`` finds, in one cheap pass over the
-parts, the junctions a part cannot see by itself, and ``smooth(part,
-nodes=...)`` then cuts and smooths every arc of the part exactly as one
-process smoothing the whole would.
+A coverage too large for one process is smoothed over the partitions of a
+dask-geopandas GeoSeries: ``smooth(series)`` finds, in one cheap pass, the
+junctions a partition cannot see by itself (``nodes``), smooths every
+partition with them and with the geometries of other partitions that come near
+it, and passes the refinement levels between the partitions until they agree.
+Every border comes out the same in every partition that holds it, nothing
+crosses, and wherever no refinement was needed the result is, bit for bit,
+what one process smoothing the whole gives.
 """
 
 import numpy as np
@@ -102,7 +105,12 @@ def _groups(arr):
     return groups, picks
 
 
-def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, snap):
+_NO_LEVELS = (np.zeros(0, np.uint64), np.zeros(1, np.int64), np.zeros(0, np.uint8))
+
+
+def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, snap, levels=None):
+    """Smooths a 1-D object array; returns it and the refinement levels the
+    arcs ended at (keys, offsets, values)."""
     import shapely
 
     if nodes is not None and not isinstance(nodes, Nodes):
@@ -110,8 +118,8 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
     out = arr.copy()
     groups, picks = _groups(arr)
     if not groups:
-        return out
-    results = _core._smooth_ragged(
+        return out, _NO_LEVELS
+    results, ended = _core._smooth_ragged(
         groups,
         tolerance=tolerance,
         coverage=coverage,
@@ -121,6 +129,7 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
         nodes=None if nodes is None else np.ascontiguousarray(nodes.positions),
         extent=None if nodes is None else nodes.extent,
         snap=snap,
+        levels=levels,
     )
     for (kind, _, _, _), pick, (c, o) in zip(groups, picks, results):
         back = shapely.from_ragged_array(kind, c, tuple(o))
@@ -132,7 +141,7 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
             if len(parts) == single.sum():
                 back[single] = parts
         out[pick] = back
-    return out
+    return out, ended
 
 
 def _values(obj):
@@ -171,6 +180,94 @@ def _part_meetings(part, boxes, i):
     return pos[keep], between[keep], junction[keep]
 
 
+def _is_dask(obj):
+    return hasattr(obj, "to_delayed") and hasattr(obj, "npartitions")
+
+
+def _extents(parts):
+    """Each partition's extent, as an (k, 4) array (NaN for an empty one)."""
+    import dask
+
+    extents = dask.compute(*[dask.delayed(_part_extent)(p) for p in parts])
+    return np.array([e if e is not None else (np.nan,) * 4 for e in extents], dtype=np.float64).reshape(-1, 4)
+
+
+def _nodes_over(parts, boxes):
+    """The nodes where the partitions meet, and the extent of them all."""
+    import dask
+
+    met = dask.compute(*[dask.delayed(_part_meetings)(p, boxes, i) for i, p in enumerate(parts)])
+    pos = np.concatenate([m[0] for m in met]) if met else np.zeros((0, 2))
+    between = np.concatenate([m[1] for m in met]) if met else np.zeros(0, np.uint64)
+    junction = np.concatenate([m[2] for m in met]) if met else np.zeros(0, bool)
+    positions = _core._across(np.ascontiguousarray(pos, dtype=np.float64), between.astype(np.uint64), junction.astype(bool))
+    known = boxes[~np.isnan(boxes).any(axis=1)]
+    extent = None
+    if len(known):
+        extent = (known[:, 0].min(), known[:, 1].min(), known[:, 2].max(), known[:, 3].max())
+    return Nodes(positions, extent)
+
+
+def _near(part, box):
+    """The geometries of a partition whose bounding box meets ``box``."""
+    import shapely
+
+    arr = _values(part)
+    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
+    b = shapely.bounds(arr[ok])
+    x0, y0, x1, y1 = box
+    near = (b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1) & (b[:, 3] >= y0)
+    return arr[ok][near]
+
+
+def _smooth_part(part, context, nodes, levels, opts):
+    """One partition smoothed with the geometries near it from the others
+    (``context``, a list of arrays): the partition's own results, as a
+    GeoSeries like it, and the levels every arc ended at."""
+    own = _values(part)
+    arr = np.concatenate([own, *context]) if context else own
+    out, ended = _smooth_array(arr, *opts, nodes, None, levels)
+    return _like(part, out[: len(own)]), ended
+
+
+def _like(obj, values):
+    """``values`` in the kind of ``obj`` (a GeoSeries keeps index, CRS, name)."""
+    import geopandas
+
+    return geopandas.GeoSeries(values, index=obj.index, crs=obj.crs, name=obj.name)
+
+
+def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_passes=16):
+    """A coverage over dask partitions: every partition smoothed with its
+    neighbours' nearby geometries and the whole's nodes, the refinement
+    levels passed round until no partition raises any."""
+    import dask
+    import dask.dataframe as dd
+
+    parts = d.to_delayed()
+    boxes = _extents(parts)
+    nodes = _nodes_over(parts, boxes)
+    contexts = []
+    for i, box in enumerate(boxes):
+        if np.isnan(box).any():
+            contexts.append([])
+            continue
+        meets = [j for j, other in enumerate(boxes)
+                 if j != i and not np.isnan(other).any()
+                 and other[0] <= box[2] and other[2] >= box[0] and other[1] <= box[3] and other[3] >= box[1]]
+        contexts.append(list(dask.persist(*[dask.delayed(_near)(parts[j], tuple(box)) for j in meets])))
+    opts = (tolerance, True, through, keep_angle, alpha)
+    levels = _NO_LEVELS
+    for _ in range(max_passes):
+        runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, nodes, levels, opts)
+                              for p, c in zip(parts, contexts)])
+        ended = dask.compute(*[r[1] for r in runs])
+        levels, changed = _core._merge_levels(levels, list(ended))
+        if not changed:
+            return dd.from_delayed([r[0] for r in runs], meta=d._meta, verify_meta=False)
+    raise RuntimeError(f"the partitions did not agree on their refinement in {max_passes} passes")
+
+
 def nodes(obj):
     """The junctions of a whole coverage, for smoothing it in parts.
 
@@ -193,33 +290,19 @@ def nodes(obj):
     -------
     Nodes
         To pass as ``nodes=`` to :func:`smooth` for every part: each part is
-        then cut and smoothed as one process smoothing the whole would, and
-        its default tolerance is the whole's.
+        then cut as one process smoothing the whole would cut it, and its
+        default tolerance is the whole's. (``smooth`` of a dask series does
+        this, and more, itself.)
 
     Examples
     --------
-    >>> import dask_geopandas, bzspline                      # doctest: +SKIP
-    >>> d = dask_geopandas.from_geopandas(gdf, npartitions=8)  # doctest: +SKIP
-    >>> n = bzspline.geo.nodes(d.geometry)                     # doctest: +SKIP
-    >>> d.geometry.map_partitions(bzspline.geo.smooth, nodes=n).compute()  # doctest: +SKIP
+    >>> parts = np.array_split(cells, 4)                     # doctest: +SKIP
+    >>> n = bzspline.geo.nodes(cells)                        # doctest: +SKIP
+    >>> [bzspline.geo.smooth(p, nodes=n) for p in parts]     # doctest: +SKIP
     """
-    if hasattr(obj, "to_delayed") and hasattr(obj, "npartitions"):
-        import dask
-
+    if _is_dask(obj):
         parts = obj.to_delayed()
-        extents = dask.compute(*[dask.delayed(_part_extent)(p) for p in parts])
-        boxes = np.array([e if e is not None else (np.nan,) * 4 for e in extents], dtype=np.float64)
-        met = dask.compute(*[dask.delayed(_part_meetings)(p, boxes, i) for i, p in enumerate(parts)])
-        pos = np.concatenate([m[0] for m in met]) if met else np.zeros((0, 2))
-        between = np.concatenate([m[1] for m in met]) if met else np.zeros(0, np.uint64)
-        junction = np.concatenate([m[2] for m in met]) if met else np.zeros(0, bool)
-        positions = _core._across(np.ascontiguousarray(pos, dtype=np.float64), between.astype(np.uint64), junction.astype(bool))
-        known = [e for e in extents if e is not None]
-        extent = None
-        if known:
-            k = np.array(known)
-            extent = (k[:, 0].min(), k[:, 1].min(), k[:, 2].max(), k[:, 3].max())
-        return Nodes(positions, extent)
+        return _nodes_over(parts, _extents(parts))
     groups, _ = _groups(_values(obj))
     if not groups:
         return Nodes(np.zeros((0, 2)))
@@ -233,8 +316,12 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
 
     Parameters
     ----------
-    obj : shapely.Geometry, array of shapely geometries, or geopandas.GeoSeries
-        Points and empty or missing geometries pass through unchanged.
+    obj : shapely.Geometry, array of shapely geometries, geopandas.GeoSeries or dask_geopandas.GeoSeries
+        Points and empty or missing geometries pass through unchanged. A dask
+        series is smoothed as one coverage over its partitions (see the module
+        docs); sort it spatially (``spatial_shuffle``) so that partitions are
+        compact, since each one also reads the geometries of the others that
+        meet its extent.
     tolerance : float, optional
         Largest distance between the smooth curve and the output polyline, in
         coordinate units; by default 1e-4 of the diagonal of the data's
@@ -250,12 +337,12 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
     alpha : float, default 0.5
         The shape parameter, in [1/3, 2/3].
     nodes : Nodes, optional
-        With ``obj`` one part of a larger coverage: the whole's junctions and
-        extent, from :func:`nodes`. Every arc of the part is then cut and
-        smoothed as smoothing the whole in one process would (exactly,
-        wherever that needed no refinement across parts: refinement, where a
-        smoothed arc would come too close to another, is decided within the
-        part).
+        With ``obj`` one part of a larger coverage split by hand: the whole's
+        junctions and extent, from :func:`nodes`. Every arc of the part is then
+        cut and smoothed as smoothing the whole in one process would, except
+        where refinement (a smoothed arc coming too close to another) is
+        needed: that is decided within the part, and a border between parts
+        can then differ. A dask series takes care of this itself.
     snap : float, optional
         Merge positions closer than this distance first (each to the first met
         within it), so that borders digitised twice with small differences
@@ -265,7 +352,9 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
     Returns
     -------
     The same kind as ``obj``, in two dimensions: smoothing is planar, and
-    z coordinates are dropped.
+    z coordinates are dropped. For a dask series, a dask-geopandas GeoSeries
+    with the same partitions (the smoothing is done, the result persisted on
+    the workers).
 
     Raises
     ------
@@ -278,14 +367,21 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
     import shapely
 
     args = (tolerance, coverage, through, keep_angle, alpha, nodes, snap)
+    if _is_dask(obj):
+        if nodes is not None or snap is not None:
+            raise ValueError("a dask series finds its own nodes; snap the coverage before partitioning it")
+        if not coverage:
+            return obj.map_partitions(smooth, tolerance=tolerance, coverage=False, through=through,
+                                      keep_angle=keep_angle, alpha=alpha, meta=obj._meta)
+        return _smooth_dask(obj, tolerance, through, keep_angle, alpha)
     if isinstance(obj, shapely.Geometry):
-        return _smooth_array(np.array([obj], dtype=object), *args)[0]
+        return _smooth_array(np.array([obj], dtype=object), *args)[0][0]
     try:
         import geopandas
     except ImportError:
         geopandas = None
     if geopandas is not None and isinstance(obj, geopandas.GeoSeries):
-        values = _smooth_array(np.asarray(obj.values, dtype=object), *args)
-        return geopandas.GeoSeries(values, index=obj.index, crs=obj.crs, name=obj.name)
+        values, _ = _smooth_array(np.asarray(obj.values, dtype=object), *args)
+        return _like(obj, values)
     arr = np.asarray(obj, dtype=object)
-    return _smooth_array(arr.ravel(), *args).reshape(arr.shape)
+    return _smooth_array(arr.ravel(), *args)[0].reshape(arr.shape)
