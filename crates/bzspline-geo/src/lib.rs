@@ -41,6 +41,7 @@ mod coverage;
 mod crossings;
 mod error;
 pub mod levels;
+pub mod line;
 pub mod nodes;
 pub mod smooth;
 pub mod topology;

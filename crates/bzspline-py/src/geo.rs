@@ -7,6 +7,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2}
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
+use bzspline_geo::line::smooth_line;
 use bzspline_geo::nodes::{across, extent, meetings, Meeting, Nodes};
 use bzspline_geo::{coverage_chains, Coverage, Levels, SmoothOptions};
 
@@ -501,5 +502,60 @@ pub fn _across<'py>(
         let nodes = py.allow_threads(|| across(met));
         let out: Vec<[f64; 2]> = nodes.positions().iter().map(|c| [c.x, c.y]).collect();
         coords_array(py, &out)
+    })
+}
+
+/// Coordinates `(n, d)` and the offsets of their lines or rings.
+type PySpans<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>);
+
+/// Smooths every line or ring of a ragged array on its own, in the
+/// coordinates' dimension (2 or 3: z carried along as a curve in space):
+/// `coords` `(n, d)`, `spans` the offsets of the lines or rings (`closed`
+/// for rings), `owner` each one's geometry in the caller's array (for
+/// errors). Returns the new coordinates and spans.
+#[pyfunction]
+#[pyo3(signature = (coords, spans, owner, closed, tolerance, through=false, alpha=0.5))]
+#[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
+pub fn _smooth_spans<'py>(
+    py: Python<'py>,
+    coords: PyReadonlyArray2<'py, f64>,
+    spans: PyReadonlyArray1<'py, i64>,
+    owner: PyReadonlyArray1<'py, i64>,
+    closed: bool,
+    tolerance: f64,
+    through: bool,
+    alpha: f64,
+) -> PyResult<PySpans<'py>> {
+    crate::guard(|| {
+        let view = coords.as_array();
+        let dim = view.ncols();
+        let flat: Vec<f64> = view.iter().copied().collect();
+        let offs = spans.as_array().to_vec();
+        let ranges = self::spans(&offs, view.nrows())?;
+        let owner = owner.as_array().to_vec();
+        if owner.len() != ranges.len() {
+            return Err(PyValueError::new_err("one owner per line or ring"));
+        }
+        let opts = SmoothOptions::default().alpha(alpha).through(through);
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "invalid tolerance (must be a positive number): {tolerance}"
+            )));
+        }
+        let out = py.allow_threads(|| -> Result<(Vec<f64>, Vec<i64>), String> {
+            let (mut out, mut ends) = (Vec::with_capacity(flat.len() * 4), vec![0i64]);
+            for (j, &(a, b)) in ranges.iter().enumerate() {
+                let s = smooth_line(&flat[a * dim..b * dim], dim, closed, tolerance, &opts)
+                    .map_err(|e| format!("geometry {}: {e}", owner[j]))?;
+                out.extend_from_slice(&s);
+                ends.push((out.len() / dim.max(1)) as i64);
+            }
+            Ok((out, ends))
+        });
+        let (out, ends) = out.map_err(PyValueError::new_err)?;
+        let rows = out.len() / dim.max(1);
+        let arr = numpy::ndarray::Array2::from_shape_vec((rows, dim), out)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok((arr.into_pyarray(py), ends.into_pyarray(py)))
     })
 }

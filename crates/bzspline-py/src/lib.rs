@@ -1135,5 +1135,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geo::_meetings, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_across, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_merge_levels, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_smooth_spans, m)?)?;
     Ok(())
 }

@@ -145,3 +145,24 @@ def test_snap_joins_borders_digitised_twice():
     assert len(shared(*apart)) == 0
     assert len(shared(*joined)) > 3
     assert joined[0].intersection(joined[1]).area < 1e-12
+
+
+def test_geometries_with_z_are_smoothed_in_space():
+    line = shapely.LineString([(0, 0, 10), (1, 2, 14), (3, 2, 11), (4, 0, 13)])
+    ring = shapely.Polygon([(0, 0, 1), (2, 0, 2), (2, 1, 3), (0, 1, 4)])
+    cells = grid(2, 1)
+    mixed = np.array([line, ring, *cells], dtype=object)
+    with pytest.warns(UserWarning, match="with z"):
+        out = bzspline.geo.smooth(mixed, tolerance=1e-3)
+    assert shapely.has_z(out[:2]).all() and not shapely.has_z(out[2:]).any()
+    c = shapely.get_coordinates(out[0], include_z=True)
+    assert tuple(c[0]) == (0, 0, 10) and tuple(c[-1]) == (4, 0, 13) and len(c) > 4
+    # In the hull of the control points, z included.
+    assert ((c[:, 2] >= 10) & (c[:, 2] <= 14)).all()
+    r = shapely.get_coordinates(out[1].exterior, include_z=True)
+    assert tuple(r[0]) == tuple(r[-1]) and ((r[:, 2] >= 1) & (r[:, 2] <= 4)).all()
+    assert shapely.get_type_id(out[1]) == 3
+    # The planar cells are still one coverage.
+    assert out[2].intersection(out[3]).length > 0 and out[2].intersection(out[3]).area < 1e-12
+    with pytest.raises(ValueError, match="keep_angle"):
+        bzspline.geo.smooth(line, keep_angle=30)

@@ -11,7 +11,8 @@
 //! unchanged.
 
 use anyhow::{anyhow, bail, Result};
-use bzspline::{CurveBuilder, Param, Repeats};
+use bzspline::Param;
+use bzspline_geo::SmoothOptions;
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 
 use crate::input;
@@ -136,83 +137,20 @@ fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Po
             line[i].len()
         );
     }
-    let mut pts: Vec<&[f64]> = line.iter().map(Position::as_slice).collect();
-    if closed && pts.len() > 1 && pts.first() == pts.last() {
-        pts.pop();
-    }
-    // Repeated vertices are dropped; what remains must still make a curve.
-    let mut distinct: Vec<&[f64]> = Vec::with_capacity(pts.len());
-    for p in &pts {
-        if distinct.last() != Some(p) {
-            distinct.push(p);
-        }
-    }
-    if closed {
-        while distinct.len() > 1 && distinct.first() == distinct.last() {
-            distinct.pop();
-        }
-    }
-    if distinct.len() < if closed { 3 } else { 2 } {
-        return Ok(line.to_vec());
-    }
-    let flat: Vec<f64> = distinct.concat();
-    let curve = CurveBuilder::new(&flat, dim)
-        .closed(closed)
-        .param(opts.param.clone())
-        .alpha(opts.alpha)
-        .repeats(Repeats::Drop)
-        .through(opts.through)
-        .build()
-        .map_err(|e| anyhow!("{e}"))?;
-    let poly = if opts.through {
-        curve.flatten_with_knots(opts.tolerance)
-    } else {
-        curve.flatten(opts.tolerance)
-    }
-    .map_err(|e| anyhow!("{e}"))?;
-    let mut out: Vec<Position> = poly
-        .coords()
-        .chunks(dim)
-        .map(|c| Position::from(c.to_vec()))
-        .collect();
-    if opts.through {
-        // Every vertex is a knot point: put back its exact position.
-        let knots = curve.knots();
-        let mut k = 0;
-        for (o, &t) in out.iter_mut().zip(poly.params()) {
-            while k < knots.len() && knots[k] < t {
-                k += 1;
-            }
-            if k < knots.len() && knots[k] == t {
-                *o = Position::from(distinct[k % distinct.len()].to_vec());
-            }
-        }
-    }
-    if !out
+    let flat: Vec<f64> = line
         .iter()
-        .all(|p| p.as_slice().iter().all(|v| v.is_finite()))
-    {
-        bail!("the smoothed line overflows a double");
-    }
-    match (closed, out.first().cloned()) {
-        (true, Some(first)) => {
-            // The ring closes on its first vertex, bit for bit.
-            if let Some(last) = out.last_mut() {
-                *last = first;
-            }
-        }
-        (false, _) => {
-            // A line keeps its end points exactly.
-            if let (Some(o), Some(i)) = (out.first_mut(), line.first()) {
-                *o = i.clone();
-            }
-            if let (Some(o), Some(i)) = (out.last_mut(), line.last()) {
-                *o = i.clone();
-            }
-        }
-        (true, None) => {}
-    }
-    Ok(out)
+        .flat_map(|p| p.as_slice().iter().copied())
+        .collect();
+    let smooth = SmoothOptions::default()
+        .alpha(opts.alpha)
+        .param(opts.param.clone())
+        .through(opts.through);
+    let out = bzspline_geo::line::smooth_line(&flat, dim, closed, opts.tolerance, &smooth)
+        .map_err(|e| anyhow!("{e}"))?;
+    Ok(out
+        .chunks_exact(dim)
+        .map(|c| Position::from(c.to_vec()))
+        .collect())
 }
 
 #[cfg(test)]

@@ -19,6 +19,8 @@ crosses, and wherever no refinement was needed the result is, bit for bit,
 what one process smoothing the whole gives.
 """
 
+import warnings
+
 import numpy as np
 
 from . import _core
@@ -116,6 +118,17 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
     if nodes is not None and not isinstance(nodes, Nodes):
         raise TypeError(f"nodes must be bzspline.geo.Nodes (from bzspline.geo.nodes), not {type(nodes).__name__}")
     out = arr.copy()
+    spatial = _with_z(arr)
+    if len(spatial):
+        if keep_angle is not None:
+            raise ValueError("keep_angle applies to planar smoothing; geometries with z are smoothed ring by ring")
+        warnings.warn(f"{len(spatial)} geometries with z are smoothed ring by ring, in space: their borders "
+                      "are not shared with their neighbours' (the coverage's topology is planar)", stacklevel=3)
+        if tolerance is None:
+            tolerance = _default_tolerance(arr)
+        out[spatial] = _smooth_in_space(arr[spatial], spatial, tolerance, through, alpha)
+        arr = arr.copy()
+        arr[spatial] = None
     groups, picks = _groups(arr)
     if not groups:
         return out, _NO_LEVELS
@@ -132,16 +145,66 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
         levels=levels,
     )
     for (kind, _, _, _), pick, (c, o) in zip(groups, picks, results):
-        back = shapely.from_ragged_array(kind, c, tuple(o))
-        # Single geometries stay single where the ragged array made them multi.
-        single_type = 3 if kind in _POLYGONS else 1
-        single = shapely.get_type_id(arr[pick]) == single_type
-        if single.any() and kind in (5, 6):
-            parts = shapely.get_parts(back[single])
-            if len(parts) == single.sum():
-                back[single] = parts
-        out[pick] = back
+        out[pick] = _singles(arr[pick], shapely.from_ragged_array(kind, c, tuple(o)), kind)
     return out, ended
+
+
+def _singles(given, back, kind):
+    """``back`` with single geometries single again where the ragged array
+    of a mixed family made them multi."""
+    import shapely
+
+    single = shapely.get_type_id(given) == (3 if kind in _POLYGONS else 1)
+    if single.any() and kind in (5, 6):
+        parts = shapely.get_parts(back[single])
+        if len(parts) == single.sum():
+            back[single] = parts
+    return back
+
+
+def _with_z(arr):
+    """Positions in ``arr`` of the lines and polygons whose coordinates have z."""
+    import shapely
+
+    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
+    idx = np.flatnonzero(ok)
+    keep = np.isin(shapely.get_type_id(arr[idx]), _LINES + _POLYGONS) & shapely.has_z(arr[idx])
+    return idx[keep]
+
+
+def _default_tolerance(arr):
+    """1e-4 of the diagonal of the lines' and polygons' bounding box."""
+    import shapely
+
+    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
+    ok[ok] = np.isin(shapely.get_type_id(arr[ok]), _LINES + _POLYGONS)
+    x0, y0, x1, y1 = shapely.total_bounds(arr[ok])
+    d = float(np.hypot(x1 - x0, y1 - y0))
+    return d * 1e-4 if np.isfinite(d) and d > 0 else 1.0
+
+
+def _smooth_in_space(geoms, index, tolerance, through, alpha):
+    """Lines and polygons with z, every line and ring smoothed on its own as a
+    curve in space (x, y, z), as ``bzspline smooth`` does."""
+    import shapely
+
+    out = geoms.copy()
+    types = shapely.get_type_id(geoms)
+    for family, closed in ((_LINES, False), (_POLYGONS, True)):
+        sel = np.isin(types, family)
+        if not sel.any():
+            continue
+        kind, coords, offsets = shapely.to_ragged_array(geoms[sel], include_z=True)
+        # The geometry each line or ring belongs to.
+        owner = np.asarray(index, dtype=np.int64)[sel]
+        for level in reversed(offsets[1:]):
+            owner = np.repeat(owner, np.diff(level))
+        c, spans = _core._smooth_spans(np.ascontiguousarray(coords, dtype=np.float64),
+                                       np.asarray(offsets[0], dtype=np.int64), owner, closed,
+                                       tolerance, through=through, alpha=alpha)
+        back = shapely.from_ragged_array(kind, c, (spans, *offsets[1:]))
+        out[sel] = _singles(geoms[sel], back, int(kind))
+    return out
 
 
 def _values(obj):
@@ -351,8 +414,10 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
 
     Returns
     -------
-    The same kind as ``obj``, in two dimensions: smoothing is planar, and
-    z coordinates are dropped. For a dask series, a dask-geopandas GeoSeries
+    The same kind as ``obj``. Geometries whose coordinates have z are
+    smoothed ring by ring, each line and ring a curve in space (x, y, z), as
+    ``bzspline smooth`` does, with a warning: the coverage's topology is
+    planar, so their borders are not shared. For a dask series, a dask-geopandas GeoSeries
     with the same partitions (the smoothing is done, the result persisted on
     the workers).
 
