@@ -166,19 +166,15 @@ def _with_z(arr):
     """Positions in ``arr`` of the lines and polygons whose coordinates have z."""
     import shapely
 
-    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
-    idx = np.flatnonzero(ok)
-    keep = np.isin(shapely.get_type_id(arr[idx]), _LINES + _POLYGONS) & shapely.has_z(arr[idx])
-    return idx[keep]
+    idx = np.flatnonzero(_smoothable(arr))
+    return idx[shapely.has_z(arr[idx])]
 
 
 def _default_tolerance(arr):
     """1e-4 of the diagonal of the lines' and polygons' bounding box."""
     import shapely
 
-    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
-    ok[ok] = np.isin(shapely.get_type_id(arr[ok]), _LINES + _POLYGONS)
-    x0, y0, x1, y1 = shapely.total_bounds(arr[ok])
+    x0, y0, x1, y1 = shapely.total_bounds(arr[_smoothable(arr)])
     d = float(np.hypot(x1 - x0, y1 - y0))
     return d * 1e-4 if np.isfinite(d) and d > 0 else 1.0
 
@@ -216,13 +212,21 @@ def _values(obj):
     return np.asarray(getattr(obj, "values", obj), dtype=object).ravel()
 
 
+def _smoothable(arr):
+    """Which geometries of ``arr`` are lines or polygons, not missing or empty."""
+    import shapely
+
+    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
+    ok[ok] = np.isin(shapely.get_type_id(arr[ok]), _LINES + _POLYGONS)
+    return ok
+
+
 def _part_extent(part):
     """The bounding box of a partition's lines and polygons, or None."""
     import shapely
 
     arr = _values(part)
-    ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
-    ok[ok] = np.isin(shapely.get_type_id(arr[ok]), _LINES + _POLYGONS)
+    ok = _smoothable(arr)
     if not ok.any():
         return None
     return tuple(float(v) for v in shapely.total_bounds(arr[ok]))
