@@ -95,3 +95,15 @@ def test_partitions_that_refine_agree_on_their_borders(client):
     alone = d.geometry.map_partitions(bzspline.geo.smooth, tolerance=1e-3, nodes=bzspline.geo.nodes(d.geometry),
                                       meta=d.geometry._meta).compute()
     assert alone[0].intersects(alone[2])
+
+
+@pytest.mark.filterwarnings("ignore:invalid value:RuntimeWarning")
+def test_a_bad_geometry_is_named_by_partition_and_index(client):
+    from test_geo import grid
+
+    cells = list(grid(3, 2))
+    cells[4] = shapely.Polygon([(0, 0), (1, np.nan), (1, 1)])
+    s = geopandas.GeoSeries(cells, index=[f"cell{i}" for i in range(len(cells))])
+    d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=2)
+    with pytest.raises(ValueError, match="index 'cell4', coordinate 1"):
+        bzspline.geo.smooth(d.geometry).compute()

@@ -19,6 +19,7 @@ crosses, and wherever no refinement was needed the result is, bit for bit,
 what one process smoothing the whole gives.
 """
 
+import re
 import warnings
 
 import numpy as np
@@ -238,7 +239,10 @@ def _part_meetings(part, boxes, i):
     groups, _ = _groups(_values(part))
     if not groups:
         return np.zeros((0, 2)), np.zeros(0, np.uint64), np.zeros(0, bool)
-    pos, between, junction, _ = _core._meetings(groups)
+    try:
+        pos, between, junction, _ = _core._meetings(groups)
+    except ValueError as e:
+        raise _in_partition(e, part, i) from None
     keep = np.zeros(len(pos), dtype=bool)
     x, y = pos[:, 0], pos[:, 1]
     for j, (x0, y0, x1, y1) in enumerate(boxes):
@@ -287,14 +291,29 @@ def _near(part, box):
     return arr[ok][near]
 
 
-def _smooth_part(part, context, nodes, levels, opts):
-    """One partition smoothed with the geometries near it from the others
-    (``context``, a list of arrays): the partition's own results, as a
-    GeoSeries like it, and the levels every arc ended at."""
+def _smooth_part(part, context, nodes, levels, opts, number):
+    """Partition ``number`` smoothed with the geometries near it from the
+    others (``context``, a list of arrays): its own results, as a GeoSeries
+    like it, and the levels every arc ended at. An error names the
+    partition and the geometry's index label (or says it is a neighbour's)."""
     own = _values(part)
     arr = np.concatenate([own, *context]) if context else own
-    out, ended = _smooth_array(arr, *opts, nodes, None, levels)
+    try:
+        out, ended = _smooth_array(arr, *opts, nodes, None, levels)
+    except ValueError as e:
+        raise _in_partition(e, part, number) from None
     return _like(part, out[: len(own)]), ended
+
+
+def _in_partition(e, part, number):
+    """The error ``e`` of partition ``number``, naming its geometry by index
+    label (a position past the partition's own is a neighbour's geometry)."""
+    m = re.match(r"geometry (\d+)(.*)", str(e), re.S)
+    if m is None:
+        return ValueError(f"partition {number}: {e}")
+    k = int(m.group(1))
+    at = f"index {part.index[k]!r}" if k < len(part) else "a geometry of a neighbouring partition"
+    return ValueError(f"partition {number}, {at}{m.group(2)}")
 
 
 def _like(obj, values):
@@ -326,8 +345,8 @@ def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_passes=16):
     opts = (tolerance, True, through, keep_angle, alpha)
     levels = _NO_LEVELS
     for _ in range(max_passes):
-        runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, nodes, levels, opts)
-                              for p, c in zip(parts, contexts)])
+        runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, nodes, levels, opts, i)
+                              for i, (p, c) in enumerate(zip(parts, contexts))])
         ended = dask.compute(*[r[1] for r in runs])
         levels, changed = _core._merge_levels(levels, list(ended))
         if not changed:
