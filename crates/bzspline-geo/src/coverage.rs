@@ -71,8 +71,10 @@ impl Coverage {
 
     /// As [`Coverage::new`] for one part of a larger coverage, with the nodes
     /// of the whole ([`crate::nodes`]): the part's lines and rings are cut
-    /// and smoothed exactly as the whole coverage would cut and smooth them,
-    /// and with the nodes' extent the default tolerance is the whole's.
+    /// as the whole coverage would cut them, and smoothed the same where the
+    /// part also holds the features that meet its extent (see the module
+    /// docs of [`crate::nodes`]); with the nodes' extent the default
+    /// tolerance is the whole's.
     ///
     /// Snapping is done within the part; snap the whole first when parts
     /// must agree on it.

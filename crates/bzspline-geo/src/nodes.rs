@@ -1,6 +1,6 @@
 //! Nodes found over a whole coverage and handed to its parts, so that each
-//! part, smoothed alone, cuts and smooths every arc it holds exactly as the
-//! whole coverage would.
+//! part, smoothed alone, cuts every arc it holds as the whole coverage would,
+//! and smooths it the same.
 //!
 //! A part of a coverage (one partition of a large one, say) finds its own
 //! junctions, but not those it shares with other parts: where a border runs
@@ -11,7 +11,16 @@
 //! ([`Coverage::with_nodes`](crate::Coverage::with_nodes)), every part cuts
 //! its chains where the whole does. Arcs are stored in a canonical form that
 //! does not depend on the order of the chains, so the same arc is smoothed
-//! to the same positions, bit for bit, in every part that holds it.
+//! to the same positions, bit for bit, in every part that holds it and the
+//! rings that use it.
+//!
+//! Two things about an arc depend on more than the arc: how many positions it
+//! must keep (a ring of two arcs keeps three from each), and whether it must
+//! be refined (where it would come too close to another arc). A part decides
+//! them right when it also holds the features of other parts that meet its
+//! extent (a ring that shares an arc, and an arc that comes near one, meet
+//! it), and parts agree on refinement by passing their
+//! [`Levels`](crate::Levels) round ([`Topology::smooth_from`](crate::Topology::smooth_from)).
 
 use std::hash::Hasher;
 

@@ -425,10 +425,13 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
     nodes : Nodes, optional
         With ``obj`` one part of a larger coverage split by hand: the whole's
         junctions and extent, from :func:`nodes`. Every arc of the part is then
-        cut and smoothed as smoothing the whole in one process would, except
-        where refinement (a smoothed arc coming too close to another) is
-        needed: that is decided within the part, and a border between parts
-        can then differ. A dask series takes care of this itself.
+        cut as smoothing the whole in one process would cut it. It is smoothed
+        the same where the part also holds the geometries of other parts that
+        meet its extent (a ring across a border decides how many positions the
+        border keeps) and no refinement (a smoothed arc coming too close to
+        another) is needed: that is decided within the part, and a border
+        between parts can then differ. A dask series takes care of all this
+        itself.
     snap : float, optional
         Merge positions closer than this distance first (each to the first met
         within it), so that borders digitised twice with small differences
