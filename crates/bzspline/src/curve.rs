@@ -403,8 +403,9 @@ fn check_tolerance(what: &'static str, tol: f64) -> Result<(), Error> {
     Ok(())
 }
 
-/// Checks a query point of the curve's dimension.
-fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
+/// Checks that `q` holds `dim` numbers: a query point of the curve's
+/// dimension, or the output of a batch of queries.
+pub(crate) fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
     if q.len() != dim {
         return Err(Error::LengthMismatch {
             field: Field::Query,
@@ -1197,13 +1198,7 @@ impl Curve {
     /// ```
     pub fn deriv_many(&self, ss: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
         let dim = self.dim();
-        if out.len() != ss.len() * dim {
-            return Err(Error::LengthMismatch {
-                field: Field::Query,
-                expected: ss.len() * dim,
-                found: out.len(),
-            });
-        }
+        check_query(out, ss.len() * dim)?;
         let mut hint = usize::MAX;
         for (i, (&s, o)) in ss.iter().zip(out.chunks_exact_mut(dim)).enumerate() {
             let (k, t) = self.locate_near(s, hint).map_err(|e| match e {

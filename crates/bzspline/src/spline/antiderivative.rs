@@ -3,6 +3,7 @@
 //! the integrals of the pieces before it, summed once at construction.
 
 use super::Spline;
+use crate::curve::check_query;
 use crate::error::{Error, Field};
 
 /// `F(x)`, the integral of a [`Spline`] from its first knot `tau_0` to `x`:
@@ -84,13 +85,7 @@ impl Antiderivative {
     /// [`Error::LengthMismatch`] when `out` is not as long as `xs`; otherwise
     /// as [`Antiderivative::eval`], naming the query's index.
     pub fn eval_many(&self, xs: &[f64], out: &mut [f64]) -> Result<(), Error> {
-        if out.len() != xs.len() {
-            return Err(Error::LengthMismatch {
-                field: Field::Query,
-                expected: xs.len(),
-                found: out.len(),
-            });
-        }
+        check_query(out, xs.len())?;
         for (i, (o, &x)) in out.iter_mut().zip(xs).enumerate() {
             *o = self.at(x, i)?;
         }
