@@ -8,7 +8,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 use bzspline_geo::line::smooth_line;
-use bzspline_geo::nodes::{across, extent, meetings, Meeting, Nodes};
+use bzspline_geo::nodes::{across, meetings, Meeting, Nodes};
 use bzspline_geo::{coverage_chains, Coverage, Levels, SmoothOptions};
 
 /// Coordinates and offsets (innermost first) of a ragged array.
@@ -439,20 +439,17 @@ pub fn _nodes_of<'py>(py: Python<'py>, groups: Vec<Group<'py>>) -> PyResult<PyNo
     })
 }
 
-/// How one part meets each of its positions: positions `(m, 2)`, the hash of
-/// the pair they are met between, whether each is a junction of the part;
-/// and the part's extent.
-#[pyfunction]
-#[allow(clippy::type_complexity)] // a tuple of numpy arrays for Python
-pub fn _meetings<'py>(
-    py: Python<'py>,
-    groups: Vec<Group<'py>>,
-) -> PyResult<(
+/// Meetings for Python: positions, pair hashes, junction flags.
+type PyMeetings<'py> = (
     Bound<'py, PyArray2<f64>>,
     Bound<'py, PyArray1<u64>>,
     Bound<'py, PyArray1<bool>>,
-    Option<[f64; 4]>,
-)> {
+);
+
+/// How one part meets each of its positions: positions `(m, 2)`, the hash of
+/// the pair they are met between, whether each is a junction of the part.
+#[pyfunction]
+pub fn _meetings<'py>(py: Python<'py>, groups: Vec<Group<'py>>) -> PyResult<PyMeetings<'py>> {
     crate::guard(|| {
         let (geoms, _) = gather(&groups)?;
         let chains = coverage_chains(&geoms);
@@ -466,7 +463,6 @@ pub fn _meetings<'py>(
             coords_array(py, &p)?,
             between.into_pyarray(py),
             junction.into_pyarray(py),
-            extent_tuple(extent(&chains)),
         ))
     })
 }

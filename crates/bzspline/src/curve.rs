@@ -1201,14 +1201,7 @@ impl Curve {
         check_query(out, ss.len() * dim)?;
         let mut hint = usize::MAX;
         for (i, (&s, o)) in ss.iter().zip(out.chunks_exact_mut(dim)).enumerate() {
-            let (k, t) = self.locate_near(s, hint).map_err(|e| match e {
-                Error::NonFinite { field, value, .. } => Error::NonFinite {
-                    field,
-                    index: i,
-                    value,
-                },
-                e => e,
-            })?;
+            let (k, t) = self.locate_near(s, hint).map_err(|e| e.at_query(i))?;
             self.deriv_at(k, t, order, o)?;
             hint = k;
         }

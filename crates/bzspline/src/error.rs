@@ -208,6 +208,21 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+impl Error {
+    /// The error of one query answered alone, as the error of query `index`
+    /// of a batch: a non-finite query names its place in the batch.
+    pub(crate) fn at_query(self, index: usize) -> Error {
+        match self {
+            Error::NonFinite { field, value, .. } => Error::NonFinite {
+                field,
+                index,
+                value,
+            },
+            e => e,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -831,14 +831,7 @@ impl Spline {
             });
         }
         let slow = |i: usize, x: f64, o: &mut f64| -> Result<(), Error> {
-            *o = self.deriv(x, order).map_err(|e| match e {
-                Error::NonFinite { field, value, .. } => Error::NonFinite {
-                    field,
-                    index: i,
-                    value,
-                },
-                e => e,
-            })?;
+            *o = self.deriv(x, order).map_err(|e| e.at_query(i))?;
             Ok(())
         };
         // The batch kernel sums the coefficients at tau_0 too; when the first
@@ -1883,16 +1876,10 @@ pub(crate) mod tests {
     fn batch_is_pointwise(s: &Spline, qs: &[f64], order: u32) -> bool {
         let mut out = vec![0.0; qs.len()];
         let got = s.deriv_many(qs, order, &mut out);
-        let first_err = qs.iter().enumerate().find_map(|(i, &q)| {
-            s.deriv(q, order).err().map(|e| match e {
-                Error::NonFinite { field, value, .. } => Error::NonFinite {
-                    field,
-                    index: i,
-                    value,
-                },
-                e => e,
-            })
-        });
+        let first_err = qs
+            .iter()
+            .enumerate()
+            .find_map(|(i, &q)| s.deriv(q, order).err().map(|e| e.at_query(i)));
         let label = format!("{:?} order {order}", s.extrapolate);
         match first_err {
             // (Compared as text: the error may hold a NaN.)

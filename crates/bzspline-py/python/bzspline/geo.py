@@ -240,7 +240,7 @@ def _part_meetings(part, boxes, i):
     if not groups:
         return np.zeros((0, 2)), np.zeros(0, np.uint64), np.zeros(0, bool)
     try:
-        pos, between, junction, _ = _core._meetings(groups)
+        pos, between, junction = _core._meetings(groups)
     except ValueError as e:
         raise _in_partition(e, part, i) from None
     keep = np.zeros(len(pos), dtype=bool)
