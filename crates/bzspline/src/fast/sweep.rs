@@ -1,5 +1,6 @@
-//! The fused construction sweeps: one forward and one backward pass over a
-//! validated spline or open curve, writing every piece once.
+//! The fused construction sweeps: an elimination from the last row up and a
+//! substitution from the first row down over a validated spline or open
+//! curve, writing every piece once, in order.
 //!
 //! Everything here computes the same quantities as the straightforward path of
 //! `spline.rs` (`OpenSystem`, `piece_coefs`) in another order of operations, so
@@ -16,24 +17,25 @@
 //! r_k = h_{k-1} dF_k - h_k dF_{k-1}
 //! ```
 //!
-//! so assembling a row needs no division. The Thomas pivots
-//! `piv_k = D_k - l_k u_{k-1} / piv_{k-1}` are ratios `P_k / P_{k-1}` of the
-//! continuants `P_k = D_k P_{k-1} - l_k u_{k-1} P_{k-2}`, a recurrence of
-//! multiplications and subtractions only: the one division per row,
-//! `1 / piv_k = P_{k-1} / P_k`, is off the chain of dependent operations. The
+//! so assembling a row needs no division. Eliminating from the last row, the
+//! pivots `piv_k = D_k - u_k l_{k+1} / piv_{k+1}` are ratios `P_k / P_{k+1}`
+//! of the continuants `P_k = D_k P_{k+1} - u_k l_{k+1} P_{k+2}`, a recurrence
+//! of multiplications and subtractions only: the one division per row,
+//! `1 / piv_k = P_{k+1} / P_k`, is off the chain of dependent operations. The
 //! continuants are renormalised by an exact power of two every
 //! [`RENORM`] rows. Diagonal dominance bounds every pivot ratio (for alphas in
 //! `[1/3, 2/3]`, `piv_k >= 3 min(h_{k-1} + h_k)` and `<= 8 max(...)`), so the
 //! continuants stay far from overflow and underflow between renormalisations.
 //!
-//! The forward sweep keeps its two numbers per row (`u_k / piv_k` and the
-//! swept right-hand side, `D + 1` numbers for `D` coordinates) in the slots of
-//! two outputs of length `n` that the backward sweep writes anyway after it
-//! has read them: a spline's copies of knot `k` and value `k`, a curve's copy of
-//! point `k` and its deviation (the copies from the input, which the backward
-//! sweep reads). The pieces are then written once, by the backward sweep, and
-//! nothing else holds the rows: no scratch vector. The alpha inverses of
-//! per-interval alphas are formed again in the backward sweep.
+//! The elimination keeps its two numbers per row (`l_k / piv_k` and the swept
+//! right-hand side, `D + 1` numbers for `D` coordinates) in the slots of two
+//! outputs of length `n` that the substitution writes anyway after it has
+//! read them: a spline's copies of knot `k` and value `k`, a curve's copy of
+//! point `k` and its deviation. The substitution finds `d_k` from `d_{k-1}`,
+//! so it has piece `k - 1` as soon as it has `d_k`, and appends the pieces
+//! in order: their memory is written once, never cleared first, and nothing
+//! else holds the rows (no scratch vector). The alpha inverses of
+//! per-interval alphas are formed again in the substitution.
 
 use super::Piece;
 use crate::method::alpha_terms;
@@ -95,29 +97,15 @@ fn piece(f0: f64, f1: f64, d0: f64, d1: f64, pt: [f64; 6]) -> [f64; 4] {
     ]
 }
 
-/// Leg `k` of a sweep's output: the `D` pieces (one per coordinate).
-pub(crate) trait Leg<const D: usize>: Copy {
-    /// Stores the pieces.
-    fn put_pieces(&mut self, pieces: [[f64; 4]; D]);
-}
+/// Leg `k` of a sweep's output: its `D` pieces, one per coordinate.
+type Leg<const D: usize> = [Piece; D];
 
-impl Leg<1> for Piece {
-    #[inline(always)]
-    fn put_pieces(&mut self, pieces: [[f64; 4]; 1]) {
-        self.0 = pieces[0];
-    }
-}
+/// Legs the substitution forms on the stack before it appends them.
+const BLOCK: usize = 32;
 
-/// The `D` pieces of a curve's segment, one per coordinate.
-impl<const D: usize> Leg<D> for [Piece; D] {
-    #[inline(always)]
-    fn put_pieces(&mut self, pieces: [[f64; 4]; D]) {
-        *self = pieces.map(Piece);
-    }
-}
-
-/// Builds the pieces of a validated spline into `coefs` (resized to one piece
-/// per interval; its allocation is reused).
+/// Builds the pieces of a validated spline into `coefs` (one piece per
+/// interval, appended in order after clearing it; its allocation is reused)
+/// and copies `knots` and `values` into `knots_out` and `values_out`.
 ///
 /// `knots` are strictly increasing with a finite span, `values` finite and of
 /// the same length (at least 2), `alphas` one per interval and in range;
@@ -143,12 +131,10 @@ pub(crate) fn build(
         }
         return;
     }
-    // Every piece and copy is overwritten below (the copies of the knots and
-    // values by the backward sweep, after the forward one kept its rows in
-    // them): keep the old contents rather than clearing them first (no pass
-    // over the memory when the size is unchanged).
-    coefs.truncate(n - 1);
-    coefs.resize(n - 1, Piece::default());
+    // The copies of the knots and values hold the rows until the
+    // substitution writes the copies over them: keep the old contents rather
+    // than clearing them first (no pass over the memory when the size is
+    // unchanged).
     for out in [&mut *knots_out, &mut *values_out] {
         out.truncate(n);
         out.resize(n, 0.0);
@@ -165,14 +151,10 @@ pub(crate) fn build(
         knots_out.as_chunks_mut::<1>().0,
         values_out.as_chunks_mut::<1>().0,
     );
-    let Some((head, rows)) = coefs.split_first_mut() else {
-        return;
-    };
-    let head = core::slice::from_mut(head);
     if uniform.is_some() {
-        input.run::<false, true, _>(head, rows, kn, vs);
+        input.run::<false, true>(coefs, kn, vs);
     } else {
-        input.run::<true, true, _>(head, rows, kn, vs);
+        input.run::<true, true>(coefs, kn, vs);
     }
 }
 
@@ -183,10 +165,9 @@ pub(crate) fn build(
 /// coordinate by coordinate, as they are read), `knots` `n >= 2`, `alphas`
 /// `n - 1`; `coefs`, `dev` and `points_out` are resized.
 ///
-/// The forward sweep keeps row `k` in `points_out[k]` and `dev[k]` (`2 D` slots
-/// for `D + 1` numbers), which the backward sweep then overwrites with the copy
-/// of point `k` and its deviation: the legs' memory is written once, by the
-/// backward sweep, rather than once with the rows and again with the pieces.
+/// The elimination keeps row `k` in `points_out[k]` and `dev[k]` (`2 D` slots
+/// for `D + 1` numbers), which the substitution then overwrites with the copy
+/// of point `k` and its deviation.
 #[allow(clippy::too_many_arguments)] // the parts of a curve, validated
 pub(crate) fn build_open_curve<const D: usize>(
     knots: &[f64],
@@ -200,8 +181,6 @@ pub(crate) fn build_open_curve<const D: usize>(
     points_out: &mut Vec<f64>,
 ) {
     let n = knots.len();
-    coefs.truncate((n.max(1) - 1) * D);
-    coefs.resize((n.max(1) - 1) * D, Piece::default());
     // Every slot is overwritten below: no pass to clear them first.
     for v in [&mut *dev, &mut *points_out] {
         v.truncate(n * D);
@@ -210,24 +189,20 @@ pub(crate) fn build_open_curve<const D: usize>(
     let (values, _) = points.as_chunks::<D>();
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
         // Not reached: the caller has validated the lengths.
+        coefs.clear();
         points_out.clear();
         points_out.extend_from_slice(points);
         return;
     }
-    let (legs, _) = coefs.as_chunks_mut::<D>();
-    let Some((head, rows)) = legs.split_first_mut() else {
-        return;
-    };
-    let head = core::slice::from_mut(head);
     let (dev, pts) = (
         dev.as_chunks_mut::<D>().0,
         points_out.as_chunks_mut::<D>().0,
     );
     let input = Sweep::new(knots, values, inv_scale, alphas, uniform, wscale);
     if uniform.is_some() {
-        input.run::<false, false, _>(head, rows, dev, pts);
+        input.run::<false, false>(coefs, dev, pts);
     } else {
-        input.run::<true, false, _>(head, rows, dev, pts);
+        input.run::<true, false>(coefs, dev, pts);
     }
 }
 
@@ -301,74 +276,64 @@ impl<'a, const D: usize> Sweep<'a, D> {
 
     /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
     /// alphas differ (their terms are then formed per interval, else
-    /// `uniform` serves every interval). `head` and `rows` are leg 0 and the
-    /// rest (`n - 1` legs in all). The forward sweep keeps row `k` in
-    /// `second[k]` and `first[k]` (`2 D` slots for `D + 1` numbers; `n` of
-    /// each), which the backward sweep then overwrites with `values[k]` (in
-    /// `first`) and the deviation (in `second`), or with `KNOT` the knot (in
-    /// `second[k][0]`, for `D = 1`): a spline's copies of its knots and
-    /// values, a curve's deviations and copy of its points. The pieces are
-    /// written once, by the backward sweep.
+    /// `uniform` serves every interval). The elimination, from the last row
+    /// up, keeps row `k` in `second[k]` and `first[k]` (`2 D` slots for
+    /// `D + 1` numbers; `n` of each); the substitution, from the first row
+    /// down, overwrites them with `values[k]` (in `first`) and the deviation
+    /// (in `second`), or with `KNOT` the knot (in `second[k][0]`, for
+    /// `D = 1`): a spline's copies of its knots and values, a curve's
+    /// deviations and copy of its points. It appends the legs to `coefs`
+    /// (cleared first) in order, each once.
     #[inline(always)]
-    fn run<const PER: bool, const KNOT: bool, L: Leg<D>>(
+    fn run<const PER: bool, const KNOT: bool>(
         &self,
-        head: &mut [L],
-        rows: &mut [L],
+        coefs: &mut Vec<Piece>,
         second: &mut [[f64; D]],
         first: &mut [[f64; D]],
     ) {
-        let m = rows.len() + 1;
-        let (Some(dev), Some(pts)) = (second.get_mut(..=m), first.get_mut(..=m)) else {
+        let n = self.knots.len();
+        let m = n.saturating_sub(1);
+        let (Some(dev), Some(pts)) = (second.get_mut(..n), first.get_mut(..n)) else {
             return;
         };
-        let (values, rows_d, rows_p) = (self.values, &mut dev[1..m], &mut pts[1..m]);
+        let (Some(rows_d), Some(rows_p)) = (dev.get_mut(1..m), pts.get_mut(1..m)) else {
+            return;
+        };
         {
-            let (pd, ld) = rows_d.as_chunks_mut::<2>();
-            let (pp, lp) = rows_p.as_chunks_mut::<2>();
+            // Rows n - 2 and n - 3 first: the pairs from the end, each in
+            // the order of the sweep.
+            let (ld, pd) = rows_d.as_rchunks_mut::<2>();
+            let (lp, pp) = rows_p.as_rchunks_mut::<2>();
             let pairs = pd
                 .iter_mut()
-                .zip(pp)
-                .map(|([d0, d1], [p0, p1])| [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]);
+                .rev()
+                .zip(pp.iter_mut().rev())
+                .map(|([d0, d1], [p0, p1])| [Aside { p: p1, d: d1 }, Aside { p: p0, d: d0 }]);
             let last = ld
                 .first_mut()
                 .zip(lp.first_mut())
                 .map(|(d, p)| Aside { p, d });
-            self.forward::<PER>(pairs, last);
+            self.eliminate::<PER>(pairs, last);
         }
-        let (fd, pd) = rows_d.as_rchunks_mut::<2>();
-        let (fp, pp) = rows_p.as_rchunks_mut::<2>();
-        let (fl, pl) = rows.as_rchunks_mut::<2>();
-        let pairs = pl
+        coefs.clear();
+        coefs.reserve_exact(m * D);
+        let (pd, ld) = rows_d.as_chunks_mut::<2>();
+        let (pp, lp) = rows_p.as_chunks_mut::<2>();
+        let pairs = pd
             .iter_mut()
-            .zip(pd)
             .zip(pp)
-            .rev()
-            .map(|(([l0, l1], [d0, d1]), [p0, p1])| {
-                [
-                    AsideBack::<L, D, KNOT> {
-                        leg: l0,
-                        at: Aside { p: p0, d: d0 },
-                    },
-                    AsideBack {
-                        leg: l1,
-                        at: Aside { p: p1, d: d1 },
-                    },
-                ]
-            });
-        let first = match (fl.first_mut(), fd.first_mut(), fp.first_mut()) {
-            (Some(leg), Some(d), Some(p)) => Some(AsideBack {
-                leg,
-                at: Aside { p, d },
-            }),
-            _ => None,
-        };
-        self.backward::<PER, L, KNOT>(pairs, first, head);
+            .map(|([d0, d1], [p0, p1])| [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]);
+        let last = ld
+            .first_mut()
+            .zip(lp.first_mut())
+            .map(|(d, p)| Aside { p, d });
+        self.substitute::<PER, KNOT>(pairs, last, coefs);
         // The end points: their copies, and deviation zero (or the knot).
         for i in [0, m] {
             if let (Some(d), Some(p), Some(v), Some(&k)) = (
                 dev.get_mut(i),
                 pts.get_mut(i),
-                values.get(i),
+                self.values.get(i),
                 self.knots.get(i),
             ) {
                 *p = *v;
@@ -381,10 +346,17 @@ impl<'a, const D: usize> Sweep<'a, D> {
         }
     }
 
-    /// The forward sweep over rows `k = 1 .. n - 2`, two at a time (`pairs`,
-    /// then `last` when their number is odd), kept in their slots.
+    /// The elimination over rows `k = n - 2` down to `1`, two at a time
+    /// (`pairs`, in the sweep's order), then the last, row 1, when their
+    /// number is odd (`last`), kept in their slots: `l_k / piv_k` and the
+    /// swept right-hand sides.
+    ///
+    /// The code reads as a left-to-right sweep of the mirrored system (knots
+    /// in reverse, each width the same, every alpha's terms `A', B1', B2', C'`
+    /// read as `C', B2', B1', A'`), where `l` and `u` trade places and `r_k`
+    /// is unchanged: its `l`, `u`, `df` and `h1`/`hl` are the mirrored ones.
     #[inline(always)]
-    fn forward<'s, const PER: bool>(
+    fn eliminate<'s, const PER: bool>(
         &self,
         pairs: impl Iterator<Item = [Aside<'s, D>; 2]>,
         last: Option<Aside<'s, D>>,
@@ -393,44 +365,48 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let ws = self.ws;
         let m = knots.len().saturating_sub(1);
         let terms = |a: f64, (ia, iu): (f64, f64)| {
-            if PER {
+            let [al, b1, b2, cr] = if PER {
                 terms_from_inverses(a, ia, iu)
             } else {
                 self.uniform
-            }
+            };
+            [cr, b2, b1, al]
         };
         let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
-            knots.first(),
-            knots.get(1),
-            values.first(),
-            values.get(1),
-            alphas.first(),
+            knots.get(m),
+            knots.get(m.wrapping_sub(1)),
+            values.get(m),
+            values.get(m.wrapping_sub(1)),
+            alphas.get(m.wrapping_sub(1)),
         ) else {
             return;
         };
         let v0 = self.scaled(v0);
 
-        let mut p_prev2 = 1.0; // P_{k-2}
-        let mut p_prev = 1.0; // P_{k-1}
+        let mut p_prev2 = 1.0; // P_{k+2}
+        let mut p_prev = 1.0; // P_{k+1}
         let mut y_prev = [0.0; D];
         let mut u_prev = 0.0;
         let mut kc = k1; // knots[k]
-        let mut hl = (k1 - k0) * ws;
+        let mut hl = (k0 - k1) * ws;
         let mut fc = self.scaled(v1);
-        let mut df_l = sub(fc, v0); // F_k - F_{k-1}, scaled
+        let mut df_l = sub(fc, v0); // F_k - F_{k+1}, scaled
         let mut terms_l = terms(a0, inv_of::<PER>(a0));
         let mut since = 0;
-        let kn = knots.get(2..).unwrap_or_default().chunks_exact(2);
-        let vs = values.get(2..).unwrap_or_default().chunks_exact(2);
-        let al = alphas.get(1..).unwrap_or_default().chunks_exact(2);
+        // Knots, values and alphas from the end, two at a time, each pair
+        // in the order of the sweep (`[1]` then `[0]`).
+        let below = m.saturating_sub(1);
+        let kn = knots.get(..below).unwrap_or_default().rchunks_exact(2);
+        let vs = values.get(..below).unwrap_or_default().rchunks_exact(2);
+        let al = alphas.get(..below).unwrap_or_default().rchunks_exact(2);
         for (((slots, kn), vs), al) in pairs.zip(kn).zip(vs).zip(al) {
-            // Rows k and k + 1.
-            let h1 = (kn[0] - kc) * ws;
+            // Rows k and k - 1.
+            let h1 = (kc - kn[1]) * ws;
             let h2 = (kn[1] - kn[0]) * ws;
-            kc = kn[1];
-            let (f1, f2) = (self.scaled(vs[0]), self.scaled(vs[1]));
-            let (i1, i2) = (inv_of::<PER>(al[0]), inv_of::<PER>(al[1]));
-            let (t1, t2) = (terms(al[0], i1), terms(al[1], i2));
+            kc = kn[0];
+            let (f1, f2) = (self.scaled(vs[1]), self.scaled(vs[0]));
+            let (i1, i2) = (inv_of::<PER>(al[1]), inv_of::<PER>(al[0]));
+            let (t1, t2) = (terms(al[1], i1), terms(al[0], i2));
             let l1 = -h1 * terms_l[0];
             let d1 = h1 * terms_l[1] + hl * t1[2];
             let u1 = -hl * t1[3];
@@ -440,7 +416,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
             let u2 = -h1 * t2[3];
             let e1 = l1 * u_prev;
             let e2 = l2 * u1;
-            // P_k and P_{k+1} both from P_{k-1}, P_{k-2}: one multiply-subtract
+            // P_k and P_{k-1} both from P_{k+1}, P_{k+2}: one multiply-subtract
             // on the chain for two rows.
             let p1 = d1 * p_prev - e1 * p_prev2;
             let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
@@ -474,15 +450,11 @@ impl<'a, const D: usize> Sweep<'a, D> {
             fc = f2;
             terms_l = t2;
         }
-        let done = 1 + 2 * ((m - 1) / 2);
-        if let (Some(mut slot), Some(&kr), Some(&vr), Some(&ar)) = (
-            last,
-            knots.get(done + 1),
-            values.get(done + 1),
-            alphas.get(done),
-        ) {
-            // The last row when their number is odd.
-            let hr = (kr - kc) * ws;
+        if let (Some(mut slot), Some(&kr), Some(&vr), Some(&ar)) =
+            (last, knots.first(), values.first(), alphas.first())
+        {
+            // Row 1 when their number is odd.
+            let hr = (kc - kr) * ws;
             let fr = self.scaled(vr);
             let ir = inv_of::<PER>(ar);
             let terms_r = terms(ar, ir);
@@ -498,81 +470,101 @@ impl<'a, const D: usize> Sweep<'a, D> {
         }
     }
 
-    /// The backward sweep: `d_k` from `d_{k+1}`, two rows at a time from the
-    /// end (`pairs`: rows `k - 2, k - 1`; then `first`, row 1, when their
-    /// number is odd), then the pieces; `head` is leg 0.
+    /// The substitution: `d_k` from `d_{k-1}`, two rows at a time from row 1
+    /// (`pairs`: rows `k, k + 1`; then `last`, row `n - 2`, when their number
+    /// is odd), each row's slots overwritten with its copies, and the legs
+    /// appended to `coefs` in order: leg `k - 1` once `d_k` is known, the
+    /// last leg at the end.
     #[inline(always)]
-    fn backward<'s, const PER: bool, L: Leg<D> + 's, const KNOT: bool>(
+    fn substitute<'s, const PER: bool, const KNOT: bool>(
         &self,
-        pairs: impl Iterator<Item = [AsideBack<'s, L, D, KNOT>; 2]>,
-        first: Option<AsideBack<'s, L, D, KNOT>>,
-        head: &mut [L],
+        pairs: impl Iterator<Item = [Aside<'s, D>; 2]>,
+        last: Option<Aside<'s, D>>,
+        coefs: &mut Vec<Piece>,
     ) {
-        let (values, alphas) = (self.values, self.alphas);
-        let m = self.knots.len().saturating_sub(1);
-        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64, inv| {
+        let (values, alphas, knots) = (self.values, self.alphas, self.knots);
+        let m = knots.len().saturating_sub(1);
+        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64| -> Leg<D> {
             let pt = if PER {
-                let (ia, iu) = inv;
+                let (ia, iu) = inverses(a);
                 piece_terms(terms_from_inverses(a, ia, iu))
             } else {
                 self.uniform_piece
             };
-            core::array::from_fn(|c| piece(f0[c], f1[c], d0[c], d1[c], pt))
+            core::array::from_fn(|c| Piece(piece(f0[c], f1[c], d0[c], d1[c], pt)))
         };
-        let (Some(&v0), Some(&a0)) = (values.first(), alphas.first()) else {
+        let Some(&v0) = values.first() else {
             return;
         };
-        let mut d_next = [0.0; D];
-        let mut f_next = self.scaled(values.get(m).copied().unwrap_or([0.0; D]));
-        let vs = values.get(1..m).unwrap_or_default().rchunks_exact(2);
-        let al = alphas.get(1..m).unwrap_or_default().rchunks_exact(2);
-        let kn = self.knots.get(1..m).unwrap_or_default().rchunks_exact(2);
-        for (((pair, vs), al), kn) in pairs.zip(vs).zip(al).zip(kn) {
-            // Rows k - 2 and k - 1.
-            let [mut a, mut b] = pair;
-            let (ma, ya) = a.row();
-            let (mb, yb) = b.row();
-            let mut d_k = [0.0; D];
-            let mut d_km1 = [0.0; D];
-            for c in 0..D {
-                d_k[c] = yb[c] - mb * d_next[c];
-                // d_{k-1} from d_{k+1}: one multiply-add on the chain for two rows.
-                d_km1[c] = (ya[c] - ma * yb[c]) + (ma * mb) * d_next[c];
+        let mut d_prev = [0.0; D];
+        let mut f_prev = self.scaled(v0);
+        let vs = values.get(1..m).unwrap_or_default().chunks_exact(2);
+        let al = alphas
+            .get(..m.saturating_sub(1))
+            .unwrap_or_default()
+            .chunks_exact(2);
+        let kn = knots.get(1..m).unwrap_or_default().chunks_exact(2);
+        let mut rows = pairs.zip(vs).zip(al).zip(kn);
+        // The legs go through a block on the stack and are appended a block
+        // at a time (the vector's length checked once a block).
+        let mut block = [[[Piece([0.0; 4]); D]; 2]; BLOCK];
+        loop {
+            let mut filled = 0;
+            for (out, (((pair, vs), al), kn)) in block.iter_mut().zip(rows.by_ref()) {
+                // Rows k and k + 1.
+                let [mut a, mut b] = pair;
+                let (ma, ya) = a.row();
+                let (mb, yb) = b.row();
+                let mut d_k = [0.0; D];
+                let mut d_k1 = [0.0; D];
+                for c in 0..D {
+                    d_k[c] = ya[c] - ma * d_prev[c];
+                    // d_{k+1} from d_{k-1}: one multiply-add on the chain for
+                    // two rows.
+                    d_k1[c] = (yb[c] - mb * ya[c]) + (mb * ma) * d_prev[c];
+                }
+                let (fk, fk1) = (self.scaled(vs[0]), self.scaled(vs[1]));
+                *out = [
+                    pieces(f_prev, fk, d_prev, d_k, al[0]),
+                    pieces(fk, fk1, d_k, d_k1, al[1]),
+                ];
+                a.finish::<KNOT>(vs[0], d_k, kn[0]);
+                b.finish::<KNOT>(vs[1], d_k1, kn[1]);
+                d_prev = d_k1;
+                f_prev = fk1;
+                filled += 1;
             }
-            let (fkm1, fk) = (self.scaled(vs[0]), self.scaled(vs[1]));
-            // The alpha inverses, formed again.
-            let (ia, ib) = (inv_of::<PER>(al[0]), inv_of::<PER>(al[1]));
-            b.finish(
-                pieces(fk, f_next, d_k, d_next, al[1], ib),
-                vs[1],
-                d_k,
-                kn[1],
-            );
-            a.finish(pieces(fkm1, fk, d_km1, d_k, al[0], ia), vs[0], d_km1, kn[0]);
-            d_next = d_km1;
-            f_next = fkm1;
+            let done = block.get(..filled).unwrap_or_default();
+            coefs.extend_from_slice(done.as_flattened().as_flattened());
+            if filled < BLOCK {
+                break;
+            }
         }
-        if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) =
-            (first, values.get(1), alphas.get(1), self.knots.get(1))
-        {
-            // Row 1 when the number of rows is odd.
+        if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) = (
+            last,
+            values.get(m.wrapping_sub(1)),
+            alphas.get(m.wrapping_sub(2)),
+            knots.get(m.wrapping_sub(1)),
+        ) {
+            // Row n - 2 when the number of rows is odd.
             let (mb, yb) = slot.row();
-            let d = core::array::from_fn(|c| yb[c] - mb * d_next[c]);
-            let f1 = self.scaled(v);
-            slot.finish(pieces(f1, f_next, d, d_next, a, inv_of::<PER>(a)), v, d, kv);
-            d_next = d;
-            f_next = f1;
+            let d = core::array::from_fn(|c| yb[c] - mb * d_prev[c]);
+            let fk = self.scaled(v);
+            coefs.extend_from_slice(&pieces(f_prev, fk, d_prev, d, a));
+            slot.finish::<KNOT>(v, d, kv);
+            d_prev = d;
+            f_prev = fk;
         }
-        if let Some(slot) = head.first_mut() {
-            let v0 = self.scaled(v0);
-            slot.put_pieces(pieces(v0, f_next, [0.0; D], d_next, a0, inv_of::<PER>(a0)));
+        if let (Some(&v), Some(&a)) = (values.get(m), alphas.get(m.wrapping_sub(1))) {
+            let f = self.scaled(v);
+            coefs.extend_from_slice(&pieces(f_prev, f, d_prev, [0.0; D], a));
         }
     }
 }
 
 /// Row `k` of a sweep in the `2 D` slots `p` and `d` (a spline's copies of
 /// value and knot `k`, a curve's copy of point `k` and its deviation):
-/// `u_k / piv_k`, then the `D` swept right-hand sides.
+/// `l_k / piv_k`, then the `D` swept right-hand sides.
 struct Aside<'a, const D: usize> {
     p: &'a mut [f64; D],
     d: &'a mut [f64; D],
@@ -600,32 +592,22 @@ impl<const D: usize> Aside<'_, D> {
             }
         }
     }
-}
 
-/// Leg `k` with the slots of row `k` ([`Aside`]); `KNOT`: the second slot
-/// takes knot `k` (a spline's copy of its knots) rather than the deviation.
-struct AsideBack<'a, L, const D: usize, const KNOT: bool> {
-    leg: &'a mut L,
-    at: Aside<'a, D>,
-}
-
-impl<const D: usize, L: Leg<D>, const KNOT: bool> AsideBack<'_, L, D, KNOT> {
     /// The row as [`Aside::put`] stored it.
     #[inline(always)]
     fn row(&self) -> (f64, [f64; D]) {
-        (self.at.get(0), core::array::from_fn(|c| self.at.get(c + 1)))
+        (self.get(0), core::array::from_fn(|c| self.get(c + 1)))
     }
 
-    /// Stores leg `k`'s pieces, the copy of value or point `k` (`value`,
-    /// unscaled), and the deviation `d` or the `knot`.
+    /// Overwrites the row with the copy of value or point `k` (`value`,
+    /// unscaled) and the deviation `d`, or with `KNOT` the `knot`.
     #[inline(always)]
-    fn finish(&mut self, pieces: [[f64; 4]; D], value: [f64; D], d: [f64; D], knot: f64) {
-        self.leg.put_pieces(pieces);
-        *self.at.p = value;
+    fn finish<const KNOT: bool>(&mut self, value: [f64; D], d: [f64; D], knot: f64) {
+        *self.p = value;
         if KNOT {
-            self.at.d[0] = knot;
+            self.d[0] = knot;
         } else {
-            *self.at.d = d;
+            *self.d = d;
         }
     }
 }
