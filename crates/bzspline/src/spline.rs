@@ -27,7 +27,9 @@ use crate::polyline::Polyline;
 use crate::traits::{check_out, Arclen, BBox, BezierPieces, Bounds, Flatten, ParamCurve};
 use crate::validate::{check_finite, resolve_alphas, validate_knots};
 mod antiderivative;
+mod shape;
 pub use antiderivative::Antiderivative;
+use shape::Shape;
 
 pub use crate::validate::{Alphas, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL};
 
@@ -72,13 +74,14 @@ pub struct Extremum {
 ///
 /// # Memory
 ///
-/// A spline of `N` knots holds the knots, the control values and the alphas
-/// (8 bytes a point each, for [`Spline::knots`], [`Spline::values`] and
-/// [`Spline::alphas`]), the four coefficients of each piece (32 bytes) and
-/// every 16th knot for the search: 56.5 bytes a point, see
-/// [`Spline::heap_bytes`]. The first long batch of queries in random order
-/// adds an index of those knots (a quarter of a byte a point), kept until the
-/// next build.
+/// A spline of `N` knots holds the knots and the control values (8 bytes a
+/// point each, for [`Spline::knots`] and [`Spline::values`]), the four
+/// coefficients of each piece (32 bytes) and every 16th knot for the search:
+/// 48.5 bytes a point, see [`Spline::heap_bytes`]. Alphas given one per
+/// interval add 8 bytes a point; one alpha for all adds them only when
+/// [`Spline::alphas`] is first called. The first long batch of queries in
+/// random order adds an index of those knots (a quarter of a byte a point),
+/// kept until the next build.
 ///
 /// # Examples
 ///
@@ -100,26 +103,11 @@ pub struct Spline {
     /// coefficient is the scaled knot value `phi_k / scale`.
     pieces: Pieces,
     values: Vec<f64>,
-    alphas: Vec<f64>,
-    /// The one alpha of every interval, when a uniform build set them.
-    uniform: UniformHint,
+    alphas: Shape,
     /// A power of two that keeps `1 / (h pre)` finite: 1 unless the whole span
     /// is below [`TINY_SPAN`], where `1 / h` could overflow.
     pre: f64,
     extrapolate: Extrapolate,
-}
-
-/// `Some(a)` when every alpha is known to be `a`, so that a rebuild with the
-/// same alpha and length need not write them again (at N = 10^6, 8 MB written
-/// and as much read for ownership). A hint, not part of the spline's value:
-/// any two compare equal.
-#[derive(Clone, Copy, Debug, Default)]
-struct UniformHint(Option<f64>);
-
-impl PartialEq for UniformHint {
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
 }
 
 /// Spans below this get a `pre` factor other than 1: every width is then at
@@ -290,8 +278,7 @@ impl Spline {
         Spline {
             pieces: Pieces::default(),
             values: Vec::new(),
-            alphas: Vec::new(),
-            uniform: UniformHint(None),
+            alphas: Shape::default(),
             pre: 1.0,
             extrapolate: Extrapolate::default(),
         }
@@ -456,27 +443,16 @@ impl Spline {
         let n = knots.len();
         let scale = scale_for_max(max_abs);
         let span = knots[n - 1] - knots[0];
-        let uniform = match alphas {
-            Alphas::Uniform(a) => {
-                if !(self.uniform.0 == Some(a) && self.alphas.len() == n - 1) {
-                    self.alphas.clear();
-                    self.alphas.resize(n - 1, a);
-                }
-                Some(a)
-            }
-            Alphas::PerInterval(a) => {
-                self.alphas.clear();
-                self.alphas.extend_from_slice(a);
-                None
-            }
-        };
-        self.uniform = UniformHint(uniform);
+        match alphas {
+            Alphas::Uniform(a) => self.alphas.set_uniform(a, n - 1),
+            Alphas::PerInterval(a) => self.alphas.set_each(a),
+        }
         let parts = self.pieces.parts_mut();
         sweep::build(
             knots,
             values,
-            &self.alphas,
-            uniform,
+            self.alphas.given(),
+            self.alphas.uniform(),
             1.0 / scale,
             crate::fast::inverse_power_of_two(span),
             (parts.coefs, parts.knots, &mut self.values),
@@ -509,15 +485,15 @@ impl Spline {
             .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
             .collect();
         let span = knots[knots.len() - 1] - knots[0];
-        let uniform = match given {
-            Alphas::Uniform(a) => UniformHint(Some(a)),
-            Alphas::PerInterval(_) => UniformHint(None),
-        };
+        let mut shape = Shape::default();
+        match given {
+            Alphas::Uniform(a) => shape.set_uniform(a, alphas.len()),
+            Alphas::PerInterval(a) => shape.set_each(a),
+        }
         Ok(Spline {
             pieces: Pieces::from_parts(knots.to_vec(), coefs, vec![scale]),
             values: values.to_vec(),
-            alphas,
-            uniform,
+            alphas: shape,
             pre: if span < TINY_SPAN {
                 crate::fast::inverse_power_of_two(span)
             } else {
@@ -528,11 +504,14 @@ impl Spline {
     }
 
     /// Bytes of heap memory the spline holds (the capacities of its vectors):
-    /// 56.5 bytes a point when built by [`Spline::build`], 56.75 once a batch
-    /// of random-order queries has formed the search index.
+    /// 48.5 bytes a point when built by [`Spline::build`] with one alpha (56.5
+    /// with one per interval or once [`Spline::alphas`] has been called),
+    /// 0.25 more once a batch of random-order queries has formed the search
+    /// index.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        (self.values.capacity() + self.alphas.capacity()) * core::mem::size_of::<f64>()
+        self.values.capacity() * core::mem::size_of::<f64>()
+            + self.alphas.heap_bytes()
             + self.pieces.heap_bytes()
     }
 
@@ -564,7 +543,7 @@ impl Spline {
     /// The shape parameters, one per interval.
     #[must_use]
     pub fn alphas(&self) -> &[f64] {
-        &self.alphas
+        self.alphas.as_slice()
     }
 
     /// Number of pieces (intervals), one fewer than knots.
@@ -610,7 +589,7 @@ impl Spline {
         let inv = 1.0 / self.scale();
         (0..self.len())
             .map(|k| {
-                let a = self.alphas[k];
+                let a = self.alphas.get(k);
                 let h = self.pieces.width(k);
                 let x = self.pieces.knots()[k + 1] - a * h;
                 let f = (a * (self.values[k] * inv) + (1.0 - a) * (self.values[k + 1] * inv))

@@ -110,8 +110,9 @@ const BLOCK: usize = 32;
 /// `knots` are strictly increasing with a finite span, `values` finite and of
 /// the same length (at least 2), `alphas` one per interval and in range;
 /// `uniform` is `Some(a)` when every alpha is `a` (the exact [`alpha_terms`] are
-/// then used throughout). `inv_scale` is the exact power of two that scales the
-/// values, `wscale` the power of two that brings the span near 1.
+/// then used throughout, and `alphas` is not read: it may be empty).
+/// `inv_scale` is the exact power of two that scales the values, `wscale` the
+/// power of two that brings the span near 1.
 pub(crate) fn build(
     knots: &[f64],
     values: &[f64],
@@ -122,6 +123,12 @@ pub(crate) fn build(
     (coefs, knots_out, values_out): (&mut Vec<Piece>, &mut Vec<f64>, &mut Vec<f64>),
 ) {
     let n = knots.len();
+    // With one alpha no alpha is read: the first `n - 1` knots pace the
+    // loops in their place.
+    let alphas = match uniform {
+        Some(_) => knots.get(..n.saturating_sub(1)).unwrap_or_default(),
+        None => alphas,
+    };
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
         // Not reached: the caller has validated the lengths.
         coefs.clear();
