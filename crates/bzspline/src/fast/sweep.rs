@@ -33,7 +33,8 @@
 //! read them: a spline's copies of knot `k` and value `k`, a curve's copy of
 //! point `k` and its deviation. The substitution finds `d_k` from `d_{k-1}`,
 //! so it has piece `k - 1` as soon as it has `d_k`, and appends the pieces
-//! in order: their memory is written once, never cleared first, and nothing
+//! in order, a block at a time (each block cleared while it is in the cache,
+//! then written): no pass over their memory before the sweeps, and nothing
 //! else holds the rows (no scratch vector). The alpha inverses of
 //! per-interval alphas are formed again in the substitution.
 
@@ -100,7 +101,11 @@ fn piece(f0: f64, f1: f64, d0: f64, d1: f64, pt: [f64; 6]) -> [f64; 4] {
 /// Leg `k` of a sweep's output: its `D` pieces, one per coordinate.
 type Leg<const D: usize> = [Piece; D];
 
-/// Legs the substitution forms on the stack before it appends them.
+/// The slots of rows two at a time (`second` and `first` of
+/// [`Sweep::run`], in pairs), as [`Aside`] keeps the rows in them.
+type SlotPairs<'a, const D: usize> = (&'a mut [[[f64; D]; 2]], &'a mut [[[f64; D]; 2]]);
+
+/// Pairs of legs the substitution appends at a time.
 const BLOCK: usize = 32;
 
 /// Builds the pieces of a validated spline into `coefs` (one piece per
@@ -311,30 +316,21 @@ impl<'a, const D: usize> Sweep<'a, D> {
             // the order of the sweep.
             let (ld, pd) = rows_d.as_rchunks_mut::<2>();
             let (lp, pp) = rows_p.as_rchunks_mut::<2>();
-            let pairs = pd
-                .iter_mut()
-                .rev()
-                .zip(pp.iter_mut().rev())
-                .map(|([d0, d1], [p0, p1])| [Aside { p: p1, d: d1 }, Aside { p: p0, d: d0 }]);
             let last = ld
                 .first_mut()
                 .zip(lp.first_mut())
                 .map(|(d, p)| Aside { p, d });
-            self.eliminate::<PER>(pairs, last);
+            self.eliminate::<PER>((pd, pp), last);
         }
         coefs.clear();
         coefs.reserve_exact(m * D);
         let (pd, ld) = rows_d.as_chunks_mut::<2>();
         let (pp, lp) = rows_p.as_chunks_mut::<2>();
-        let pairs = pd
-            .iter_mut()
-            .zip(pp)
-            .map(|([d0, d1], [p0, p1])| [Aside { p: p0, d: d0 }, Aside { p: p1, d: d1 }]);
         let last = ld
             .first_mut()
             .zip(lp.first_mut())
             .map(|(d, p)| Aside { p, d });
-        self.substitute::<PER, KNOT>(pairs, last, coefs);
+        self.substitute::<PER, KNOT>((pd, pp), last, coefs);
         // The end points: their copies, and deviation zero (or the knot).
         for i in [0, m] {
             if let (Some(d), Some(p), Some(v), Some(&k)) = (
@@ -363,11 +359,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
     /// read as `C', B2', B1', A'`), where `l` and `u` trade places and `r_k`
     /// is unchanged: its `l`, `u`, `df` and `h1`/`hl` are the mirrored ones.
     #[inline(always)]
-    fn eliminate<'s, const PER: bool>(
-        &self,
-        pairs: impl Iterator<Item = [Aside<'s, D>; 2]>,
-        last: Option<Aside<'s, D>>,
-    ) {
+    fn eliminate<'s, const PER: bool>(&self, pairs: SlotPairs<'_, D>, last: Option<Aside<'s, D>>) {
         let (knots, values, alphas) = (self.knots, self.values, self.alphas);
         let ws = self.ws;
         let m = knots.len().saturating_sub(1);
@@ -403,10 +395,14 @@ impl<'a, const D: usize> Sweep<'a, D> {
         // Knots, values and alphas from the end, two at a time, each pair
         // in the order of the sweep (`[1]` then `[0]`).
         let below = m.saturating_sub(1);
-        let kn = knots.get(..below).unwrap_or_default().rchunks_exact(2);
-        let vs = values.get(..below).unwrap_or_default().rchunks_exact(2);
-        let al = alphas.get(..below).unwrap_or_default().rchunks_exact(2);
-        for (((slots, kn), vs), al) in pairs.zip(kn).zip(vs).zip(al) {
+        let (_, kn) = knots.get(..below).unwrap_or_default().as_rchunks::<2>();
+        let (_, vs) = values.get(..below).unwrap_or_default().as_rchunks::<2>();
+        let (_, al) = alphas.get(..below).unwrap_or_default().as_rchunks::<2>();
+        let (pd, pp) = pairs;
+        // Slices of one length zipped and walked from the end: one index.
+        let rows = pd.iter_mut().zip(pp).zip(kn).zip(vs).zip(al).rev();
+        for (((([d0, d1], [p0, p1]), kn), vs), al) in rows {
+            let slots = [Aside { p: p1, d: d1 }, Aside { p: p0, d: d0 }];
             // Rows k and k - 1.
             let h1 = (kc - kn[1]) * ws;
             let h2 = (kn[1] - kn[0]) * ws;
@@ -478,14 +474,15 @@ impl<'a, const D: usize> Sweep<'a, D> {
     }
 
     /// The substitution: `d_k` from `d_{k-1}`, two rows at a time from row 1
-    /// (`pairs`: rows `k, k + 1`; then `last`, row `n - 2`, when their number
-    /// is odd), each row's slots overwritten with its copies, and the legs
-    /// appended to `coefs` in order: leg `k - 1` once `d_k` is known, the
-    /// last leg at the end.
+    /// (`pairs`: the slots of rows `k, k + 1`, as [`Aside`] keeps them, from
+    /// `k = 1`; then `last`, row `n - 2`, when their number is odd), each
+    /// row's slots overwritten with its copies, and the legs appended to
+    /// `coefs` in order: leg `k - 1` once `d_k` is known, the last leg at the
+    /// end.
     #[inline(always)]
     fn substitute<'s, const PER: bool, const KNOT: bool>(
         &self,
-        pairs: impl Iterator<Item = [Aside<'s, D>; 2]>,
+        pairs: SlotPairs<'_, D>,
         last: Option<Aside<'s, D>>,
         coefs: &mut Vec<Piece>,
     ) {
@@ -505,21 +502,41 @@ impl<'a, const D: usize> Sweep<'a, D> {
         };
         let mut d_prev = [0.0; D];
         let mut f_prev = self.scaled(v0);
-        let vs = values.get(1..m).unwrap_or_default().chunks_exact(2);
-        let al = alphas
+        let (pd, pp) = pairs;
+        let count = pd.len().min(pp.len());
+        let (vs, _) = values.get(1..m).unwrap_or_default().as_chunks::<2>();
+        let (al, _) = alphas
             .get(..m.saturating_sub(1))
             .unwrap_or_default()
-            .chunks_exact(2);
-        let kn = knots.get(1..m).unwrap_or_default().chunks_exact(2);
-        let mut rows = pairs.zip(vs).zip(al).zip(kn);
-        // The legs go through a block on the stack and are appended a block
-        // at a time (the vector's length checked once a block).
-        let mut block = [[[Piece([0.0; 4]); D]; 2]; BLOCK];
-        loop {
-            let mut filled = 0;
-            for (out, (((pair, vs), al), kn)) in block.iter_mut().zip(rows.by_ref()) {
+            .as_chunks::<2>();
+        let (kn, _) = knots.get(1..m).unwrap_or_default().as_chunks::<2>();
+        // The legs are appended a block at a time: the vector's length is
+        // checked and the block cleared once (in the cache), then every leg
+        // written; within a block every input is a slice of the same length,
+        // walked by one index.
+        for start in (0..count).step_by(BLOCK) {
+            let at = start..(start + BLOCK).min(count);
+            let (Some(pd), Some(pp), Some(vs), Some(al), Some(kn)) = (
+                pd.get_mut(at.clone()),
+                pp.get_mut(at.clone()),
+                vs.get(at.clone()),
+                al.get(at.clone()),
+                kn.get(at.clone()),
+            ) else {
+                break;
+            };
+            let len = coefs.len();
+            coefs.resize(len + 2 * D * at.len(), Piece([0.0; 4]));
+            let (legs, _) = coefs
+                .get_mut(len..)
+                .unwrap_or_default()
+                .as_chunks_mut::<D>();
+            let (block, _) = legs.as_chunks_mut::<2>();
+            let rows = pd.iter_mut().zip(pp).zip(vs).zip(al).zip(kn);
+            for (out, (((([d0, d1], [p0, p1]), vs), al), kn)) in block.iter_mut().zip(rows) {
                 // Rows k and k + 1.
-                let [mut a, mut b] = pair;
+                let mut a = Aside { p: p0, d: d0 };
+                let mut b = Aside { p: p1, d: d1 };
                 let (ma, ya) = a.row();
                 let (mb, yb) = b.row();
                 let mut d_k = [0.0; D];
@@ -539,12 +556,6 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 b.finish::<KNOT>(vs[1], d_k1, kn[1]);
                 d_prev = d_k1;
                 f_prev = fk1;
-                filled += 1;
-            }
-            let done = block.get(..filled).unwrap_or_default();
-            coefs.extend_from_slice(done.as_flattened().as_flattened());
-            if filled < BLOCK {
-                break;
             }
         }
         if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) = (
