@@ -148,14 +148,32 @@ fn main() {
     let sorted2 = time_eval(&sorted, 2, false);
     let random0 = time_eval(&random, 0, false);
     let random1 = time_eval(&random, 1, false);
-    // After the evaluations: the index of the search summary included.
-    let bytes = s.heap_bytes();
     let par = cfg!(feature = "rayon");
     let (psorted, prandom) = if par {
         (time_eval(&sorted, 0, true), time_eval(&random, 0, true))
     } else {
         (f64::NAN, f64::NAN)
     };
+    // Into a new vector each time, as a caller without a buffer does (and
+    // Python's `s(x)`, which returns a new array): its page faults and its
+    // release included.
+    let time_new = |qs: &[f64], order: u32| -> f64 {
+        let ns = median_ns(r, || {
+            let mut o = vec![0.0; qs.len()];
+            assert!(s.deriv_many(qs, order, &mut o).is_ok());
+            black_box(&o);
+        });
+        ns / qs.len().max(1) as f64
+    };
+    let sorted0_new = time_new(&sorted, 0);
+    let sorted1_new = time_new(&sorted, 1);
+    // What a spline built with one alpha holds once a random-order batch has
+    // formed the index of its search summary.
+    let bytes = Spline::new(&knots, &values).map_or(0, |h| {
+        let o = &mut out[..random.len()];
+        assert!(h.deriv_many(&random, 0, o).is_ok());
+        h.heap_bytes()
+    });
     let num = |v: f64| {
         if v.is_finite() {
             format!("{v:.3}")
@@ -168,9 +186,11 @@ fn main() {
          \"construct_ns_per_point\": {}, \"construct_fresh_ns_per_point\": {}, \
          \"construct_per_interval_alphas_ns_per_point\": {}, \
          \"construct_through_fresh_ns_per_point\": {}, \
-         \"eval_sorted_ns_per_point\": {}, \"eval_random_ns_per_point\": {}, \
+         \"eval_sorted_ns_per_point\": {}, \"eval_sorted_new_ns_per_point\": {}, \
+         \"eval_random_ns_per_point\": {}, \
          \"eval_random_first_ns_per_point\": {}, \
-         \"deriv1_sorted_ns_per_point\": {}, \"deriv2_sorted_ns_per_point\": {}, \
+         \"deriv1_sorted_ns_per_point\": {}, \"deriv1_sorted_new_ns_per_point\": {}, \
+         \"deriv2_sorted_ns_per_point\": {}, \
          \"deriv1_random_ns_per_point\": {}, \
          \"par_threads\": {}, \"par_eval_sorted_ns_per_point\": {}, \
          \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}, \
@@ -183,9 +203,11 @@ fn main() {
         num(per_interval / n as f64),
         num(through_fresh / n as f64),
         num(sorted0),
+        num(sorted0_new),
         num(random0),
         num(random_first),
         num(sorted1),
+        num(sorted1_new),
         num(sorted2),
         num(random1),
         threads(),
