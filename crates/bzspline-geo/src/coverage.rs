@@ -137,6 +137,34 @@ impl Coverage {
         Ok((self.assemble(&s.arcs), s.stats, s.levels))
     }
 
+    /// One round of the conflict search ([`Topology::smooth_round`]), with
+    /// the geometries `exact` marks held exactly (their neighbours all among
+    /// the geometries; all when it is empty) and the rest only for the
+    /// topology: the geometries at `start`'s levels, and the levels after
+    /// the round.
+    ///
+    /// # Errors
+    ///
+    /// As [`Topology::smooth`].
+    pub fn smooth_round(
+        &self,
+        opts: &SmoothOptions,
+        start: &Levels,
+        round: usize,
+        exact: &[bool],
+    ) -> Result<(Vec<Geometry<f64>>, Stats, Levels), Error> {
+        let chains: Vec<bool> = if exact.is_empty() {
+            Vec::new()
+        } else {
+            self.origins
+                .iter()
+                .map(|o| exact.get(o.geometry).copied().unwrap_or(false))
+                .collect()
+        };
+        let s = self.topology.smooth_round(opts, start, round, &chains)?;
+        Ok((self.assemble(&s.arcs), s.stats, s.levels))
+    }
+
     /// The geometries with every line and ring put together from `arcs` (the
     /// topology's arcs, or smoothed ones with the same indices).
     ///

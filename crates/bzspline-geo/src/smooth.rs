@@ -230,6 +230,56 @@ impl Topology {
     ///
     /// As [`Topology::smooth`].
     pub fn smooth_from(&self, opts: &SmoothOptions, start: &Levels) -> Result<Smoothed, Error> {
+        self.smooth_rounds(opts, start, 1, false, &[])
+    }
+
+    /// One round of the conflict search of [`Topology::smooth_from`], as its
+    /// `round`-th (counting from 1: from round `3 * MAX_LEVEL` on, a leg a
+    /// conflict names is kept straight): every arc smoothed at its levels in
+    /// `start`, the conflicts found, the legs they name raised.
+    /// [`Smoothed::arcs`] are the arcs at `start`'s levels and
+    /// [`Smoothed::levels`] the levels after the round; when these are
+    /// `start`'s for every arc here, the round found nothing and the arcs are
+    /// final.
+    ///
+    /// `exact` says, chain by chain, which chains this topology holds
+    /// exactly, with every line and ring they share a position with (empty:
+    /// all of them): conflicts are judged only between arcs of such chains,
+    /// and rings turning over only for them.
+    ///
+    /// Parts of a coverage go through the rounds of the whole when each runs
+    /// a round from the same levels and the levels they end at, merged
+    /// ([`Levels::merge`]), start the next round for all, provided each
+    /// part holds, with the whole's nodes, its own features and every
+    /// feature of the other parts whose bounding box meets its extent
+    /// (exactly), and the features whose bounding box meets the extent of
+    /// all those (not exactly): every arc of its own features then comes out
+    /// as one process smoothing the whole gives it, bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// As [`Topology::smooth`].
+    pub fn smooth_round(
+        &self,
+        opts: &SmoothOptions,
+        start: &Levels,
+        round: usize,
+        exact: &[bool],
+    ) -> Result<Smoothed, Error> {
+        self.smooth_rounds(opts, start, round.max(1), true, exact)
+    }
+
+    /// The rounds of conflict search from `start`, the first counted as
+    /// round `first`; only that one with `one`; conflicts judged for the
+    /// chains `exact` marks (all when it is empty).
+    fn smooth_rounds(
+        &self,
+        opts: &SmoothOptions,
+        start: &Levels,
+        first: usize,
+        one: bool,
+        exact: &[bool],
+    ) -> Result<Smoothed, Error> {
         opts.check()?;
         let arcs = self.arcs();
         let extent = self.nodes().extent();
@@ -275,6 +325,18 @@ impl Topology {
         let mut out: Vec<Vec<Coord>> = vec![Vec::new(); arcs.len()];
         let mut segs: Vec<Vec<Seg>> = vec![Vec::new(); arcs.len()];
         let mut dirty = vec![true; arcs.len()];
+        // The arcs whose conflicts are judged here: those of exact chains.
+        let judged: Vec<bool> = if exact.is_empty() {
+            vec![true; arcs.len()]
+        } else {
+            let mut j = vec![false; arcs.len()];
+            for (c, _) in self.chains().iter().zip(exact).filter(|(_, &e)| e) {
+                for r in &c.arcs {
+                    j[r.arc] = true;
+                }
+            }
+            j
+        };
         let mut input_conflicts: FxHashSet<(SegId, SegId)> = FxHashSet::default();
         loop {
             stats.rounds += 1;
@@ -294,6 +356,9 @@ impl Topology {
             };
             let mut bump: Vec<(usize, Seg)> = Vec::new();
             for (p, q) in lines.conflicts(&dirty) {
+                if !(judged[p.line as usize] && judged[q.line as usize]) {
+                    continue;
+                }
                 let sp = segs[p.line as usize][p.seg as usize];
                 let sq = segs[q.line as usize][q.seg as usize];
                 if sp.original && sq.original {
@@ -307,7 +372,7 @@ impl Topology {
                 }
             }
             self.ring_conflicts(
-                &dirty, &rings, &shoelace, &cross_out, &out, &segs, &mut bump,
+                &dirty, exact, &rings, &shoelace, &cross_out, &out, &segs, &mut bump,
             );
             dirty.iter_mut().for_each(|d| *d = false);
             if bump.is_empty() {
@@ -315,7 +380,7 @@ impl Topology {
             }
             // Each leg named this round is raised once, however many
             // conflicts name it.
-            let last_resort = stats.rounds >= MAX_ROUNDS;
+            let last_resort = first - 1 + stats.rounds >= MAX_ROUNDS;
             let mut raise: FxHashSet<(usize, u32)> = FxHashSet::default();
             for (a, s) in bump {
                 raise.extend(
@@ -332,6 +397,9 @@ impl Topology {
                     (*l + 1).min(STRAIGHT)
                 };
                 dirty[a] = true;
+            }
+            if one {
+                break;
             }
         }
         stats.input_conflicts = input_conflicts.len();
@@ -357,11 +425,12 @@ impl Topology {
 
     /// Adds to `bump` every leg of the rings that turned over and of the
     /// holes (and their shells) that left their shell, among the rings that
-    /// use a `dirty` arc.
+    /// use a `dirty` arc (and that `exact` marks, unless it is empty).
     #[allow(clippy::too_many_arguments)] // the round's state, read only
     fn ring_conflicts(
         &self,
         dirty: &[bool],
+        exact: &[bool],
         rings: &RingFacts,
         shoelace: &Shoelace,
         cross_out: &[f64],
@@ -372,6 +441,7 @@ impl Topology {
         let mut suspects: Vec<usize> = (0..dirty.len())
             .filter(|&a| dirty[a])
             .flat_map(|a| rings.chains_of[a].iter().map(|&c| c as usize))
+            .filter(|&c| exact.get(c).copied().unwrap_or(exact.is_empty()))
             .collect();
         suspects.sort_unstable();
         suspects.dedup();
