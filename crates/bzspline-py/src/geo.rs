@@ -294,7 +294,7 @@ fn extent_tuple(r: Option<Rect<f64>>) -> Option<[f64; 4]> {
 /// positions closer than that are merged first. Returns each
 /// group's ragged array of the result.
 #[pyfunction]
-#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None, levels=None))]
+#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None, levels=None, round=None, exact=None))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_ragged<'py>(
     py: Python<'py>,
@@ -308,6 +308,8 @@ pub fn _smooth_ragged<'py>(
     extent: Option<[f64; 4]>,
     snap: Option<f64>,
     levels: Option<PyLevelsIn<'py>>,
+    round: Option<usize>,
+    exact: Option<usize>,
 ) -> PyResult<(Vec<PyRagged<'py>>, PyLevels<'py>)> {
     crate::guard(|| {
         let (geoms, index) = gather(&groups)?;
@@ -328,9 +330,20 @@ pub fn _smooth_ragged<'py>(
                        index: &[i64]|
              -> Result<(Vec<Geometry<f64>>, Levels), String> {
                 let c = Coverage::with_nodes(gs, snap, nodes.clone()).map_err(|e| e.to_string())?;
-                c.smooth_from(&opts, &start)
-                    .map(|(out, _, ended)| (out, ended))
-                    .map_err(|e| coverage_error(&c, index, &e))
+                // The caller's first `exact` geometries, wherever they are here.
+                let marks: Vec<bool> = match exact {
+                    Some(e) => index
+                        .iter()
+                        .map(|&i| usize::try_from(i).is_ok_and(|i| i < e))
+                        .collect(),
+                    None => Vec::new(),
+                };
+                match round {
+                    Some(r) => c.smooth_round(&opts, &start, r, &marks),
+                    None => c.smooth_from(&opts, &start),
+                }
+                .map(|(out, _, ended)| (out, ended))
+                .map_err(|e| coverage_error(&c, index, &e))
             };
             if coverage {
                 run(geoms, &index)

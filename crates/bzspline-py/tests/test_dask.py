@@ -76,7 +76,7 @@ def test_a_coverage_over_partitions_smooths_as_one_process(client):
     assert not all(a.equals_exact(b, 0.0) for a, b in zip(naive, want))
 
 
-def test_partitions_that_refine_agree_on_their_borders(client):
+def test_partitions_that_refine_smooth_as_one_process(client):
     # An L-shaped polygon, a road along its notch and a square in the notch,
     # one a partition: the shared corner must be refined in both the
     # polygon's and the road's partition, though only the square's shows why.
@@ -87,6 +87,8 @@ def test_partitions_that_refine_agree_on_their_borders(client):
     d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=3)
     assert d.npartitions == 3
     got = bzspline.geo.smooth(d.geometry, tolerance=1e-3).compute()
+    want = bzspline.geo.smooth(s, tolerance=1e-3)
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(got, want))
     assert shapely.is_valid(got.values).all()
     assert not got[0].intersects(got[2]) and not got[1].intersects(got[2])
     ring = set(map(tuple, shapely.get_coordinates(got[0])))
@@ -95,6 +97,29 @@ def test_partitions_that_refine_agree_on_their_borders(client):
     alone = d.geometry.map_partitions(bzspline.geo.smooth, tolerance=1e-3, nodes=bzspline.geo.nodes(d.geometry),
                                       meta=d.geometry._meta).compute()
     assert alone[0].intersects(alone[2])
+
+
+def notch(x, gap, size):
+    """An L-shaped polygon with its inner corner at (x, 0), a road along
+    its notch and a square in the notch, ``gap`` from the corner."""
+    l_shape = shapely.Polygon([(x - 1, -1), (x + 3, -1), (x + 3, 0), (x + 1.5, 0), (x, 0), (x, 1.5), (x, 3),
+                               (x - 1, 3)])
+    road = shapely.LineString([(x + 1.5, 0), (x, 0), (x, 1.5)])
+    return [l_shape, road, shapely.box(x + gap, gap, x + gap + size, gap + size)]
+
+
+def test_refinement_over_many_rounds_is_the_one_process_result(client):
+    # Notches whose squares sit ever closer to the corner need more rounds of
+    # refinement; cut into four partitions, each feature comes out as one
+    # process smoothing all gives it.
+    gs = [g for i, gap in enumerate([0.2, 0.05, 0.02, 0.01, 0.006, 0.004]) for g in notch(6.0 * i, gap, 0.3)]
+    s = geopandas.GeoSeries(gs)
+    want = bzspline.geo.smooth(s, tolerance=1e-2)
+    for k in (2, 4):
+        d = dask_geopandas.from_geopandas(geopandas.GeoDataFrame(geometry=s), npartitions=k)
+        got = bzspline.geo.smooth(d.geometry, tolerance=1e-2).compute()
+        assert all(a.equals_exact(b, 0.0) for a, b in zip(got, want)), k
+    assert shapely.is_valid(want.values).all()
 
 
 @pytest.mark.filterwarnings("ignore:invalid value:RuntimeWarning")

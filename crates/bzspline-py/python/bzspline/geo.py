@@ -13,10 +13,11 @@ A coverage too large for one process is smoothed over the partitions of a
 dask-geopandas GeoSeries: ``smooth(series)`` finds, in one cheap pass, the
 junctions a partition cannot see by itself (``nodes``), smooths every
 partition with them and with the geometries of other partitions that come near
-it, and passes the refinement levels between the partitions until they agree.
-Every border comes out the same in every partition that holds it, nothing
-crosses, and wherever no refinement was needed the result is, bit for bit,
-what one process smoothing the whole gives.
+it, and runs the rounds of the conflict search (where curves that would cross
+are refined) over all partitions together, merging the refinement levels
+between rounds. The result is, bit for bit, what one process smoothing the
+whole gives: every border the same in every partition that holds it, nothing
+crossing.
 """
 
 import re
@@ -111,9 +112,12 @@ def _groups(arr):
 _NO_LEVELS = (np.zeros(0, np.uint64), np.zeros(1, np.int64), np.zeros(0, np.uint8))
 
 
-def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, snap, levels=None):
+def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, snap, levels=None, round=None,
+                  exact=None):
     """Smooths a 1-D object array; returns it and the refinement levels the
-    arcs ended at (keys, offsets, values)."""
+    arcs ended at (keys, offsets, values). With ``round``, only that round of
+    the conflict search, from ``levels``, judging conflicts only among the
+    first ``exact`` geometries."""
     import shapely
 
     if nodes is not None and not isinstance(nodes, Nodes):
@@ -144,6 +148,8 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
         extent=None if nodes is None else nodes.extent,
         snap=snap,
         levels=levels,
+        round=round,
+        exact=exact,
     )
     for (kind, _, _, _), pick, (c, o) in zip(groups, picks, results):
         out[pick] = _singles(arr[pick], shapely.from_ragged_array(kind, c, tuple(o)), kind)
@@ -279,27 +285,46 @@ def _nodes_over(parts, boxes):
     return Nodes(positions, extent)
 
 
-def _near(part, box):
-    """The geometries of a partition whose bounding box meets ``box``."""
+def _near(part, box, inner=None):
+    """The geometries of a partition whose bounding box meets ``box`` (and
+    not ``inner``, when given)."""
     import shapely
 
     arr = _values(part)
     ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
     b = shapely.bounds(arr[ok])
-    x0, y0, x1, y1 = box
-    near = (b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1) & (b[:, 3] >= y0)
+    near = _meets(b, box)
+    if inner is not None:
+        near &= ~_meets(b, inner)
     return arr[ok][near]
 
 
-def _smooth_part(part, context, nodes, levels, opts, number):
-    """Partition ``number`` smoothed with the geometries near it from the
-    others (``context``, a list of arrays): its own results, as a GeoSeries
-    like it, and the levels every arc ended at. An error names the
+def _meets(b, box):
+    """Which of the boxes ``b`` (rows x0, y0, x1, y1) meet ``box``."""
+    x0, y0, x1, y1 = box
+    return (b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1) & (b[:, 3] >= y0)
+
+
+def _bounds(arrs, box):
+    """The box holding ``box`` and every geometry of the arrays ``arrs``."""
+    import shapely
+
+    b = np.array([box] + [shapely.total_bounds(a) for a in arrs if len(a)], dtype=np.float64)
+    return (b[:, 0].min(), b[:, 1].min(), b[:, 2].max(), b[:, 3].max())
+
+
+def _smooth_part(part, context, around, nodes, levels, opts, number, round):
+    """Round ``round`` of the conflict search on partition ``number``, with
+    the geometries near it from the others (``context``, a list of arrays,
+    held exactly) and those near all of them (``around``, for the context's
+    topology only), from ``levels``: its own results at those levels, as a
+    GeoSeries like it, and the levels after the round. An error names the
     partition and the geometry's index label (or says it is a neighbour's)."""
     own = _values(part)
-    arr = np.concatenate([own, *context]) if context else own
+    arr = np.concatenate([own, *context, *around])
+    exact = len(own) + sum(len(c) for c in context)
     try:
-        out, ended = _smooth_array(arr, *opts, nodes, None, levels)
+        out, ended = _smooth_array(arr, *opts, nodes, None, levels, round, exact)
     except ValueError as e:
         raise _in_partition(e, part, number) from None
     return _like(part, out[: len(own)]), ended
@@ -323,35 +348,42 @@ def _like(obj, values):
     return geopandas.GeoSeries(values, index=obj.index, crs=obj.crs, name=obj.name)
 
 
-def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_passes=16):
+def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_rounds=64):
     """A coverage over dask partitions: every partition smoothed with its
-    neighbours' nearby geometries and the whole's nodes, the refinement
-    levels passed round until no partition raises any."""
+    neighbours' nearby geometries and the whole's nodes, one round of the
+    conflict search at a time, all partitions from the levels all of them
+    ended the round before at, until no partition raises any: the rounds of
+    one process smoothing the whole, so the same result."""
     import dask
     import dask.dataframe as dd
 
     parts = d.to_delayed()
     boxes = _extents(parts)
     nodes = _nodes_over(parts, boxes)
-    contexts = []
-    for i, box in enumerate(boxes):
-        if np.isnan(box).any():
-            contexts.append([])
-            continue
-        meets = [j for j, other in enumerate(boxes)
-                 if j != i and not np.isnan(other).any()
-                 and other[0] <= box[2] and other[2] >= box[0] and other[1] <= box[3] and other[3] >= box[1]]
-        contexts.append(list(dask.persist(*[dask.delayed(_near)(parts[j], tuple(box)) for j in meets])))
+    known = ~np.isnan(boxes).any(axis=1)
+    filled = np.nan_to_num(boxes)
+
+    def others(i, box):
+        return [j for j in np.flatnonzero(known & _meets(filled, box)) if j != i] if known[i] else []
+
+    # The features of other partitions that may come near each one's (held
+    # exactly), then those that share a position with one of them: their
+    # bounding boxes meet the extent of all (for the topology only).
+    contexts = [list(dask.persist(*[dask.delayed(_near)(parts[j], tuple(box)) for j in others(i, box)]))
+                for i, box in enumerate(boxes)]
+    outers = dask.compute(*[dask.delayed(_bounds)(c, tuple(box)) for c, box in zip(contexts, boxes)])
+    arounds = [list(dask.persist(*[dask.delayed(_near)(parts[j], outer, tuple(box)) for j in others(i, outer)]))
+               for i, (box, outer) in enumerate(zip(boxes, outers))]
     opts = (tolerance, True, through, keep_angle, alpha)
     levels = _NO_LEVELS
-    for _ in range(max_passes):
-        runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, nodes, levels, opts, i)
-                              for i, (p, c) in enumerate(zip(parts, contexts))])
+    for round in range(1, max_rounds + 1):
+        runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, a, nodes, levels, opts, i, round)
+                              for i, (p, c, a) in enumerate(zip(parts, contexts, arounds))])
         ended = dask.compute(*[r[1] for r in runs])
         levels, changed = _core._merge_levels(levels, list(ended))
         if not changed:
             return dd.from_delayed([r[0] for r in runs], meta=d._meta, verify_meta=False)
-    raise RuntimeError(f"the partitions did not agree on their refinement in {max_passes} passes")
+    raise RuntimeError(f"the partitions still raised refinement levels after {max_rounds} rounds")
 
 
 def nodes(obj):
