@@ -1,7 +1,8 @@
 //! Refinement levels carried from one smoothing to another: how often each
 //! leg of an arc was halved to resolve a conflict, by a key of the arc's
-//! positions. Parts of a coverage smoothed apart exchange them until they
-//! agree, so that an arc two parts hold comes out the same in both.
+//! positions. Parts of a coverage smoothed apart merge them between rounds
+//! of the conflict search ([`Topology::smooth_round`](crate::Topology::smooth_round)),
+//! so that every arc comes out as the whole coverage smoothed at once gives it.
 
 use geo_types::Coord;
 use rustc_hash::{FxHashMap, FxHasher};

@@ -19,8 +19,10 @@
 //! be refined (where it would come too close to another arc). A part decides
 //! them right when it also holds the features of other parts that meet its
 //! extent (a ring that shares an arc, and an arc that comes near one, meet
-//! it), and parts agree on refinement by passing their
-//! [`Levels`](crate::Levels) round ([`Topology::smooth_from`](crate::Topology::smooth_from)).
+//! it), those next to them (so that their arcs are cut as in the whole), and
+//! runs the rounds of the conflict search together with the other parts,
+//! passing the [`Levels`](crate::Levels) between rounds
+//! ([`Topology::smooth_round`](crate::Topology::smooth_round)).
 
 use std::hash::Hasher;
 

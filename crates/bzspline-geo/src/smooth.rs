@@ -222,9 +222,9 @@ impl Topology {
 
     /// As [`Topology::smooth`], with every arc that `start` lists refined at
     /// least to its levels there from the first round on (by [`arc_key`]);
-    /// [`Smoothed::levels`] gives the levels the arcs end at. Parts of a
-    /// coverage smoothed apart pass them between each other until no part
-    /// raises any: then every arc two parts hold is smoothed the same in both.
+    /// [`Smoothed::levels`] gives the levels the arcs end at (parts of a
+    /// coverage smoothed apart go round by round instead:
+    /// [`Topology::smooth_round`]).
     ///
     /// # Errors
     ///
