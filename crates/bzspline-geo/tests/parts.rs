@@ -337,37 +337,12 @@ fn notch(x: f64, gap: f64, size: f64) -> Vec<Geometry<f64>> {
 }
 
 #[test]
-fn parts_that_refine_agree_on_their_borders() {
+fn parts_that_refine_smooth_as_the_whole() {
     // An L-shaped polygon, a road along the two edges of its notch, and a
     // square in the notch, each in a part of its own: the corner's curve,
     // which the polygon and the road share, cuts through the square unless
     // refined, which only a part that sees the square can tell.
-    let l_shape = poly(
-        vec![
-            c(0.0, 0.0),
-            c(4.0, 0.0),
-            c(4.0, 1.0),
-            c(2.5, 1.0),
-            c(1.0, 1.0),
-            c(1.0, 2.5),
-            c(1.0, 4.0),
-            c(0.0, 4.0),
-            c(0.0, 0.0),
-        ],
-        vec![],
-    );
-    let road = Geometry::LineString(LineString(vec![c(2.5, 1.0), c(1.0, 1.0), c(1.0, 2.5)]));
-    let square = poly(
-        vec![
-            c(1.05, 1.05),
-            c(1.6, 1.05),
-            c(1.6, 1.6),
-            c(1.05, 1.6),
-            c(1.05, 1.05),
-        ],
-        vec![],
-    );
-    let gs = vec![l_shape, road, square];
+    let gs = notch(1.0, 0.05, 0.55);
     let opts = SmoothOptions::default().tolerance(1e-3);
     let (all, stats) = whole(&gs, &opts);
     assert!(
