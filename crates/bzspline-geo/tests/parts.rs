@@ -380,7 +380,7 @@ proptest! {
     /// Going through the rounds of conflict search together, parts come out
     /// as the whole, refined or not: every border shared, nothing crossing.
     #[test]
-    fn parts_passing_levels_keep_a_valid_coverage(
+    fn parts_going_round_by_round_smooth_as_the_whole(
         nx in 1usize..5,
         ny in 1usize..4,
         m in 0usize..5,

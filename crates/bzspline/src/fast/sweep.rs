@@ -316,20 +316,14 @@ impl<'a, const D: usize> Sweep<'a, D> {
             // the order of the sweep.
             let (ld, pd) = rows_d.as_rchunks_mut::<2>();
             let (lp, pp) = rows_p.as_rchunks_mut::<2>();
-            let last = ld
-                .first_mut()
-                .zip(lp.first_mut())
-                .map(|(d, p)| Aside { p, d });
+            let last = Aside::first(ld, lp);
             self.eliminate::<PER>((pd, pp), last);
         }
         coefs.clear();
         coefs.reserve_exact(m * D);
         let (pd, ld) = rows_d.as_chunks_mut::<2>();
         let (pp, lp) = rows_p.as_chunks_mut::<2>();
-        let last = ld
-            .first_mut()
-            .zip(lp.first_mut())
-            .map(|(d, p)| Aside { p, d });
+        let last = Aside::first(ld, lp);
         self.substitute::<PER, KNOT>((pd, pp), last, coefs);
         // The end points: their copies, and deviation zero (or the knot).
         for i in [0, m] {
@@ -588,7 +582,16 @@ struct Aside<'a, const D: usize> {
     d: &'a mut [f64; D],
 }
 
-impl<const D: usize> Aside<'_, D> {
+impl<'a, const D: usize> Aside<'a, D> {
+    /// The slots of the first row of `d` and `p` (a lone row left over by
+    /// the pairs), if there is one.
+    #[inline(always)]
+    fn first(d: &'a mut [[f64; D]], p: &'a mut [[f64; D]]) -> Option<Self> {
+        d.first_mut()
+            .zip(p.first_mut())
+            .map(|(d, p)| Aside { p, d })
+    }
+
     #[inline(always)]
     fn get(&self, i: usize) -> f64 {
         if i < D {
