@@ -106,7 +106,7 @@ pub fn read(name: &str, v: Value) -> Result<TopoDoc> {
     };
     let mut r = Reader {
         name,
-        n_arcs: arcs.len(),
+        arcs: &arcs,
         chains: Vec::new(),
         polygons: Vec::new(),
         origins: Vec::new(),
@@ -122,20 +122,21 @@ pub fn read(name: &str, v: Value) -> Result<TopoDoc> {
             _ => 1,
         })
         .sum();
+    let (chains, polygons, origins) = (r.chains, r.polygons, r.origins);
     let topology =
-        Topology::from_arcs(arcs, r.chains, r.polygons).map_err(|e| anyhow!("{name}: {e}"))?;
+        Topology::from_arcs(arcs, chains, polygons).map_err(|e| anyhow!("{name}: {e}"))?;
     Ok(TopoDoc {
         root,
         transform,
         topology,
-        origins: r.origins,
+        origins,
         features,
     })
 }
 
 struct Reader<'a> {
     name: &'a str,
-    n_arcs: usize,
+    arcs: &'a [Vec<Coord>],
     chains: Vec<Chain>,
     polygons: Vec<Vec<usize>>,
     origins: Vec<String>,
@@ -153,10 +154,10 @@ impl Reader<'_> {
                     bail!("{name}: {at}: arc index {k} is not an integer");
                 };
                 let r = ArcRef::from_topojson(k);
-                if r.arc >= self.n_arcs {
+                if r.arc >= self.arcs.len() {
                     bail!(
                         "{name}: {at}: arc {k} is out of range (there are {} arcs)",
-                        self.n_arcs
+                        self.arcs.len()
                     );
                 }
                 Ok(r)
@@ -349,7 +350,14 @@ impl TopoDoc {
     /// order [`read`] met them.
     fn geometry(&self, g: &Value, arcs: &[Vec<Coord>], next: &mut usize) -> Value {
         let mut take = || {
-            let c = self.topology.chain_coords(*next, arcs);
+            let mut c = self.topology.chain_coords(*next, arcs);
+            // GeoJSON's rings have 4 or more positions: a ring collapsed by
+            // quantization repeats its first, as topojson-client writes it.
+            if self.topology.chains()[*next].kind == ChainKind::Ring && !c.is_empty() {
+                while c.len() < 4 {
+                    c.push(c[0]);
+                }
+            }
             *next += 1;
             Value::Array(c.iter().map(|p| json!([p.x, p.y])).collect())
         };

@@ -3,9 +3,10 @@
 //! accepted (`tests/good_inputs/cases.txt`), plus a ten-million-point file and
 //! a standard output closed early.
 //!
-//! Every bad input must give: a non-zero exit code; exactly one line on
-//! standard error, starting with `error:`, naming the file and line (or the
-//! option at fault) and containing the expected text; no panic; no output file.
+//! Every bad input must give, from every command its line names (`fit` when
+//! it names none): a non-zero exit code; exactly one line on standard error,
+//! starting with `error:`, naming the file and line (or the option at fault)
+//! and containing the expected text; no panic; no output file.
 
 use std::fs;
 use std::io::Read;
@@ -20,12 +21,15 @@ fn folder(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// One line of a `cases.txt`: the input file, the second field, the arguments.
+/// One line of a `cases.txt`: the input file, the second field, the
+/// arguments, and the commands that must refuse it (`FILE | TEXT | ARGS`, or
+/// `FILE | TEXT | ARGS | COMMANDS`).
 struct Case {
     line: usize,
     file: String,
     expect: String,
     args: Vec<String>,
+    commands: Vec<String>,
 }
 
 fn cases(dir: &str) -> Vec<Case> {
@@ -36,18 +40,21 @@ fn cases(dir: &str) -> Vec<Case> {
         .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'))
         .map(|(i, l)| {
             let parts: Vec<&str> = l.split('|').map(str::trim).collect();
-            assert_eq!(
-                parts.len(),
-                3,
-                "{}:{}: want FILE | TEXT | ARGS",
+            assert!(
+                (3..=4).contains(&parts.len()),
+                "{}:{}: want FILE | TEXT | ARGS [| COMMANDS]",
                 path.display(),
                 i + 1
             );
+            let words = |s: &str| s.split_whitespace().map(str::to_owned).collect::<Vec<_>>();
             Case {
                 line: i + 1,
                 file: parts[0].to_owned(),
                 expect: parts[1].to_owned(),
-                args: parts[2].split_whitespace().map(str::to_owned).collect(),
+                args: words(parts[2]),
+                commands: parts
+                    .get(3)
+                    .map_or_else(|| vec!["fit".to_owned()], |c| words(c)),
             }
         })
         .collect()
@@ -61,14 +68,32 @@ struct Run {
 
 /// `bzspline fit FILE -o OUT ARGS` in `dir`, with OUT in a fresh temporary folder.
 fn fit(dir: &str, file: &str, args: &[String]) -> Run {
+    run(dir, "fit", file, args)
+}
+
+/// `bzspline COMMAND FILE -o OUT ARGS` in `dir`, with OUT in a fresh temporary
+/// folder and the arguments the command needs to run at all (`eval --at`,
+/// `sample --n`).
+fn run(dir: &str, command: &str, file: &str, args: &[String]) -> Run {
     let tmp = tempfile::tempdir().expect("a temporary folder");
-    let out = tmp.path().join("out.json");
+    let name = if command == "plot" {
+        "out.svg"
+    } else {
+        "out.json"
+    };
+    let out = tmp.path().join(name);
+    let needed: &[&str] = match command {
+        "eval" => &["--at", "0.5"],
+        "sample" => &["--n", "5"],
+        _ => &[],
+    };
     let o = Command::new(BIN)
         .current_dir(folder(dir))
-        .arg("fit")
+        .arg(command)
         .arg(file)
         .arg("-o")
         .arg(&out)
+        .args(needed)
         .args(args)
         .stdin(Stdio::null())
         .output()
@@ -78,7 +103,7 @@ fn fit(dir: &str, file: &str, args: &[String]) -> Run {
         .expect("the temporary folder")
         .filter_map(Result::ok)
         .map(|e| e.file_name())
-        .filter(|n| n != "out.json")
+        .filter(|n| n != name)
         .collect();
     assert!(
         leftovers.is_empty(),
@@ -119,9 +144,12 @@ fn every_bad_input_is_refused_with_one_line_naming_the_place() {
     let cases = cases("bad_inputs");
     assert!(cases.len() >= 30, "the corpus has {} cases", cases.len());
     let mut failures = Vec::new();
-    for c in &cases {
-        let r = fit("bad_inputs", &c.file, &c.args);
-        let what = format!("cases.txt:{} ({} {:?})", c.line, c.file, c.args);
+    for (c, command) in cases
+        .iter()
+        .flat_map(|c| c.commands.iter().map(move |k| (c, k)))
+    {
+        let r = run("bad_inputs", command, &c.file, &c.args);
+        let what = format!("cases.txt:{} ({command} {} {:?})", c.line, c.file, c.args);
         let lines: Vec<&str> = r.stderr.lines().collect();
         let mut problems = Vec::new();
         if r.code == Some(0) || r.code.is_none() {

@@ -876,12 +876,15 @@ fn smooth_errors_name_the_feature_or_line() {
     assert_data_error(
         &["smooth", "bad_lines.geojsonl", "--tolerance", "0.1"],
         None,
-        &["bad_lines.geojsonl:2:", "coordinate 1 has 3"],
+        &["bad_lines.geojsonl:2:", "coordinates[1]: 3 numbers, but"],
     );
     assert_data_error(
         &["smooth", "bad_dims.geojson", "--tolerance", "0.1"],
         None,
-        &["bad_dims.geojson: feature 1:", "coordinate 1 has 5"],
+        &[
+            "bad_dims.geojson: feature 1, coordinates[1]:",
+            "5 numbers, but coordinates[0] has 2",
+        ],
     );
     assert_data_error(
         &["smooth", "bad_number.geojson", "--tolerance", "0.1"],

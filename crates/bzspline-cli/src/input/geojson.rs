@@ -4,7 +4,7 @@ use anyhow::{anyhow, Result};
 use serde_json::Value;
 
 use super::json::{json_rows, parse_json_value};
-use super::{too_many, Points, Pos, Positions};
+use super::{check_document, too_many, Points, Pos, Positions};
 
 /// Reads the control points of the first line in a GeoJSON document: a
 /// LineString, a MultiPoint, the outer ring of a Polygon (without the position
@@ -12,9 +12,20 @@ use super::{too_many, Points, Pos, Positions};
 ///
 /// # Errors
 ///
-/// `FILE:LINE: invalid JSON`, or `FILE: feature i, coordinate j: ...`.
+/// `FILE:LINE: invalid JSON`, `FILE: feature i, coordinates[j]: ...` for a
+/// geometry the check refuses ([`super::check_document`]: every geometry of
+/// the document, not only the first line), or `FILE: feature i, coordinate
+/// j: ...`.
 pub fn parse_geojson_points(name: &str, bytes: &[u8], max_points: usize) -> Result<Points> {
-    let v = parse_json_value(name, bytes)?;
+    let mut v = parse_json_value(name, bytes)?;
+    let cut = check_document(&mut v).map_err(|e| anyhow!("{name}: {e}"))?;
+    let mut points = first_points(name, &v, max_points)?;
+    points.cut = cut;
+    Ok(points)
+}
+
+/// The control points of the first line of a checked document.
+fn first_points(name: &str, v: &Value, max_points: usize) -> Result<Points> {
     let features: Vec<&Value> = match v.get("type").and_then(Value::as_str) {
         Some("FeatureCollection") => v
             .get("features")

@@ -4,12 +4,14 @@
 //!
 //! One file a format: [`table`] (CSV, TSV, semicolons), [`json`] (arrays of
 //! points and `fit`'s object), [`geojson`] (the first line, ring or run of
-//! points); the paper's examples in [`examples`]; library errors mapped to
-//! lines in [`explain`].
+//! points); the check every GeoJSON geometry passes before it is converted
+//! ([`geometry`]); the paper's examples in [`examples`]; library errors mapped
+//! to lines in [`explain`].
 
 mod examples;
 mod explain;
 mod geojson;
+mod geometry;
 mod json;
 mod table;
 
@@ -26,6 +28,7 @@ pub use examples::example;
 pub use examples::EXAMPLE1;
 pub use explain::explain;
 pub use geojson::parse_geojson_points;
+pub use geometry::{check_document, to_geojson, MAX_POSITION_LEN};
 pub use json::parse_json;
 pub use table::{parse_table, parse_table_with, Col, Select};
 
@@ -93,6 +96,8 @@ pub struct Points {
     /// The kind of dates in the first column, when it held dates (its numbers
     /// are then days or seconds since 1970, see [`crate::time`]).
     pub time: Option<crate::time::TimeKind>,
+    /// GeoJSON positions of more than 3 numbers, cut to x, y, z.
+    pub cut: usize,
 }
 
 impl Points {
@@ -113,6 +118,7 @@ impl Points {
             end,
             names: None,
             time: None,
+            cut: 0,
         }
     }
 
@@ -382,6 +388,13 @@ pub fn load(args: &InputArgs) -> Result<Points> {
             parse_geojson_points(&format!("{name}:{}", i + 1), line.as_bytes(), max)
         }
     }?;
+    if points.cut > 0 {
+        eprintln!(
+            "note: {name}: {} position{} with more than {MAX_POSITION_LEN} numbers: kept x, y, z",
+            points.cut,
+            if points.cut == 1 { "" } else { "s" }
+        );
+    }
     Ok(if table { over_index(points) } else { points })
 }
 
@@ -577,7 +590,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("p.geojson: feature 0: the ring is not closed"),
+            e.contains("p.geojson: coordinates[0]: the ring is not closed"),
             "{e}"
         );
         // Closed, with the repeat written as 0.0: read as its four vertices.
@@ -592,9 +605,12 @@ mod tests {
                 vec![0.0, 1.0]
             ]
         );
+        // An empty ring is not an empty polygon (that is `[]`).
         let empty = br#"{"type":"Polygon","coordinates":[[]]}"#;
-        assert!(parse_geojson_points("p.geojson", empty, MAX)
-            .unwrap()
-            .is_empty());
+        let e = parse_geojson_points("p.geojson", empty, MAX).unwrap_err();
+        assert!(
+            e.to_string().contains("a ring needs 4 or more positions"),
+            "{e}"
+        );
     }
 }

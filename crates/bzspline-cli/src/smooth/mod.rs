@@ -37,6 +37,8 @@ struct Job<'a> {
     /// Where positions with z sent a document ring by ring (said once the
     /// output is written; not for tables, which are one line anyway).
     z_at: Option<String>,
+    /// Positions cut to x, y, z (more than 3 numbers), and where the first was.
+    cut: (usize, Option<String>),
     /// Totals over the documents (lines of a stream).
     total: Stats,
     features: usize,
@@ -106,6 +108,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         output,
         object_name,
         z_at: None,
+        cut: (0, None),
         total: Stats::default(),
         features: 0,
     };
@@ -133,14 +136,20 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             let out = if topojson::is_topology(&value) {
                 job.topology(&name, value)?
             } else {
-                let doc = serde_json::from_value::<GeoJson>(value)
-                    .map_err(|e| anyhow!("{name}: invalid GeoJSON: {e}"))?;
+                let doc = job.checked(&name, value)?;
                 job.document(doc, &name, true)?
             };
             write_line(&mut sink, &out)?;
         }
     }
     sink.finish()?;
+    if let (n @ 1.., Some(at)) = &job.cut {
+        eprintln!(
+            "note: {at}: {n} position{} with more than {} numbers: kept x, y, z",
+            if *n == 1 { "" } else { "s" },
+            input::MAX_POSITION_LEN
+        );
+    }
     if let Some(at) = &job.z_at {
         eprintln!("note: {at}: positions with z: smoothed ring by ring (the coverage's topology is planar)");
     }
@@ -163,6 +172,17 @@ fn has_table_extension(f: &Path) -> bool {
 }
 
 impl Job<'_> {
+    /// A GeoJSON document checked ([`input::to_geojson`]) and converted;
+    /// positions cut to x, y, z are counted for the note.
+    fn checked(&mut self, where_: &str, value: Value) -> Result<GeoJson> {
+        let (doc, cut) = input::to_geojson(where_, value)?;
+        if cut > 0 {
+            self.cut.0 += cut;
+            self.cut.1.get_or_insert_with(|| where_.to_owned());
+        }
+        Ok(doc)
+    }
+
     /// Smooths one GeoJSON document (a whole file or a line of a stream)
     /// and gives the output document, GeoJSON or TopoJSON.
     fn document(&mut self, doc: GeoJson, where_: &str, number_single: bool) -> Result<Value> {
@@ -227,7 +247,7 @@ impl Job<'_> {
             let fc = topo
                 .to_geojson(topo.topology.arcs(), object)
                 .map_err(|e| anyhow!("{name}: {e}"))?;
-            let doc = serde_json::from_value::<GeoJson>(fc).map_err(|e| anyhow!("{name}: {e}"))?;
+            let doc = self.checked(name, fc)?;
             return self.document(doc, name, true);
         }
         let s = topo
@@ -293,8 +313,9 @@ impl Job<'_> {
             if text.is_empty() {
                 continue;
             }
-            let doc: GeoJson =
-                serde_json::from_str(text).map_err(|e| anyhow!("{here}: invalid GeoJSON: {e}"))?;
+            let value: Value =
+                serde_json::from_str(text).map_err(|e| anyhow!("{here}: invalid JSON: {e}"))?;
+            let doc = self.checked(&here, value)?;
             let out = self.document(doc, &here, false)?;
             write_line(sink, &out)?;
         }
