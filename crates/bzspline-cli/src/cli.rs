@@ -273,8 +273,9 @@ pub struct SmoothArgs {
     /// borders that features share are no longer shared afterwards).
     #[arg(long, conflicts_with_all = ["snap", "keep_angle"])]
     pub independent: bool,
-    /// Merge positions closer than EPS before finding the shared borders
-    /// (for borders digitised twice with small differences).
+    /// Merge positions closer than EPS, and put a position within EPS of
+    /// another line's or ring's edge into that edge, before finding the
+    /// shared borders (for borders digitised twice with small differences).
     #[arg(long, value_name = "EPS", value_parser = non_negative, allow_negative_numbers = true)]
     pub snap: Option<f64>,
     /// Keep every position where the line turns by more than DEG degrees as a

@@ -58,7 +58,8 @@ pub struct Coverage {
 
 impl Coverage {
     /// Finds the topology of `geometries`; with `snap`, positions closer than
-    /// that distance are merged first ([`crate::topology::snap`]).
+    /// that distance are merged first, and positions that close to another
+    /// line's or ring's edge are put into it ([`crate::topology::snap`]).
     ///
     /// # Errors
     ///

@@ -509,9 +509,17 @@ impl Builder {
 }
 
 /// Moves every position to the first one met within `eps` of it (Euclidean
-/// distance, in the order of the chains and their positions), so that
+/// distance, in the order of the chains and their positions), then puts every
+/// position that lies within `eps` of another line's or ring's edge into that
+/// edge (a vertex that one side of a border has and the other lacks), so that
 /// borders digitised twice with small differences become one. Chains are
 /// changed in place.
+///
+/// A position is put only into edges of chains that do not hold it already
+/// (a narrow bay of one ring is not closed up), at the point of the edge
+/// nearest to it being strictly inside the edge; every chain that holds the
+/// edge gets the position, so edges shared before stay shared. New edges
+/// are searched again, a few times, for positions near them.
 ///
 /// # Errors
 ///
@@ -546,7 +554,94 @@ pub fn snap(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> Result<(), Erro
             }
         }
     }
+    if eps > 0.0 {
+        for _ in 0..SNAP_PASSES {
+            if !snap_to_edges(chains, eps) {
+                break;
+            }
+        }
+    }
     Ok(())
+}
+
+/// Passes of [`snap_to_edges`] at most: each may make edges that come near
+/// positions the one before did not see.
+const SNAP_PASSES: usize = 4;
+
+/// One pass of putting positions into the edges of other chains within
+/// `eps`; false when there was none to put.
+fn snap_to_edges(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> bool {
+    type Seg = GeomWithData<rstar::primitives::Line<[f64; 2]>, (usize, usize)>;
+    let segs: Vec<Seg> = chains
+        .iter()
+        .enumerate()
+        .flat_map(|(ci, (_, cs))| {
+            cs.windows(2).enumerate().filter_map(move |(si, w)| {
+                (key(w[0]) != key(w[1])).then(|| {
+                    let line = rstar::primitives::Line::new([w[0].x, w[0].y], [w[1].x, w[1].y]);
+                    GeomWithData::new(line, (ci, si))
+                })
+            })
+        })
+        .collect();
+    if segs.is_empty() {
+        return false;
+    }
+    let tree = RTree::bulk_load(segs);
+    // The chains that hold each position.
+    let mut holders: FxHashMap<(u64, u64), (Coord, Vec<usize>)> = FxHashMap::default();
+    for (ci, (_, cs)) in chains.iter().enumerate() {
+        for &c in cs {
+            let h = &mut holders.entry(key(c)).or_insert_with(|| (c, Vec::new())).1;
+            if h.last() != Some(&ci) {
+                h.push(ci);
+            }
+        }
+    }
+    let eps2 = eps * eps;
+    // (chain, edge, where along it, position).
+    let mut puts: Vec<(usize, usize, f64, Coord)> = Vec::new();
+    for (p, held) in holders.values() {
+        let env = rstar::AABB::from_corners([p.x - eps, p.y - eps], [p.x + eps, p.y + eps]);
+        for seg in tree.locate_in_envelope_intersecting(&env) {
+            let (ci, si) = seg.data;
+            if held.contains(&ci) {
+                continue;
+            }
+            let (a, b) = (seg.geom().from, seg.geom().to);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let t = ((p.x - a[0]) * dx + (p.y - a[1]) * dy) / (dx * dx + dy * dy);
+            if !(t > 0.0 && t < 1.0) {
+                continue;
+            }
+            let near = [a[0] + t * dx, a[1] + t * dy];
+            if dist2(&near, &[p.x, p.y]) <= eps2 {
+                puts.push((ci, si, t, *p));
+            }
+        }
+    }
+    if puts.is_empty() {
+        return false;
+    }
+    puts.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)).then(x.2.total_cmp(&y.2)));
+    let mut k = 0;
+    while k < puts.len() {
+        let ci = puts[k].0;
+        let end = k + puts[k..].iter().take_while(|q| q.0 == ci).count();
+        let old = std::mem::take(&mut chains[ci].1);
+        let mut new = Vec::with_capacity(old.len() + end - k);
+        let mut next = k;
+        for (si, &c) in old.iter().enumerate() {
+            new.push(c);
+            while next < end && puts[next].1 == si {
+                new.push(puts[next].3);
+                next += 1;
+            }
+        }
+        chains[ci].1 = new;
+        k = end;
+    }
+    true
 }
 
 fn dist2(a: &[f64; 2], b: &[f64; 2]) -> f64 {

@@ -6,6 +6,7 @@ mod common;
 
 use bzspline_geo::{Coverage, SmoothOptions};
 use common::*;
+use geo::Relate;
 use geo_types::{Geometry, LineString};
 use proptest::prelude::*;
 
@@ -368,4 +369,60 @@ proptest! {
         let (out, _) = smooth(&input, &opts);
         check_all(&input, &out);
     }
+}
+
+/// Two cells whose common border was digitised twice: the left cell's side
+/// has vertices the right cell's lacks, each a hair off the right's edges.
+fn digitised_twice() -> Vec<Geometry<f64>> {
+    let hair = 1e-9;
+    let left = vec![
+        c(0.0, 0.0),
+        c(1.0, 0.0),
+        c(1.1 + hair, 0.25),
+        c(1.2, 0.5),
+        c(1.1 - hair, 0.75),
+        c(1.0, 1.0),
+        c(0.0, 1.0),
+        c(0.0, 0.0),
+    ];
+    let right = vec![
+        c(1.0, 0.0),
+        c(2.0, 0.0),
+        c(2.0, 1.0),
+        c(1.0, 1.0),
+        c(1.2, 0.5),
+        c(1.0, 0.0),
+    ];
+    vec![poly(left, vec![]), poly(right, vec![])]
+}
+
+#[test]
+fn snapping_puts_a_vertex_near_an_edge_into_it() {
+    let input = digitised_twice();
+    let opts = SmoothOptions::default().tolerance(1e-4);
+    // Without snapping the two sides are two borders: smoothed apart, they
+    // leave slivers of gap and overlap.
+    let (apart, stats) = smooth(&input, &opts);
+    assert_eq!(stats.shared_arcs, 0, "{stats:?}");
+    assert!(share_border(&apart[0], &apart[1]).is_err());
+    assert!(!apart[0].relate(&apart[1]).is_touches(), "no sliver of overlap");
+    // With it, the vertices a hair off the right cell's edges go into them:
+    // one border, the same positions in both, touching only.
+    let coverage = Coverage::new(input.clone(), Some(1e-6)).unwrap();
+    let (out, stats) = coverage.smooth(&opts).unwrap();
+    assert_eq!(stats.shared_arcs, 1, "{stats:?}");
+    share_border(&out[0], &out[1]).unwrap_or_else(|e| panic!("{e}"));
+    valid_stays_valid(&input, &out).unwrap_or_else(|e| panic!("{e}"));
+    // The border is one arc, cut only at the two corners it runs between.
+    let topo = coverage.topology();
+    let shared: Vec<usize> = (0..topo.arcs().len()).filter(|&k| topo.uses()[k] == 2).collect();
+    assert_eq!(shared.len(), 1);
+    assert_eq!(topo.arcs()[shared[0]].len(), 5, "{:?}", topo.arcs()[shared[0]]);
+    // A snap distance below the hair changes nothing.
+    let (same, stats) = Coverage::new(input.clone(), Some(1e-10))
+        .unwrap()
+        .smooth(&opts)
+        .unwrap();
+    assert_eq!(stats.shared_arcs, 0, "{stats:?}");
+    assert_eq!(same, apart);
 }
