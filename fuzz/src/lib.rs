@@ -27,6 +27,25 @@ pub mod time;
 #[path = "../../crates/bzspline-cli/src/topojson.rs"]
 pub mod topojson;
 
+/// `bzspline smooth`'s smoothing of a GeoJSON document as one coverage,
+/// compiled from the command's source file like the readers.
+#[path = "../../crates/bzspline-cli/src/smooth/coverage.rs"]
+pub mod smooth_coverage;
+
+/// `bzspline smooth`'s smoothing ring by ring (`--independent`, positions
+/// with z), compiled from the command's source file like the readers.
+#[path = "../../crates/bzspline-cli/src/smooth/independent.rs"]
+pub mod smooth_independent;
+
+/// The checks of smoothed coverages that do not use the code under test
+/// (validity from `geo`, crossings by brute force, shared borders), compiled
+/// from the coverage tests' source file.
+#[path = "../../crates/bzspline-geo/tests/common/mod.rs"]
+pub mod judge;
+
+pub mod document;
+pub mod mosaic;
+
 /// The editor server's `POST /api/fit` handler body: request parsing and the
 /// response, without the HTTP layer.
 #[path = "../../crates/bzspline-cli/src/serve/api.rs"]
