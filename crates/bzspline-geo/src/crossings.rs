@@ -53,7 +53,39 @@ pub(crate) fn key(c: Coord) -> (u64, u64) {
     ((c.x + 0.0).to_bits(), (c.y + 0.0).to_bits())
 }
 
-fn orient(a: Coord, b: Coord, c: Coord) -> f64 {
+/// The power of two that brings a largest magnitude `m` near 1 when
+/// products of numbers that large would overflow a double, or of numbers
+/// that small underflow (outside `2^-400 ..= 2^400`); 1 otherwise.
+/// Multiplying by it is exact and changes no sign, so predicates on scaled
+/// positions decide as they would in exact arithmetic.
+pub(crate) fn unit_scale(m: f64) -> f64 {
+    let safe = 2f64.powi(-400)..=2f64.powi(400);
+    if !m.is_finite() || m <= 0.0 || safe.contains(&m) {
+        return 1.0;
+    }
+    let e = m.log2().floor() as i32;
+    2f64.powi(-e.clamp(-1022, 1022))
+}
+
+/// The positions scaled by [`unit_scale`] of their largest coordinate.
+fn scaled<const N: usize>(ps: [Coord; N]) -> [Coord; N] {
+    let m = ps
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let s = unit_scale(m);
+    if s == 1.0 {
+        return ps;
+    }
+    ps.map(|p| Coord {
+        x: p.x * s,
+        y: p.y * s,
+    })
+}
+
+/// The orientation of `c` to the line `a b` (positive to the left), exact at
+/// any scale (see [`unit_scale`]).
+pub(crate) fn orient(a: Coord, b: Coord, c: Coord) -> f64 {
+    let [a, b, c] = scaled([a, b, c]);
     orient2d(
         RCoord { x: a.x, y: a.y },
         RCoord { x: b.x, y: b.y },
@@ -86,6 +118,7 @@ pub(crate) fn intersect(a0: Coord, a1: Coord, b0: Coord, b1: Coord) -> bool {
 /// Segments `a0 a1` and `b0 b1` that share the end `e` (with `a`, `b` their
 /// other ends) have more than `e` in common: they leave `e` in one direction.
 fn overlap_from(e: Coord, a: Coord, b: Coord) -> bool {
+    let [e, a, b] = scaled([e, a, b]);
     orient(e, a, b) == 0.0 && (a.x - e.x) * (b.x - e.x) + (a.y - e.y) * (b.y - e.y) > 0.0
 }
 

@@ -679,9 +679,12 @@ fn turning_degrees(a: Coord, b: Coord, c: Coord) -> f64 {
 /// Signed areas by the shoelace formula, summed over arcs: a ring's area is
 /// half the sum of its arcs' cross products (negated for a reversed arc), so
 /// no ring is assembled. Coordinates are taken about the centre of the data,
-/// which keeps the products small far from the origin.
+/// which keeps the products small far from the origin, and scaled by a power
+/// of two where products of the data's size would underflow or overflow
+/// ([`crate::crossings::unit_scale`]), so that a ring's sign is kept.
 struct Shoelace {
     origin: Coord,
+    scale: f64,
 }
 
 impl Shoelace {
@@ -694,19 +697,25 @@ impl Shoelace {
                 0.0
             }
         };
+        let half = (hi[0] - lo[0]).max(hi[1] - lo[1]) / 2.0;
         Shoelace {
             origin: Coord {
                 x: mid(lo[0], hi[0]),
                 y: mid(lo[1], hi[1]),
             },
+            scale: crate::crossings::unit_scale(half),
         }
     }
 
     /// The sum of `x_i y_{i+1} - x_{i+1} y_i` along an arc.
     fn arc(&self, a: &[Coord]) -> f64 {
-        let o = self.origin;
+        let (o, s) = (self.origin, self.scale);
         a.windows(2)
-            .map(|w| (w[0].x - o.x) * (w[1].y - o.y) - (w[1].x - o.x) * (w[0].y - o.y))
+            .map(|w| {
+                let (x0, y0) = ((w[0].x - o.x) * s, (w[0].y - o.y) * s);
+                let (x1, y1) = ((w[1].x - o.x) * s, (w[1].y - o.y) * s);
+                x0 * y1 - x1 * y0
+            })
             .sum()
     }
 
@@ -726,8 +735,13 @@ impl Shoelace {
             / 2.0
     }
 
-    /// Area of the polygons: shells less holes.
+    /// Area of the polygons: shells less holes, in the data's units.
     fn polygons(&self, t: &Topology, cross: &[f64]) -> f64 {
+        self.scaled_polygons(t, cross) / self.scale / self.scale
+    }
+
+    /// Area of the polygons in the scaled units of the cross products.
+    fn scaled_polygons(&self, t: &Topology, cross: &[f64]) -> f64 {
         t.polygons()
             .iter()
             .map(|p| {
@@ -750,13 +764,7 @@ impl Shoelace {
 /// Whether `p` is inside the closed `ring` (winding number with exact
 /// orientation); `None` on its boundary.
 fn locate(p: Coord, ring: &[Coord]) -> Option<bool> {
-    let orient = |a: Coord, b: Coord| {
-        robust::orient2d(
-            robust::Coord { x: a.x, y: a.y },
-            robust::Coord { x: b.x, y: b.y },
-            robust::Coord { x: p.x, y: p.y },
-        )
-    };
+    let orient = |a: Coord, b: Coord| crate::crossings::orient(a, b, p);
     let mut wn = 0i64;
     for w in ring.windows(2) {
         let (a, b) = (w[0], w[1]);

@@ -405,7 +405,10 @@ fn snapping_puts_a_vertex_near_an_edge_into_it() {
     let (apart, stats) = smooth(&input, &opts);
     assert_eq!(stats.shared_arcs, 0, "{stats:?}");
     assert!(share_border(&apart[0], &apart[1]).is_err());
-    assert!(!apart[0].relate(&apart[1]).is_touches(), "no sliver of overlap");
+    assert!(
+        !apart[0].relate(&apart[1]).is_touches(),
+        "no sliver of overlap"
+    );
     // With it, the vertices a hair off the right cell's edges go into them:
     // one border, the same positions in both, touching only.
     let coverage = Coverage::new(input.clone(), Some(1e-6)).unwrap();
@@ -415,9 +418,16 @@ fn snapping_puts_a_vertex_near_an_edge_into_it() {
     valid_stays_valid(&input, &out).unwrap_or_else(|e| panic!("{e}"));
     // The border is one arc, cut only at the two corners it runs between.
     let topo = coverage.topology();
-    let shared: Vec<usize> = (0..topo.arcs().len()).filter(|&k| topo.uses()[k] == 2).collect();
+    let shared: Vec<usize> = (0..topo.arcs().len())
+        .filter(|&k| topo.uses()[k] == 2)
+        .collect();
     assert_eq!(shared.len(), 1);
-    assert_eq!(topo.arcs()[shared[0]].len(), 5, "{:?}", topo.arcs()[shared[0]]);
+    assert_eq!(
+        topo.arcs()[shared[0]].len(),
+        5,
+        "{:?}",
+        topo.arcs()[shared[0]]
+    );
     // A snap distance below the hair changes nothing.
     let (same, stats) = Coverage::new(input.clone(), Some(1e-10))
         .unwrap()
@@ -425,4 +435,43 @@ fn snapping_puts_a_vertex_near_an_edge_into_it() {
         .unwrap();
     assert_eq!(stats.shared_arcs, 0, "{stats:?}");
     assert_eq!(same, apart);
+}
+
+/// Found by the `smooth_coverage` fuzz target: a sliver cell (1e-7 wide)
+/// at coordinates near 1e-300, smoothed through its positions. The conflict
+/// search's products of coordinate differences underflowed at that scale, so
+/// a crossing the output made went unseen; the predicates now scale by a
+/// power of two first. Judged here unscaled (exactly, by a power of two),
+/// where geo's own validity check does not underflow.
+#[test]
+fn a_sliver_near_1e_minus_300_stays_valid() {
+    let s = 2f64.powi(-996);
+    let ring: Vec<_> = [
+        (0.0, 0.0),
+        (1e-7, 0.0),
+        (0.24, 0.333),
+        (1e-7, 0.6666),
+        (1e-7, 1.0),
+        (0.0, 1.0),
+        (0.0, 0.0),
+    ]
+    .iter()
+    .map(|&(x, y)| c(x * 1.4932217896051501e-300, y * 1.4932217896051502e-300))
+    .collect();
+    let input = vec![poly(ring, vec![])];
+    let mut opts = SmoothOptions::default().through(true).alpha(1.0 / 3.0);
+    opts.keep_angle = Some(1.0);
+    let (out, _) = smooth(&input, &opts);
+    let unscale = |gs: &[Geometry<f64>]| -> Vec<Geometry<f64>> {
+        gs.iter()
+            .map(|g| match g {
+                Geometry::Polygon(p) => {
+                    let r: Vec<_> = p.exterior().0.iter().map(|q| c(q.x / s, q.y / s)).collect();
+                    poly(r, vec![])
+                }
+                other => other.clone(),
+            })
+            .collect()
+    };
+    valid_stays_valid(&unscale(&input), &unscale(&out)).unwrap_or_else(|e| panic!("{e}"));
 }
