@@ -47,11 +47,17 @@ fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
 }
 
 /// An array-like as a float64 numpy array (the same object when it is one).
+/// Complex numbers are refused rather than cut to their real parts.
 fn as_float_array<'py>(
     x: &Bound<'py, PyAny>,
     what: &str,
 ) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
     let np = x.py().import("numpy")?;
+    if np.call_method1("iscomplexobj", (x,))?.is_truthy()? {
+        return Err(PyTypeError::new_err(format!(
+            "{what}: complex numbers are not supported (the spline is real)"
+        )));
+    }
     let arr = np
         .call_method1("asarray", (x, "float64"))
         .map_err(|e| PyTypeError::new_err(format!("{what}: {e}")))?;
@@ -60,11 +66,7 @@ fn as_float_array<'py>(
 
 /// Numbers of an array-like as a flat vector with the array's shape.
 fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
-    let np = x.py().import("numpy")?;
-    let arr = np
-        .call_method1("asarray", (x, "float64"))
-        .map_err(|e| PyTypeError::new_err(format!("{what}: {e}")))?;
-    let a: PyReadonlyArrayDyn<'_, f64> = arr.extract()?;
+    let a = as_float_array(x, what)?;
     let view = a.as_array();
     let shape = view.shape().to_vec();
     let flat = match view.as_slice() {

@@ -98,7 +98,7 @@ def _groups(arr):
         mask = np.isin(types, family)
         if not mask.any():
             continue
-        kind, coords, offsets = shapely.to_ragged_array(arr[idx[mask]], include_z=False)
+        kind, coords, offsets = _ragged(arr[idx[mask]], include_z=False)
         groups.append((
             int(kind),
             np.ascontiguousarray(coords, dtype=np.float64),
@@ -107,6 +107,29 @@ def _groups(arr):
         ))
         picks.append(idx[mask])
     return groups, picks
+
+
+def _ragged(geoms, include_z):
+    """``shapely.to_ragged_array`` of x, y (and z): a measure (M) is dropped,
+    as ``bzspline smooth`` keeps x, y, z of longer positions."""
+    import shapely
+
+    try:
+        return shapely.to_ragged_array(geoms, include_z=include_z, include_m=False)
+    except TypeError:  # shapely before 2.1 has no M
+        return shapely.to_ragged_array(geoms, include_z=include_z)
+
+
+def _warn_measures(arr):
+    """Warns once when some geometry of ``arr`` carries M (shapely >= 2.1)."""
+    import shapely
+
+    if not hasattr(shapely, "has_m"):
+        return
+    idx = np.flatnonzero(_smoothable(arr))
+    n = int(shapely.has_m(arr[idx]).sum())
+    if n:
+        warnings.warn(f"{n} geometries with M: the measure is dropped, x, y (and z) are kept", stacklevel=4)
 
 
 _NO_LEVELS = (np.zeros(0, np.uint64), np.zeros(1, np.int64), np.zeros(0, np.uint8))
@@ -123,6 +146,7 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
     if nodes is not None and not isinstance(nodes, Nodes):
         raise TypeError(f"nodes must be bzspline.geo.Nodes (from bzspline.geo.nodes), not {type(nodes).__name__}")
     out = arr.copy()
+    _warn_measures(arr)
     spatial = _with_z(arr)
     if len(spatial):
         if keep_angle is not None:
@@ -197,7 +221,7 @@ def _smooth_in_space(geoms, index, tolerance, through, alpha):
         sel = np.isin(types, family)
         if not sel.any():
             continue
-        kind, coords, offsets = shapely.to_ragged_array(geoms[sel], include_z=True)
+        kind, coords, offsets = _ragged(geoms[sel], include_z=True)
         # The geometry each line or ring belongs to.
         owner = np.asarray(index, dtype=np.int64)[sel]
         for level in reversed(offsets[1:]):
