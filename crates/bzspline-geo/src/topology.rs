@@ -576,12 +576,13 @@ fn snap_to_edges(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> bool {
         .iter()
         .enumerate()
         .flat_map(|(ci, (_, cs))| {
-            cs.windows(2).enumerate().filter_map(move |(si, w)| {
-                (key(w[0]) != key(w[1])).then(|| {
+            cs.windows(2)
+                .enumerate()
+                .filter(|(_, w)| key(w[0]) != key(w[1]))
+                .map(move |(si, w)| {
                     let line = rstar::primitives::Line::new([w[0].x, w[0].y], [w[1].x, w[1].y]);
                     GeomWithData::new(line, (ci, si))
                 })
-            })
         })
         .collect();
     if segs.is_empty() {

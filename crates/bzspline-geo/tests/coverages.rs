@@ -456,7 +456,7 @@ fn a_sliver_near_1e_minus_300_stays_valid() {
         (0.0, 0.0),
     ]
     .iter()
-    .map(|&(x, y)| c(x * 1.4932217896051501e-300, y * 1.4932217896051502e-300))
+    .map(|&(x, y)| c(x * s, y * s))
     .collect();
     let input = vec![poly(ring, vec![])];
     let mut opts = SmoothOptions::default().through(true).alpha(1.0 / 3.0);
