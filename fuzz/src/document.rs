@@ -9,8 +9,7 @@ use bzspline_geo::SmoothOptions;
 use serde_json::Value;
 
 use crate::input;
-use crate::smooth_coverage as coverage;
-use crate::smooth_independent as independent;
+use bzspline_io::smooth::{coverage, independent};
 use crate::topojson;
 
 /// The source name errors start with.

@@ -1,4 +1,7 @@
-//! Decoding fuzzer bytes into spline inputs, shared by the targets.
+//! What the fuzz targets share: fuzzer bytes decoded into spline inputs
+//! ([`Reader`], [`Data`]), into coverages ([`mosaic`]) and run as `bzspline
+//! smooth` runs a file ([`document`]); the formats of `bzspline-io` as the
+//! command uses them; the coverage tests' judges ([`judge`]).
 //!
 //! Half of the inputs are raw doubles (any bit pattern: NaN, infinities,
 //! subnormals, unsorted knots), the other half are built so that they are
@@ -8,34 +11,8 @@
 
 use bzspline::{ALPHA_MAX, ALPHA_MIN};
 
-/// The command's input readers, compiled from their source file: the command
-/// is a binary crate, and this keeps it so without copying its code.
-#[path = "../../crates/bzspline-cli/src/input/mod.rs"]
-pub mod input;
-
-/// The command's model of a fit (what `fit` prints and `serve` answers),
-/// compiled from its source file like the readers.
-#[path = "../../crates/bzspline-cli/src/model.rs"]
-pub mod model;
-
-/// The command's dates and times, which the table reader reads x as.
-#[path = "../../crates/bzspline-cli/src/time.rs"]
-pub mod time;
-
-/// The command's TopoJSON reader and writers, compiled from their source file
-/// like the readers.
-#[path = "../../crates/bzspline-cli/src/topojson.rs"]
-pub mod topojson;
-
-/// `bzspline smooth`'s smoothing of a GeoJSON document as one coverage,
-/// compiled from the command's source file like the readers.
-#[path = "../../crates/bzspline-cli/src/smooth/coverage.rs"]
-pub mod smooth_coverage;
-
-/// `bzspline smooth`'s smoothing ring by ring (`--independent`, positions
-/// with z), compiled from the command's source file like the readers.
-#[path = "../../crates/bzspline-cli/src/smooth/independent.rs"]
-pub mod smooth_independent;
+// The formats, as the command uses them.
+pub use bzspline_io::{api as serve_api, input, model, time, topojson};
 
 /// The checks of smoothed coverages that do not use the code under test
 /// (validity from `geo`, crossings by brute force, shared borders), compiled
@@ -45,61 +22,6 @@ pub mod judge;
 
 pub mod document;
 pub mod mosaic;
-
-/// The editor server's `POST /api/fit` handler body: request parsing and the
-/// response, without the HTTP layer.
-#[path = "../../crates/bzspline-cli/src/serve/api.rs"]
-pub mod serve_api;
-
-/// The types and the two defaults of the command's `cli` module that the
-/// readers name, with the same names and variants (the rest of that module is
-/// argument parsing).
-pub mod cli {
-    use std::path::PathBuf;
-
-    /// The default of `--max-points`.
-    pub const DEFAULT_MAX_POINTS: usize = 20_000_000;
-    /// The default of `--max-bytes`.
-    pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
-
-    /// Where the control points come from.
-    #[derive(Debug, Clone, Default)]
-    pub struct InputArgs {
-        /// Input file.
-        pub file: Option<PathBuf>,
-        /// One of the paper's examples.
-        pub example: Option<u8>,
-        /// Input format.
-        pub input_format: Option<InputFormat>,
-        /// Most points.
-        pub max_points: u64,
-        /// Most bytes.
-        pub max_bytes: u64,
-        /// Column of x.
-        pub x: Option<String>,
-        /// Column of y.
-        pub y: Option<String>,
-        /// Columns.
-        pub columns: Option<Vec<String>>,
-    }
-
-    /// Formats the readers understand.
-    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-    pub enum InputFormat {
-        /// Comma-, semicolon- or tab-separated values.
-        Csv,
-        /// Tab-separated values.
-        Tsv,
-        /// JSON.
-        Json,
-        /// GeoJSON.
-        Geojson,
-        /// Newline-delimited GeoJSON.
-        Geojsonseq,
-        /// TopoJSON.
-        Topojson,
-    }
-}
 
 /// The point limit the reader targets run with, small enough to be reached.
 pub const MAX_POINTS: usize = 64;

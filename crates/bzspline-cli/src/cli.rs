@@ -8,12 +8,11 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 
+use crate::input::{self, Points, Source};
 use crate::model::Mode;
 
-/// The default of `--max-points`.
-pub const DEFAULT_MAX_POINTS: usize = 20_000_000;
-/// The default of `--max-bytes`.
-pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+pub use crate::input::InputFormat;
+use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
 
 /// Where the control points come from.
 #[derive(Debug, Clone, Args)]
@@ -64,21 +63,43 @@ pub struct InputArgs {
     pub columns: Option<Vec<String>>,
 }
 
-/// Formats the readers understand.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum InputFormat {
-    /// Comma-, semicolon- or tab-separated values.
-    Csv,
-    /// Tab-separated values.
-    Tsv,
-    /// A JSON array of points, or an object with `knots` and `values` (or `points`).
-    Json,
-    /// A GeoJSON document.
-    Geojson,
-    /// Newline-delimited GeoJSON, one feature or geometry per line.
-    Geojsonseq,
-    /// A TopoJSON Topology (`smooth` only; recognised by its content too).
-    Topojson,
+impl InputArgs {
+    /// What the readers take: the arguments as an [`input::Source`].
+    #[must_use]
+    pub fn source(&self) -> Source {
+        Source {
+            file: self.file.clone(),
+            example: self.example,
+            format: self.input_format,
+            limits: self.limits(),
+            x: self.x.clone(),
+            y: self.y.clone(),
+            columns: self.columns.clone(),
+        }
+    }
+
+    /// `--max-points` and `--max-bytes`.
+    #[must_use]
+    pub fn limits(&self) -> input::Limits {
+        input::Limits {
+            max_points: usize::try_from(self.max_points).unwrap_or(usize::MAX),
+            max_bytes: self.max_bytes,
+        }
+    }
+
+    /// Reads the points ([`input::load`]) and says on standard error when
+    /// GeoJSON positions were cut to x, y, z.
+    ///
+    /// # Errors
+    ///
+    /// As [`input::load`].
+    pub fn load(&self) -> Result<Points> {
+        let points = input::load(&self.source())?;
+        if points.cut > 0 {
+            eprintln!("note: {}", input::cut_note(&points.source, points.cut));
+        }
+        Ok(points)
+    }
 }
 
 /// The shape of the spline.

@@ -79,7 +79,7 @@ pub fn num(v: f64) -> String {
 
 fn fit(a: &FitArgs) -> Result<()> {
     let shape = a.shape.validate()?;
-    let points = input::load(&a.input)?;
+    let points = a.input.load()?;
     let fitted = fit_points(&points, &shape)?;
     let mut sink = output::Sink::create(a.output.output.as_deref())?;
     match a.format {
@@ -259,7 +259,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
             (xs.clone(), pos)
         }
         (None, Some(path)) => {
-            let limits = input::Limits::of(&a.input);
+            let limits = a.input.limits();
             let (name, bytes) = input::read_source(Some(path), limits.max_bytes)?;
             let t = input::parse_table(&name, &bytes, None, limits.max_points)?;
             input::check_columns(&t, &[1], "1 (one abscissa per line)")?;
@@ -276,7 +276,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
         }
         (None, None) => usage!("give --at X1,... or --at-file FILE"),
     };
-    let points = input::load(&a.input)?;
+    let points = a.input.load()?;
     let fitted = match fit_points(&points, &shape)? {
         Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate.into())),
         other => other,
@@ -383,7 +383,7 @@ fn sample(a: &SampleArgs) -> Result<()> {
             }
         }
     }
-    let points = input::load(&a.input)?;
+    let points = a.input.load()?;
     let fitted = fit_points(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
     let (lo, hi) = fitted.curve().domain();

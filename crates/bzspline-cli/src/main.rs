@@ -6,15 +6,14 @@ use clap::Parser;
 mod cli;
 mod commands;
 mod fit;
-mod input;
-mod model;
 mod output;
 mod plot;
 #[cfg(feature = "serve")]
 mod serve;
 mod smooth;
-mod time;
-mod topojson;
+
+// The formats, from the library crate every binding shares.
+use bzspline_io::{input, model, time, topojson};
 
 fn main() {
     let args = match commands::Cli::try_parse() {

@@ -8,7 +8,7 @@ use super::{read_overlay, render_pdf, render_png, render_svg, FigureArgs, PlotDa
 use crate::cli::{check_alpha, usage, InputArgs, OutputArgs, ShapeArgs};
 use crate::fit::fit_points;
 use crate::model::{Fitted, Mode};
-use crate::{input, output};
+use crate::output;
 
 /// Arguments of `plot`.
 #[derive(Debug, Args)]
@@ -46,7 +46,7 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     if source.file.is_none() && source.example.is_none() {
         source.example = Some(1);
     }
-    let points = input::load(&source)?;
+    let points = source.load()?;
     let sweep = &a.figure.alpha_sweep;
     let mut data = Vec::new();
     if sweep.is_empty() {

@@ -3,7 +3,7 @@
 //! with the library and sent back as JSON with an SVG path of exact cubic
 //! segments.
 
-mod api;
+use bzspline_io::api;
 mod guard;
 
 use std::io::Write;

@@ -9,8 +9,7 @@
 //! carry z. Newline-delimited GeoJSON is streamed, a coverage per line; a
 //! table of points (or `--example`) is one LineString.
 
-mod coverage;
-mod independent;
+use bzspline_io::smooth::{coverage, independent};
 
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
 use std::path::Path;
@@ -104,7 +103,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     let mut job = Job {
         args: a,
         lib,
-        limits: input::Limits::of(&a.input),
+        limits: a.input.limits(),
         output,
         object_name,
         z_at: None,
@@ -117,7 +116,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         InputFormat::Geojsonseq => job.stream(file, &mut sink)?,
         InputFormat::Csv | InputFormat::Tsv => {
             // A table (or an example) is one line: its rows are the vertices.
-            let points = input::load(&a.input)?;
+            let points = a.input.load()?;
             input::check_columns(&points, &[2, 3], "2 or 3 coordinates")?;
             let line: Vec<Position> = points.rows().map(|r| Position::from(r.to_vec())).collect();
             let mut feature = Feature::from(Geometry::new(GeometryValue::LineString {
@@ -144,11 +143,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     }
     sink.finish()?;
     if let (n @ 1.., Some(at)) = &job.cut {
-        eprintln!(
-            "note: {at}: {n} position{} with more than {} numbers: kept x, y, z",
-            if *n == 1 { "" } else { "s" },
-            input::MAX_POSITION_LEN
-        );
+        eprintln!("note: {}", input::cut_note(at, *n));
     }
     if let Some(at) = &job.z_at {
         eprintln!("note: {at}: positions with z: smoothed ring by ring (the coverage's topology is planar)");

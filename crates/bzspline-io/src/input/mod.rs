@@ -21,16 +21,83 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
 
-use crate::cli::{InputArgs, InputFormat};
 
 pub use examples::example;
-#[cfg(test)]
 pub use examples::EXAMPLE1;
 pub use explain::explain;
 pub use geojson::parse_geojson_points;
 pub use geometry::{check_document, to_geojson, MAX_POSITION_LEN};
 pub use json::parse_json;
 pub use table::{parse_table, parse_table_with, Col, Select};
+
+/// The default of the largest number of points one input may hold (the
+/// command's `--max-points`): about 2 GB fitted as y(x), 8 GB as a planar
+/// curve.
+pub const DEFAULT_MAX_POINTS: usize = 20_000_000;
+/// The default of the largest input in bytes (the command's `--max-bytes`).
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+
+/// The formats the readers understand.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+pub enum InputFormat {
+    /// Comma-, semicolon- or tab-separated values.
+    Csv,
+    /// Tab-separated values.
+    Tsv,
+    /// A JSON array of points, or an object with `knots` and `values` (or `points`).
+    Json,
+    /// A GeoJSON document.
+    Geojson,
+    /// Newline-delimited GeoJSON, one feature or geometry per line.
+    Geojsonseq,
+    /// A TopoJSON Topology (`smooth` only; recognised by its content too).
+    Topojson,
+}
+
+/// Where control points come from and how much of them to take: what
+/// [`load`] reads.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Source {
+    /// The file; `None` or `-` for standard input.
+    pub file: Option<std::path::PathBuf>,
+    /// One of the paper's examples (1 or 2) instead of a file.
+    pub example: Option<u8>,
+    /// The format; by default from the extension, else from the content.
+    pub format: Option<InputFormat>,
+    /// The most points (and bytes) to take.
+    pub limits: Limits,
+    /// A table's column of x, by header name or number (from 1).
+    pub x: Option<String>,
+    /// A table's column of y, by header name or number.
+    pub y: Option<String>,
+    /// A table's columns, in order, by header name or number.
+    pub columns: Option<Vec<String>>,
+}
+
+impl Default for Source {
+    fn default() -> Self {
+        Source {
+            file: None,
+            example: None,
+            format: None,
+            limits: Limits::DEFAULT,
+            x: None,
+            y: None,
+            columns: None,
+        }
+    }
+}
+
+/// What the command says on standard error when `cut` GeoJSON positions of
+/// `source` had more than [`MAX_POSITION_LEN`] numbers.
+#[must_use]
+pub fn cut_note(source: &str, cut: usize) -> String {
+    format!(
+        "{source}: {cut} position{} with more than {MAX_POSITION_LEN} numbers: kept x, y, z",
+        if cut == 1 { "" } else { "s" }
+    )
+}
 
 /// Where a point came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -207,20 +274,16 @@ pub struct Limits {
 }
 
 impl Limits {
-    /// The command's defaults (see `--max-points` and `--max-bytes`).
-    #[cfg(test)]
+    /// [`DEFAULT_MAX_POINTS`] and [`DEFAULT_MAX_BYTES`].
     pub const DEFAULT: Limits = Limits {
-        max_points: crate::cli::DEFAULT_MAX_POINTS,
-        max_bytes: crate::cli::DEFAULT_MAX_BYTES,
+        max_points: DEFAULT_MAX_POINTS,
+        max_bytes: DEFAULT_MAX_BYTES,
     };
+}
 
-    /// The limits the input arguments set.
-    #[must_use]
-    pub fn of(args: &InputArgs) -> Limits {
-        Limits {
-            max_points: usize::try_from(args.max_points).unwrap_or(usize::MAX),
-            max_bytes: args.max_bytes,
-        }
+impl Default for Limits {
+    fn default() -> Self {
+        Limits::DEFAULT
     }
 }
 
@@ -341,16 +404,16 @@ const GEOJSON_TYPES: [&str; 9] = [
 /// # Errors
 ///
 /// I/O errors, and `FILE:LINE: ...` for anything wrong in the data.
-pub fn load(args: &InputArgs) -> Result<Points> {
+pub fn load(args: &Source) -> Result<Points> {
     if let Some(n) = args.example {
         return Ok(example(n));
     }
     let file = args.file.as_deref();
-    let limits = Limits::of(args);
+    let limits = args.limits;
     let (name, bytes) = read_source(file, limits.max_bytes)?;
     let max = limits.max_points;
     let format = args
-        .input_format
+        .format
         .or_else(|| format_by_extension(file))
         .unwrap_or_else(|| sniff(&bytes));
     let select = Select {
@@ -388,13 +451,6 @@ pub fn load(args: &InputArgs) -> Result<Points> {
             parse_geojson_points(&format!("{name}:{}", i + 1), line.as_bytes(), max)
         }
     }?;
-    if points.cut > 0 {
-        eprintln!(
-            "note: {name}: {} position{} with more than {MAX_POSITION_LEN} numbers: kept x, y, z",
-            points.cut,
-            if points.cut == 1 { "" } else { "s" }
-        );
-    }
     Ok(if table { over_index(points) } else { points })
 }
 

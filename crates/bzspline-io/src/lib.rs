@@ -1,0 +1,23 @@
+//! The formats of [bzspline](https://github.com/bzspline/bzspline): what the
+//! `bzspline` command, its editor server, the fuzz targets and the language
+//! bindings read and write, defined once.
+//!
+//! - [`input`]: control points from CSV/TSV tables (named columns, dates),
+//!   JSON arrays and `fit` objects, GeoJSON (every geometry checked first) and
+//!   the paper's examples, each point knowing the file and line it came from.
+//! - [`model`]: a fit (a spline y(x) or a curve) and its JSON and SVG forms;
+//!   the one number formatter ([`bzspline::Shortest`]) and fraction parser.
+//! - [`time`]: ISO 8601 dates and date-times as numbers and back.
+//! - [`topojson`]: TopoJSON Topologies in (quantized or not) and out.
+//! - [`smooth`]: a GeoJSON document smoothed as one coverage or ring by ring.
+//! - [`api`]: the editor's `POST /api/fit` request and response.
+//!
+//! Errors are [`anyhow::Error`]s of one line that start with the source's
+//! name (`pts.csv:4: ...`, `map.geojson: feature 2, coordinates[1]: ...`).
+
+pub mod api;
+pub mod input;
+pub mod model;
+pub mod smooth;
+pub mod time;
+pub mod topojson;
