@@ -25,7 +25,7 @@
     alphas: [],
     mode: 'function',
     closed: false,
-    param: 'uniform',
+    param: 'centripetal',
     through: false,
   };
   state.alphas = state.points.slice(1).map(() => 0.5);
@@ -557,7 +557,7 @@
   $('fit-view').addEventListener('click', fitView);
   $('reset').addEventListener('click', () => {
     remember();
-    state.param = 'uniform';
+    state.param = 'centripetal';
     state.through = false;
     loadPoints(EXAMPLE_1, 'function', false);
     say("The paper's Example 1.");

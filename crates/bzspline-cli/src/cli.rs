@@ -10,6 +10,7 @@ use clap::{Args, ValueEnum};
 
 use crate::input::{self, Points, Source};
 use crate::model::Mode;
+use bzspline_io::options::parse_alpha;
 
 pub use crate::input::InputFormat;
 use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
@@ -122,7 +123,7 @@ pub struct ShapeArgs {
         value_name = "A1,...",
         value_delimiter = ',',
         allow_hyphen_values = true,
-        value_parser = crate::model::parse_fraction
+        value_parser = bzspline_io::options::parse_fraction
     )]
     pub alphas: Option<Vec<f64>>,
     /// Treat rows as control points of a parametric curve (2D or 3D) instead of
@@ -132,9 +133,11 @@ pub struct ShapeArgs {
     /// Close the curve (implies --curve).
     #[arg(long)]
     pub closed: bool,
-    /// Curve parameters: uniform (tau = 0, 1, ...), chordal or centripetal.
-    #[arg(long, value_enum, value_name = "KIND", default_value_t = ParamArg::Uniform)]
-    pub param: ParamArg,
+    /// Curve parameters: uniform (tau = 0, 1, ...), chordal (steps of the
+    /// distances between points) or centripetal (of their square roots; the
+    /// default).
+    #[arg(long, value_name = "KIND", value_parser = param_parser())]
+    pub param: Option<bzspline::Param>,
     /// Pass through every point instead of touching the legs of their polygon
     /// (the interpolating variant): the points are then the knot values, and
     /// the solved control values are what `fit` prints as `values`.
@@ -142,15 +145,11 @@ pub struct ShapeArgs {
     pub through: bool,
 }
 
-/// The `--param` choices.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ParamArg {
-    /// Knots 0, 1, 2, ...
-    Uniform,
-    /// Steps equal to the distances between control points.
-    Chordal,
-    /// Steps equal to the square roots of those distances.
-    Centripetal,
+/// `--param`: one of [`bzspline::Param::NAMES`], read by the library.
+fn param_parser() -> impl clap::builder::TypedValueParser<Value = bzspline::Param> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(bzspline::Param::NAMES)
+        .map(|s| s.parse().unwrap_or_default())
 }
 
 /// Where the result goes.
@@ -279,12 +278,13 @@ pub struct SampleArgs {
 pub struct SmoothArgs {
     #[command(flatten)]
     pub input: InputArgs,
-    /// One shape parameter for every interval, in [1/3, 2/3] (default 1/2).
-    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    /// One shape parameter for every interval, in [1/3, 2/3] (default 1/2); a
+    /// decimal or a fraction (`1/3`, `2/3`).
+    #[arg(long, value_name = "A", allow_hyphen_values = true, value_parser = parse_alpha)]
     pub alpha: Option<f64>,
     /// Curve parameters: uniform, chordal or centripetal.
-    #[arg(long, value_enum, value_name = "KIND", default_value_t = ParamArg::Centripetal)]
-    pub param: ParamArg,
+    #[arg(long, value_name = "KIND", value_parser = param_parser(), default_value_t = bzspline::Param::default())]
+    pub param: bzspline::Param,
     /// Largest distance between the smooth curve and the output polyline, in
     /// coordinate units. Default: 1e-4 of the diagonal of the data's bounding
     /// box (of each line's, for newline-delimited GeoJSON).
@@ -403,20 +403,6 @@ fn at_least_two(s: &str) -> Result<usize, String> {
     }
 }
 
-/// A shape parameter: a decimal or a fraction `p/q`, in [1/3, 2/3].
-///
-/// # Errors
-///
-/// Text that is no number or fraction, or a value outside the range.
-pub fn parse_alpha(s: &str) -> Result<f64, String> {
-    let v = crate::model::parse_fraction(s)?;
-    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("{} is outside [1/3, 2/3]", s.trim()))
-    }
-}
-
 fn positive(s: &str) -> Result<f64, String> {
     let v = parse_number(s)?;
     if v.is_finite() && v > 0.0 {
@@ -477,13 +463,13 @@ impl ShapeArgs {
             }
         }
         let curve = self.curve || self.closed;
-        if !curve && self.param != ParamArg::Uniform {
+        if !curve && self.param.is_some() {
             usage!("--param applies to curves only: add --curve");
         }
         Ok(Shape {
             mode: if curve { Mode::Curve } else { Mode::Function },
             closed: self.closed,
-            param: self.param.into(),
+            param: self.param.clone().unwrap_or_default(),
             alpha: self.alpha,
             alphas: self.alphas.clone(),
             through: self.through,
@@ -500,16 +486,6 @@ pub fn check_alpha(name: &str, a: f64) -> Result<()> {
         usage!("{name} = {a} is outside [1/3, 2/3]");
     }
     Ok(())
-}
-
-impl From<ParamArg> for bzspline::Param {
-    fn from(p: ParamArg) -> Self {
-        match p {
-            ParamArg::Uniform => bzspline::Param::Uniform,
-            ParamArg::Chordal => bzspline::Param::Chordal,
-            ParamArg::Centripetal => bzspline::Param::Centripetal,
-        }
-    }
 }
 
 impl From<ExtrapolateArg> for bzspline::Extrapolate {

@@ -615,9 +615,10 @@ fn fit_3d_curve_lists_control_points_per_row() {
     let v: Value = serde_json::from_str(&ok(&["fit", "helix.csv", "--curve"])).unwrap();
     assert_eq!(v["dimension"], 3);
     assert_eq!(v["svg_path"], Value::Null);
+    // Without --param, the library's default (centripetal).
     assert_eq!(
         points(&v["knot_values"]),
-        helix(bzspline::Param::Uniform).knot_points()
+        helix(bzspline::Param::default()).knot_points()
     );
 }
 
@@ -1322,5 +1323,96 @@ fn readme_dated_series_output_is_current() {
     assert_eq!(
         ok(&["eval", visitors, "--at", "2024-01-04,2024-01-09T12:00:00Z", "--derivative", "1"]),
         "day,visitors,dvisitors\n2024-01-04,144,16\n2024-01-09T12:00:00Z,144.0143385956696,1.266883057550963\n"
+    );
+}
+
+/// The same points, every default taken: the command, the server's protocol
+/// and the library give the same curve, bit for bit (Python's `Curve` is
+/// checked against the command in `crates/bzspline-py/tests/test_defaults.py`).
+#[test]
+fn defaults_agree_across_entry_points() {
+    let pts = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [3.0, 5.0]];
+    let lib = bzspline::Curve::open(&pts).unwrap();
+    // Centripetal: steps of the square roots of the legs (1, 1, 1 and 5).
+    let want_end: f64 = 3.0 + 5f64.sqrt();
+    assert!(
+        (lib.knots()[4] - want_end).abs() < 1e-12,
+        "{:?}",
+        lib.knots()
+    );
+    let csv = "x,y\n0,0\n1,0\n1,1\n0,1\n3,5\n";
+    let o = run(
+        &["fit", "--curve", "--input-format", "csv"],
+        Some(csv.as_bytes()),
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let command: Value = serde_json::from_str(&o.stdout).unwrap();
+    let body = serde_json::json!({"mode": "curve", "points": pts}).to_string();
+    let limits = bzspline_io::api::ParseLimits {
+        max_points: 100,
+        max_samples: 100,
+    };
+    let req = bzspline_io::api::parse(body.as_bytes(), limits).unwrap();
+    let server = bzspline_io::api::fit(&req).unwrap();
+    let knots = |v: &Value| -> Vec<f64> {
+        v["knots"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|k| k.as_f64().unwrap())
+            .collect()
+    };
+    assert_eq!(knots(&command), lib.knots());
+    assert_eq!(knots(&server), lib.knots());
+    // The segments' control points, as numbers (the command writes `0`, the
+    // server `0.0`).
+    let segments = |v: &Value| -> Vec<Vec<f64>> {
+        v["segments"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| {
+                s.as_array()
+                    .unwrap()
+                    .iter()
+                    .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+                    .collect()
+            })
+            .collect()
+    };
+    let want: Vec<Vec<f64>> = (0..lib.len())
+        .map(|k| lib.segment_points(k).unwrap())
+        .collect();
+    assert_eq!(segments(&command), want);
+    assert_eq!(segments(&server), want);
+}
+
+/// `--alpha` is read by one parser everywhere: fractions work for `smooth`
+/// as for `fit`, and give what the decimal gives.
+#[test]
+fn smooth_takes_alpha_as_a_fraction() {
+    let frac = ok(&[
+        "smooth",
+        "mosaic.geojson",
+        "--alpha",
+        "1/3",
+        "--tolerance",
+        "0.01",
+    ]);
+    let dec = ok(&[
+        "smooth",
+        "mosaic.geojson",
+        "--alpha",
+        "0.3333333333333333",
+        "--tolerance",
+        "0.01",
+    ]);
+    assert_eq!(frac, dec);
+    let o = run(&["smooth", "mosaic.geojson", "--alpha", "0.9"], None);
+    assert_eq!(o.code, 2, "{}", o.stderr);
+    assert!(
+        o.stderr.contains("0.9 is outside [1/3, 2/3]"),
+        "{}",
+        o.stderr
     );
 }

@@ -103,9 +103,8 @@ fn number(v: &Value, what: impl Fn() -> String) -> Result<f64, ApiError> {
 /// (`"1/3"`).
 fn alpha_of(v: &Value, what: impl Fn() -> String) -> Result<f64, ApiError> {
     match v {
-        Value::String(text) => {
-            model::parse_fraction(text).map_err(|e| ApiError::new(422, format!("{}: {e}", what())))
-        }
+        Value::String(text) => crate::options::parse_fraction(text)
+            .map_err(|e| ApiError::new(422, format!("{}: {e}", what()))),
         _ => number(v, what),
     }
 }
@@ -159,15 +158,10 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
         }
     };
     let param = match raw.param.as_deref() {
-        None | Some("uniform") => Param::Uniform,
-        Some("chordal") => Param::Chordal,
-        Some("centripetal") => Param::Centripetal,
-        Some(other) => {
-            return Err(ApiError::new(
-                422,
-                format!("param {other:?} is not \"uniform\", \"chordal\" or \"centripetal\""),
-            ))
-        }
+        None => Param::default(),
+        Some(name) => name
+            .parse()
+            .map_err(|e| ApiError::new(422, format!("param {e}")))?,
     };
     let alpha = match &raw.alpha {
         None | Some(Value::Null) => None,

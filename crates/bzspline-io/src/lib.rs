@@ -5,8 +5,10 @@
 //! - [`input`]: control points from CSV/TSV tables (named columns, dates),
 //!   JSON arrays and `fit` objects, GeoJSON (every geometry checked first) and
 //!   the paper's examples, each point knowing the file and line it came from.
-//! - [`model`]: a fit (a spline y(x) or a curve) and its JSON and SVG forms;
-//!   the one number formatter ([`bzspline::Shortest`]) and fraction parser.
+//! - [`model`]: a fit (a spline y(x) or a curve) and its JSON and SVG forms,
+//!   numbers written by the one formatter ([`bzspline::Shortest`]).
+//! - [`options`]: the options every entry point takes, parsed once (alphas
+//!   as decimals or fractions).
 //! - [`time`]: ISO 8601 dates and date-times as numbers and back.
 //! - [`topojson`]: TopoJSON Topologies in (quantized or not) and out.
 //! - [`smooth`]: a GeoJSON document smoothed as one coverage or ring by ring.
@@ -18,6 +20,7 @@
 pub mod api;
 pub mod input;
 pub mod model;
+pub mod options;
 pub mod smooth;
 pub mod time;
 pub mod topojson;

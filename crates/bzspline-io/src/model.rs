@@ -467,29 +467,6 @@ pub fn all_finite(rows: &[Vec<f64>]) -> bool {
     rows.iter().flatten().all(|v| v.is_finite())
 }
 
-/// A number written as a decimal or a fraction `p/q` (`1/3`, `0.5`): the
-/// quotient of the two parsed numbers, the nearest double to the fraction
-/// when `p` and `q` are exact.
-///
-/// # Errors
-///
-/// The text is neither a finite number nor a fraction with a non-zero denominator.
-pub fn parse_fraction(s: &str) -> Result<f64, String> {
-    let item = s.trim();
-    let v = match item.split_once('/') {
-        Some((p, q)) => match (p.trim().parse::<f64>(), q.trim().parse::<f64>()) {
-            (Ok(p), Ok(q)) if q != 0.0 => p / q,
-            _ => f64::NAN,
-        },
-        None => item.parse::<f64>().unwrap_or(f64::NAN),
-    };
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(format!("{item:?} is not a number or a fraction p/q"))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

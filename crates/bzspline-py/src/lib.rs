@@ -705,12 +705,10 @@ impl Spline {
 
 fn param_arg(p: &Bound<'_, PyAny>) -> PyResult<(Param, String)> {
     if let Ok(s) = p.extract::<String>() {
-        return match s.as_str() {
-            "uniform" => Ok((Param::Uniform, s)),
-            "chordal" => Ok((Param::Chordal, s)),
-            "centripetal" => Ok((Param::Centripetal, s)),
-            _ => Err(PyValueError::new_err(format!(
-                "param = {s:?}: expected 'uniform', 'chordal', 'centripetal' or an array of parameters"
+        return match s.parse::<Param>() {
+            Ok(param) => Ok((param, s)),
+            Err(e) => Err(PyValueError::new_err(format!(
+                "param {e}, nor an array of parameters"
             ))),
         };
     }
@@ -791,7 +789,7 @@ impl Curve {
             let dim = shape[1];
             let (param, name) = match param {
                 Some(p) => param_arg(p)?,
-                None => (Param::Centripetal, "centripetal".to_owned()),
+                None => (Param::default(), Param::default().to_string()),
             };
             let alpha = match alpha {
                 Some(a) => alpha_arg(a)?,

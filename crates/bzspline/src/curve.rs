@@ -55,21 +55,88 @@ use crate::validate::{
 /// units.
 pub const DEFAULT_ACCURACY: f64 = 1e-9;
 
-/// How the parameters `tau` of the control points are chosen.
+/// How the parameters `tau` of the control points are chosen
+/// (`docs/method.md` §6).
+///
+/// The default is [`Param::Centripetal`], for the command, its server, the
+/// bindings and the coverage smoothing alike: it follows the points' spacing
+/// as chord lengths do but damps long legs, so that uneven spacing neither
+/// makes cusps and loops (as uniform parameters do where a short leg follows
+/// a long one) nor overshoots on long legs (as chordal ones can), the choice
+/// of Catmull-Rom curves (`d3.curveCatmullRom`'s default) and of most curve
+/// editors. The parameters of a shape do not change under rotation,
+/// translation or scaling of its points.
 #[derive(Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum Param {
-    /// `tau_i = i`. The default.
-    #[default]
+    /// `tau_i = i`.
     Uniform,
     /// `tau_{i+1} - tau_i = |P_{i+1} - P_i|` (chord lengths), `tau_0 = 0`.
     Chordal,
-    /// `tau_{i+1} - tau_i = |P_{i+1} - P_i|^(1/2)`, `tau_0 = 0`.
+    /// `tau_{i+1} - tau_i = |P_{i+1} - P_i|^(1/2)`, `tau_0 = 0`. The default.
+    #[default]
     Centripetal,
     /// The given parameters: one per point for an open curve, one more for a
     /// closed curve (the last closes the loop). Strictly increasing.
     Given(Vec<f64>),
+}
+
+impl Param {
+    /// The names [`Param::from_str`](std::str::FromStr) reads, in the order of
+    /// the variants: the command's `--param`, the server's and the bindings'
+    /// `param`.
+    pub const NAMES: [&'static str; 3] = ["uniform", "chordal", "centripetal"];
+
+    /// The name of a parametrisation chosen by name; `None` for given
+    /// parameters.
+    #[must_use]
+    pub fn name(&self) -> Option<&'static str> {
+        match self {
+            Param::Uniform => Some(Self::NAMES[0]),
+            Param::Chordal => Some(Self::NAMES[1]),
+            Param::Centripetal => Some(Self::NAMES[2]),
+            Param::Given(_) => None,
+        }
+    }
+}
+
+/// Its name (`uniform`, `chordal`, `centripetal`), or `given` for given
+/// parameters.
+impl std::fmt::Display for Param {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name().unwrap_or("given"))
+    }
+}
+
+/// A name that is not one of [`Param::NAMES`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnknownParam(pub String);
+
+impl std::fmt::Display for UnknownParam {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:?} is not \"uniform\", \"chordal\" or \"centripetal\"",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for UnknownParam {}
+
+impl std::str::FromStr for Param {
+    type Err = UnknownParam;
+
+    /// `uniform`, `chordal` or `centripetal`, as [`Param::NAMES`] lists them.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "uniform" => Ok(Param::Uniform),
+            "chordal" => Ok(Param::Chordal),
+            "centripetal" => Ok(Param::Centripetal),
+            _ => Err(UnknownParam(s.to_owned())),
+        }
+    }
 }
 
 /// What to do with a control point equal to the one before it.
@@ -122,7 +189,7 @@ impl<'a> CurveBuilder<'a> {
             dim,
             points: Cow::Borrowed(points),
             closed: false,
-            param: Param::Uniform,
+            param: Param::default(),
             alpha: DEFAULT_ALPHA,
             alphas: None,
             repeats: Repeats::Reject,
@@ -137,7 +204,7 @@ impl<'a> CurveBuilder<'a> {
         self
     }
 
-    /// The parameter choice (default [`Param::Uniform`]).
+    /// The parameter choice (default [`Param::Centripetal`]).
     #[must_use]
     pub fn param(mut self, param: Param) -> Self {
         self.param = param;
@@ -278,12 +345,14 @@ enum ParamKind {
 /// ```
 /// use bzspline::Curve;
 /// let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])?;
-/// assert_eq!(c.eval(0.0)?, vec![0.0, 0.0]);
-/// assert_eq!(c.eval(3.0)?, vec![4.0, 0.0]);
+/// // Centripetal parameters (the default): steps of sqrt(|leg|).
+/// let (lo, hi) = c.domain();
+/// assert_eq!((lo, hi), (0.0, c.knots()[3]));
+/// assert_eq!(c.eval(lo)?, vec![0.0, 0.0]);
+/// assert_eq!(c.eval(hi)?, vec![4.0, 0.0]);
 /// // Leg 1 is touched at its middle, where the curve runs parallel to it.
 /// let (t, p) = &c.tangent_points()[1];
-/// assert_eq!(*t, 1.5);
-/// assert_eq!(p, &vec![2.0, 2.0]);
+/// assert!((p[0] - 2.0).abs() < 1e-12 && (p[1] - 2.0).abs() < 1e-12);
 /// assert!(c.deriv(*t, 1)?[1].abs() < 1e-12);
 /// # Ok::<(), bzspline::Error>(())
 /// ```
@@ -1317,8 +1386,11 @@ impl Curve {
     /// # Examples
     ///
     /// ```
-    /// use bzspline::Curve;
-    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// use bzspline::{Curve, Param};
+    /// // Uniform parameters: the domain is [0, 2].
+    /// let c = Curve::builder_from(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])
+    ///     .param(Param::Uniform)
+    ///     .build()?;
     /// let p = c.sample(3)?;
     /// assert_eq!(p.params(), &[0.0, 1.0, 2.0]);
     /// assert_eq!(p.point(2), Some(&[2.0, 0.0][..]));
@@ -1730,7 +1802,7 @@ mod tests {
         // The paper's Example 1 without its repeated value (a curve refuses
         // repeated points).
         let f = [1.0, 3.0, 3.5, 1.0, 2.0, 7.0, 1.5, 1.0, 10.0, 2.0, 1.5];
-        let c = Curve::builder(&f, 1).build().unwrap();
+        let c = Curve::builder(&f, 1).param(Param::Uniform).build().unwrap();
         let tau: Vec<f64> = (0..f.len()).map(|i| i as f64).collect();
         let s = Spline::new(&tau, &f).unwrap();
         // Spline::build runs its own fused sweep (same equations, another

@@ -94,7 +94,9 @@ mod tridiag;
 mod validate;
 
 pub use bezier::CubicBez;
-pub use curve::{BBox, Curve, CurveBuilder, Nearest, Param, Repeats, DEFAULT_ACCURACY};
+pub use curve::{
+    BBox, Curve, CurveBuilder, Nearest, Param, Repeats, UnknownParam, DEFAULT_ACCURACY,
+};
 pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
 pub use num::Shortest;

@@ -49,7 +49,7 @@ pub struct FigureArgs {
     #[arg(long)]
     pub equal_aspect: bool,
     /// Draw one spline per shape parameter in the list, e.g. `1/3,1/2,2/3`.
-    #[arg(long, value_name = "A,...", value_delimiter = ',', value_parser = crate::cli::parse_alpha)]
+    #[arg(long, value_name = "A,...", value_delimiter = ',', value_parser = bzspline_io::options::parse_alpha)]
     pub alpha_sweep: Vec<f64>,
     /// Add the curves of a JSON file to the figure (repeatable):
     /// `[{"label": "...", "points": [[x, y], ...]}, ...]`.
@@ -173,7 +173,7 @@ mod tests {
         assert_eq!(cli.plot.alpha_sweep, vec![1.0 / 3.0, 0.5, 2.0 / 3.0]);
         assert!(Cli::try_parse_from(["t", "--width", "0"]).is_err());
         assert!(Cli::try_parse_from(["t", "--scale", "nan"]).is_err());
-        assert!(crate::model::parse_fraction("1/0").is_err());
+        assert!(bzspline_io::options::parse_fraction("1/0").is_err());
         assert!(Cli::try_parse_from(["t", "--alpha-sweep", "0.5,0.7"]).is_err());
         let e = Cli::try_parse_from(["t", "--alpha-sweep", "0.5,x"])
             .err()

@@ -15,7 +15,6 @@ use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use bzspline::Param;
 use bzspline_geo::{SmoothOptions, Stats, DEFAULT_TOLERANCE_FRACTION};
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 use serde_json::Value;
@@ -53,9 +52,7 @@ struct Job<'a> {
 pub fn run(a: &SmoothArgs) -> Result<()> {
     let alpha = a.alpha.unwrap_or(bzspline::DEFAULT_ALPHA);
     crate::cli::check_alpha("--alpha", alpha)?;
-    let mut lib = SmoothOptions::default()
-        .alpha(alpha)
-        .param(Param::from(a.param));
+    let mut lib = SmoothOptions::default().alpha(alpha).param(a.param.clone());
     lib.tolerance = a.tolerance;
     lib.keep_angle = a.keep_angle;
     lib.through = a.through;

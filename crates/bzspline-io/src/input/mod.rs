@@ -21,7 +21,6 @@ use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
 
-
 pub use examples::example;
 pub use examples::EXAMPLE1;
 pub use explain::explain;

@@ -600,7 +600,10 @@ mod tests {
 
     #[test]
     fn bad_accuracy_and_ranges_are_refused() {
-        let c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]]).unwrap();
+        let c = Curve::builder(&[0.0, 0.0, 1.0, 1.0, 2.0, 0.0], 2)
+            .param(Param::Uniform)
+            .build()
+            .unwrap();
         assert!(c.arclen(0.0).is_err());
         assert!(c.arclen(f64::NAN).is_err());
         assert!(c.arclen_range(-1.0, 1.0, 1e-9).is_err());

@@ -401,7 +401,10 @@ mod tests {
                 assert_eq!(c.knot_points()[100], old[100]);
             }
         }
-        let mut c = Curve::open(&pts).unwrap();
+        let mut c = Curve::builder_from(&pts)
+            .param(Param::Uniform)
+            .build()
+            .unwrap();
         assert!(matches!(
             c.move_point(3, &pts[4], 0.0),
             Err(Error::RepeatedPoint { index: 4 })
@@ -413,6 +416,10 @@ mod tests {
         assert!(changed.len() > 100);
         let mut big = pts.clone();
         big[3] = [1e300, 0.0];
-        assert_eq!(c, Curve::open(&big).unwrap());
+        let fresh = Curve::builder_from(&big)
+            .param(Param::Uniform)
+            .build()
+            .unwrap();
+        assert_eq!(c, fresh);
     }
 }

@@ -1,0 +1,53 @@
+"""Python and the command agree when every default is taken: the same points
+give the same curve, bit for bit (the command and the server's protocol are
+compared in crates/bzspline-cli/tests/cli.rs)."""
+
+import json
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import bzspline
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+
+
+def command():
+    given = os.environ.get("BZSPLINE_BIN")
+    for p in [given, ROOT / "target/debug/bzspline", ROOT / "target/release/bzspline"]:
+        if p and pathlib.Path(p).is_file():
+            return str(p)
+    pytest.skip("no bzspline binary (cargo build -p bzspline-cli, or set BZSPLINE_BIN)")
+
+
+def fit(args, table):
+    out = subprocess.run([command(), "fit", "--input-format", "csv", *args], input=table,
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+PTS = [[0, 0], [1, 0], [1, 1], [0, 1], [3, 5]]
+TABLE = "x,y\n" + "".join(f"{x},{y}\n" for x, y in PTS)
+
+
+def test_a_curve_with_defaults_is_the_commands():
+    c = bzspline.Curve(PTS)
+    got = fit(["--curve"], TABLE)
+    assert c.knots[-1] == 3 + np.sqrt(5)  # centripetal, as everywhere
+    assert np.array_equal(c.knots, np.array(got["knots"]))
+    assert np.array_equal(c.segments, np.array(got["segments"]))
+
+
+def test_a_closed_curve_and_a_spline_with_defaults_are_the_commands():
+    c = bzspline.Curve(PTS, closed=True)
+    got = fit(["--closed"], TABLE)
+    assert np.array_equal(c.knots, np.array(got["knots"]))
+    assert np.array_equal(c.segments, np.array(got["segments"]))
+    x, y = [0.0, 1.0, 2.0, 4.0], [0.0, 2.0, 1.0, 3.0]
+    s = bzspline.Spline(x, y)
+    got = fit([], "x,y\n" + "".join(f"{a},{b}\n" for a, b in zip(x, y)))
+    assert np.array_equal(s.knot_values, np.array(got["knot_values"]))
+    assert np.array_equal(s.segments, np.array(got["segments"]))
