@@ -45,7 +45,9 @@ pub fn smooth(bytes: &[u8], opts: &SmoothOptions, independent: bool) -> Result<V
         let o = independent::Options {
             alpha: opts.alpha,
             param: opts.param.clone(),
-            tolerance: opts.tolerance.unwrap_or(1.0),
+            tolerance: opts
+                .tolerance
+                .unwrap_or_else(|| bzspline_io::smooth::default_tolerance(&doc)),
             limits: input::Limits {
                 max_points: crate::MAX_POINTS * 16,
                 max_bytes: u64::MAX,

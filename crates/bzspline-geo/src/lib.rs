@@ -50,5 +50,7 @@ pub use coverage::{coverage_chains, Coverage, Location};
 pub use error::Error;
 pub use levels::{arc_key, Levels};
 pub use nodes::Nodes;
-pub use smooth::{SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL};
+pub use smooth::{
+    default_tolerance_of, SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL,
+};
 pub use topology::{ArcRef, Chain, ChainKind, Topology};

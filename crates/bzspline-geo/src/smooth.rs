@@ -658,6 +658,16 @@ fn bounds(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> ([f64; 2], [f64; 2]
 
 fn default_tolerance(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> f64 {
     let (lo, hi) = bounds(arcs, extent);
+    default_tolerance_of(lo, hi)
+}
+
+/// The flattening tolerance smoothing takes when none is given: the
+/// fraction [`DEFAULT_TOLERANCE_FRACTION`] of the diagonal of the box from
+/// `lo` to `hi` (the data's extent, `[x, y]`), or 1 when that diagonal is zero
+/// or not finite (a single position, no positions). Every entry point (the
+/// command, ring by ring too, and the bindings) takes its default from here.
+#[must_use]
+pub fn default_tolerance_of(lo: [f64; 2], hi: [f64; 2]) -> f64 {
     let diag = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     if diag.is_finite() && diag > 0.0 {
         diag * DEFAULT_TOLERANCE_FRACTION

@@ -438,6 +438,14 @@ pub fn _merge_levels<'py>(
     })
 }
 
+/// The tolerance smoothing takes when none is given, for data whose extent
+/// is `(xmin, ymin, xmax, ymax)` ([`bzspline_geo::default_tolerance_of`]).
+#[pyfunction]
+#[must_use]
+pub fn _default_tolerance(xmin: f64, ymin: f64, xmax: f64, ymax: f64) -> f64 {
+    bzspline_geo::default_tolerance_of([xmin, ymin], [xmax, ymax])
+}
+
 /// Every junction of the coverage the groups make, and its extent.
 #[pyfunction]
 pub fn _nodes_of<'py>(py: Python<'py>, groups: Vec<Group<'py>>) -> PyResult<PyNodes<'py>> {

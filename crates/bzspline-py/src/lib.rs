@@ -1131,6 +1131,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Curve>()?;
     m.add_function(wrap_pyfunction!(_spline_from_parts, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_smooth_ragged, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_default_tolerance, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_nodes_of, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_meetings, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_across, m)?)?;

@@ -9,13 +9,13 @@
 //! carry z. Newline-delimited GeoJSON is streamed, a coverage per line; a
 //! table of points (or `--example`) is one LineString.
 
-use bzspline_io::smooth::{coverage, independent};
+use bzspline_io::smooth::{chains, coverage, default_tolerance, independent, positions};
 
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use bzspline_geo::{SmoothOptions, Stats, DEFAULT_TOLERANCE_FRACTION};
+use bzspline_geo::{SmoothOptions, Stats};
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 use serde_json::Value;
 
@@ -377,92 +377,4 @@ fn add(total: &mut Stats, s: &Stats) {
     total.area_in += s.area_in;
     total.area_out += s.area_out;
     total.tolerance = s.tolerance;
-}
-
-/// Calls `f` on every position of the document.
-fn each_position(doc: &GeoJson, f: &mut dyn FnMut(&Position)) {
-    fn geometry(v: &GeometryValue, f: &mut dyn FnMut(&Position)) {
-        match v {
-            GeometryValue::Point { coordinates } => f(coordinates),
-            GeometryValue::MultiPoint { coordinates }
-            | GeometryValue::LineString { coordinates } => coordinates.iter().for_each(f),
-            GeometryValue::MultiLineString { coordinates }
-            | GeometryValue::Polygon { coordinates } => coordinates.iter().flatten().for_each(f),
-            GeometryValue::MultiPolygon { coordinates } => {
-                coordinates.iter().flatten().flatten().for_each(f);
-            }
-            GeometryValue::GeometryCollection { geometries } => {
-                geometries.iter().for_each(|g| geometry(&g.value, f));
-            }
-        }
-    }
-    match doc {
-        GeoJson::FeatureCollection(fc) => fc
-            .features
-            .iter()
-            .filter_map(|x| x.geometry.as_ref())
-            .for_each(|g| geometry(&g.value, f)),
-        GeoJson::Feature(x) => {
-            if let Some(g) = &x.geometry {
-                geometry(&g.value, f);
-            }
-        }
-        GeoJson::Geometry(g) => geometry(&g.value, f),
-    }
-}
-
-/// The rings and lines of a document.
-fn chains(doc: &GeoJson) -> (usize, usize) {
-    fn geometry(v: &GeometryValue) -> (usize, usize) {
-        match v {
-            GeometryValue::Point { .. } | GeometryValue::MultiPoint { .. } => (0, 0),
-            GeometryValue::LineString { .. } => (0, 1),
-            GeometryValue::MultiLineString { coordinates } => (0, coordinates.len()),
-            GeometryValue::Polygon { coordinates } => (coordinates.len(), 0),
-            GeometryValue::MultiPolygon { coordinates } => {
-                (coordinates.iter().map(Vec::len).sum(), 0)
-            }
-            GeometryValue::GeometryCollection { geometries } => geometries
-                .iter()
-                .map(|g| geometry(&g.value))
-                .fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1)),
-        }
-    }
-    let values: Vec<&GeometryValue> = match doc {
-        GeoJson::FeatureCollection(fc) => fc
-            .features
-            .iter()
-            .filter_map(|f| f.geometry.as_ref().map(|g| &g.value))
-            .collect(),
-        GeoJson::Feature(f) => f.geometry.iter().map(|g| &g.value).collect(),
-        GeoJson::Geometry(g) => vec![&g.value],
-    };
-    values
-        .into_iter()
-        .map(geometry)
-        .fold((0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
-}
-
-fn positions(doc: &GeoJson) -> usize {
-    let mut n = 0;
-    each_position(doc, &mut |_| n += 1);
-    n
-}
-
-/// [`DEFAULT_TOLERANCE_FRACTION`] of the diagonal of the document's extent
-/// (as the coverage computes it), or 1 for a document of one position.
-fn default_tolerance(doc: &GeoJson) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    each_position(doc, &mut |p| {
-        if p.len() >= 2 {
-            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
-            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
-        }
-    });
-    let diag = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
-    if diag.is_finite() && diag > 0.0 {
-        diag * DEFAULT_TOLERANCE_FRACTION
-    } else {
-        1.0
-    }
 }

@@ -136,7 +136,7 @@ pub fn smooth_document(
     let located = |e: bzspline_geo::Error| match coverage.locate(&e) {
         Some(l) => {
             let ring = l.ring.map(|r| format!(", ring {r}")).unwrap_or_default();
-            anyhow!("{}, part {}{ring}: {e}", place(l.geometry), l.member)
+            anyhow!("{}, member {}{ring}: {e}", place(l.geometry), l.member)
         }
         None => anyhow!("{where_}: {e}"),
     };

@@ -202,12 +202,12 @@ def _with_z(arr):
 
 
 def _default_tolerance(arr):
-    """1e-4 of the diagonal of the lines' and polygons' bounding box."""
+    """The library's default tolerance for the lines' and polygons' bounding
+    box (1e-4 of its diagonal)."""
     import shapely
 
     x0, y0, x1, y1 = shapely.total_bounds(arr[_smoothable(arr)])
-    d = float(np.hypot(x1 - x0, y1 - y0))
-    return d * 1e-4 if np.isfinite(d) and d > 0 else 1.0
+    return _core._default_tolerance(float(x0), float(y0), float(x1), float(y1))
 
 
 def _smooth_in_space(geoms, index, tolerance, through, alpha):
