@@ -7,6 +7,10 @@
 //! 2 MiB pages where it can (the default `madvise` mode of transparent huge
 //! pages); elsewhere the advice is ignored and nothing changes.
 
+// A global allocator is unsafe code by definition; this module is the only
+// place in the workspace that holds any.
+#![allow(unsafe_code)]
+
 use std::alloc::{GlobalAlloc, Layout, System};
 
 /// Blocks this large get the advice (numpy's threshold).
