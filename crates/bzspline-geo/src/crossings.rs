@@ -12,6 +12,8 @@ use rustc_hash::FxHashSet;
 
 use geo_types::Coord;
 use robust::{orient2d, Coord as RCoord};
+
+use crate::graph::key;
 use rstar::{Envelope, RTree, RTreeObject, AABB};
 
 /// A segment of polyline `line`, from its position `seg` to `seg + 1`.
@@ -47,10 +49,6 @@ fn seg_env(a: Coord, b: Coord) -> AABB<[f64; 2]> {
 fn boxes_meet(p: &AABB<[f64; 2]>, q: &AABB<[f64; 2]>) -> bool {
     let (pl, pu, ql, qu) = (p.lower(), p.upper(), q.lower(), q.upper());
     pl[0] <= qu[0] && ql[0] <= pu[0] && pl[1] <= qu[1] && ql[1] <= pu[1]
-}
-
-pub(crate) fn key(c: Coord) -> (u64, u64) {
-    ((c.x + 0.0).to_bits(), (c.y + 0.0).to_bits())
 }
 
 /// The power of two that brings a largest magnitude `m` near 1 when

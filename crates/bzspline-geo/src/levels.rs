@@ -8,7 +8,7 @@ use geo_types::Coord;
 use rustc_hash::{FxHashMap, FxHasher};
 use std::hash::Hasher;
 
-use crate::topology::key;
+use crate::graph::key;
 
 /// The key of an arc: a hash of its positions' bits, in order (arcs are
 /// stored in a canonical form, so the same arc has the same key in every

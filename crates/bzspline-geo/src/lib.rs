@@ -40,6 +40,7 @@
 mod coverage;
 mod crossings;
 mod error;
+mod graph;
 pub mod levels;
 pub mod line;
 pub mod nodes;

@@ -30,7 +30,7 @@ use geo_types::{Coord, Rect};
 use rustc_hash::{FxHashMap, FxHashSet, FxHasher};
 
 use crate::error::Error;
-use crate::topology::{junctions, key, ChainKind, Paths, UNMET};
+use crate::graph::{junctions, key, ChainKind, Paths, UNMET};
 
 /// Positions that are junctions (nodes of the topology) whatever a part of
 /// the coverage finds by itself, and optionally the extent of the whole

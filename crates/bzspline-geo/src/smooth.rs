@@ -23,8 +23,9 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use bzspline::{CurveBuilder, Param};
 use geo_types::{Coord, Rect};
 
-use crate::crossings::{key, Lines, SegId};
+use crate::crossings::{Lines, SegId};
 use crate::error::Error;
+use crate::graph::key;
 use crate::levels::{arc_key, Levels};
 use crate::topology::{ChainKind, Topology};
 

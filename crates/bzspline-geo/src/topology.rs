@@ -18,6 +18,8 @@ use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
 use crate::error::Error;
+pub use crate::graph::ChainKind;
+use crate::graph::{junctions, key, Paths};
 use crate::nodes::Nodes;
 
 /// One arc of a chain, in its stored direction or reversed (TopoJSON writes
@@ -59,15 +61,6 @@ impl ArcRef {
     }
 }
 
-/// Whether a chain is an open line or a closed ring.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ChainKind {
-    /// A LineString: its end positions stay where they are.
-    Line,
-    /// A polygon's ring: closed, first position equal to the last.
-    Ring,
-}
-
 /// A line or ring as the arcs it runs along, in order.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chain {
@@ -84,53 +77,6 @@ pub struct Topology {
     chains: Vec<Chain>,
     polygons: Vec<Vec<usize>>,
     nodes: Nodes,
-}
-
-/// Bits of a coordinate for exact comparison; `-0.0` counts as `0.0`.
-pub(crate) fn key(c: Coord) -> (u64, u64) {
-    ((c.x + 0.0).to_bits(), (c.y + 0.0).to_bits())
-}
-
-/// Chains as ids of their distinct positions.
-pub(crate) struct Paths {
-    /// Each distinct position once.
-    pub(crate) points: Vec<Coord>,
-    /// Each chain as ids into `points`, consecutive repeats merged and a
-    /// ring's closing repeat dropped.
-    pub(crate) paths: Vec<(ChainKind, Vec<u32>)>,
-}
-
-impl Paths {
-    pub(crate) fn of(chains: &[(ChainKind, Vec<Coord>)]) -> Result<Paths, Error> {
-        let mut ids: FxHashMap<(u64, u64), u32> = FxHashMap::default();
-        let mut points: Vec<Coord> = Vec::new();
-        let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.len());
-        for (ci, (kind, coords)) in chains.iter().enumerate() {
-            let mut path: Vec<u32> = Vec::with_capacity(coords.len() + 1);
-            for (pi, &c) in coords.iter().enumerate() {
-                if !(c.x.is_finite() && c.y.is_finite()) {
-                    return Err(Error::NonFinite {
-                        chain: ci,
-                        position: pi,
-                    });
-                }
-                let id = *ids.entry(key(c)).or_insert_with(|| {
-                    points.push(c);
-                    (points.len() - 1) as u32
-                });
-                if path.last() != Some(&id) {
-                    path.push(id);
-                }
-            }
-            if *kind == ChainKind::Ring {
-                while path.len() > 1 && path.first() == path.last() {
-                    path.pop();
-                }
-            }
-            paths.push((*kind, path));
-        }
-        Ok(Paths { points, paths })
-    }
 }
 
 impl Topology {
@@ -349,54 +295,6 @@ fn check_polygons(
         }
     }
     Ok(())
-}
-
-/// A position's neighbours before any chain has met it.
-pub(crate) const UNMET: (u32, u32) = (u32::MAX, u32::MAX);
-
-/// Marks every position that ends a line or is met with two different pairs
-/// of neighbours; also returns, for each position, the first pair it was
-/// met with (ids, smaller first; [`UNMET`] for a position only a line's end
-/// or a ring of one position has).
-pub(crate) fn junctions(n: usize, paths: &[(ChainKind, Vec<u32>)]) -> (Vec<bool>, Vec<(u32, u32)>) {
-    const NONE: (u32, u32) = UNMET;
-    let mut seen = vec![NONE; n];
-    let mut junction = vec![false; n];
-    let mut meet = |p: u32, a: u32, b: u32| {
-        let pair = (a.min(b), a.max(b));
-        let s = &mut seen[p as usize];
-        if *s == NONE {
-            *s = pair;
-        } else if *s != pair {
-            junction[p as usize] = true;
-        }
-    };
-    for (kind, path) in paths {
-        let k = path.len();
-        match kind {
-            ChainKind::Line => {
-                for i in 1..k.saturating_sub(1) {
-                    meet(path[i], path[i - 1], path[i + 1]);
-                }
-            }
-            ChainKind::Ring => {
-                if k >= 2 {
-                    for i in 0..k {
-                        meet(path[i], path[(i + k - 1) % k], path[(i + 1) % k]);
-                    }
-                }
-            }
-        }
-    }
-    for (kind, path) in paths {
-        if *kind == ChainKind::Line {
-            if let (Some(&a), Some(&b)) = (path.first(), path.last()) {
-                junction[a as usize] = true;
-                junction[b as usize] = true;
-            }
-        }
-    }
-    (junction, seen)
 }
 
 /// Cuts chains into arcs and finds each arc again when another chain runs
