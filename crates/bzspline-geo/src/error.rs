@@ -52,6 +52,12 @@ pub enum Error {
         /// The arc.
         arc: usize,
     },
+    /// Parts of a coverage still raised refinement levels after this many
+    /// rounds together ([`crate::parts::Rounds`]).
+    Rounds {
+        /// The rounds run.
+        rounds: usize,
+    },
     /// The curve could not be built or flattened for this arc.
     Spline {
         /// The arc.
@@ -80,6 +86,10 @@ impl fmt::Display for Error {
             }
             Error::InvalidOption { what, value } => write!(f, "invalid {what}: {value}"),
             Error::Overflow { arc } => write!(f, "arc {arc}: the smoothed arc overflows a double"),
+            Error::Rounds { rounds } => write!(
+                f,
+                "the parts still raised refinement levels after {rounds} rounds"
+            ),
             Error::Spline { arc, source } => write!(f, "arc {arc}: {source}"),
         }
     }

@@ -44,6 +44,7 @@ mod graph;
 pub mod levels;
 pub mod line;
 pub mod nodes;
+pub mod parts;
 pub mod smooth;
 pub mod topology;
 

@@ -21,8 +21,8 @@
 //! extent (a ring that shares an arc, and an arc that comes near one, meet
 //! it), those next to them (so that their arcs are cut as in the whole), and
 //! runs the rounds of the conflict search together with the other parts,
-//! passing the [`Levels`](crate::Levels) between rounds
-//! ([`Topology::smooth_round`](crate::Topology::smooth_round)).
+//! passing the [`Levels`](crate::Levels) between rounds: the protocol of
+//! [`crate::parts`].
 
 use std::hash::Hasher;
 

@@ -5,7 +5,7 @@
 mod common;
 
 use bzspline_geo::nodes::{across, extent, meetings, Nodes};
-use bzspline_geo::{coverage_chains, Coverage, SmoothOptions, Stats};
+use bzspline_geo::{coverage_chains, parts, Coverage, SmoothOptions, Stats};
 use common::*;
 use geo_types::{Geometry, LineString};
 use proptest::prelude::*;
@@ -219,46 +219,25 @@ proptest! {
     }
 }
 
+/// What part `p` holds by the parts protocol ([`parts::holdings`]).
+fn holding(gs: &[Geometry<f64>], part: &[usize], p: usize) -> parts::Holding {
+    use geo::BoundingRect;
+    let boxes: Vec<_> = gs.iter().map(BoundingRect::bounding_rect).collect();
+    parts::holdings(&boxes, part, p)
+}
+
 /// The features of the other parts whose bounding box meets part `p`'s
 /// extent: all that can come near what part `p` holds.
 fn context(gs: &[Geometry<f64>], part: &[usize], p: usize) -> Vec<usize> {
-    let own: Vec<usize> = (0..gs.len()).filter(|&i| part[i] == p).collect();
-    meeting(gs, &own, |i| part[i] != p)
+    holding(gs, part, p).context
 }
 
-/// The features `keep` passes whose bounding box meets the extent of the
-/// features `of`.
-fn meeting(gs: &[Geometry<f64>], of: &[usize], keep: impl Fn(usize) -> bool) -> Vec<usize> {
-    use geo::BoundingRect;
-    let boxes: Vec<_> = of.iter().filter_map(|&i| gs[i].bounding_rect()).collect();
-    let Some(mut ext) = boxes.first().copied() else {
-        return Vec::new();
-    };
-    for r in &boxes[1..] {
-        ext = geo::Rect::new(
-            geo::coord! { x: ext.min().x.min(r.min().x), y: ext.min().y.min(r.min().y) },
-            geo::coord! { x: ext.max().x.max(r.max().x), y: ext.max().y.max(r.max().y) },
-        );
-    }
-    (0..gs.len())
-        .filter(|&i| keep(i))
-        .filter(|&i| {
-            gs[i].bounding_rect().is_some_and(|r| {
-                r.min().x <= ext.max().x
-                    && r.max().x >= ext.min().x
-                    && r.min().y <= ext.max().y
-                    && r.max().y >= ext.min().y
-            })
-        })
-        .collect()
-}
-
-/// Smooths each part with its context (held exactly), the features meeting
-/// the extent of both (for the context's topology) and the whole's nodes, a
-/// round of conflict search at a time ([`Coverage::smooth_round`]), every
-/// part from the levels all of them ended the round before at, until no
-/// part raises any; returns the features in their order and how many rounds
-/// it took.
+/// Smooths each part by the parts protocol ([`parts`]): with its context
+/// (held exactly), the features around (for the context's topology) and the
+/// whole's nodes, a round of conflict search at a time
+/// ([`Coverage::smooth_round`]), every part from the levels all of them ended
+/// the round before at ([`parts::Rounds`]), until no part raises any;
+/// returns the features in their order and how many rounds it took.
 fn by_parts_agreeing(
     gs: &[Geometry<f64>],
     part: &[usize],
@@ -266,35 +245,32 @@ fn by_parts_agreeing(
 ) -> (Vec<Geometry<f64>>, usize) {
     let k = part.iter().max().map_or(0, |&p| p + 1);
     let nodes = Nodes::of(&coverage_chains(gs)).unwrap();
-    let mut levels = bzspline_geo::Levels::default();
-    for round in 1..=64 {
+    let holdings: Vec<parts::Holding> = (0..k).map(|p| holding(gs, part, p)).collect();
+    let mut rounds = parts::Rounds::new();
+    loop {
         let mut out: Vec<Option<Geometry<f64>>> = vec![None; gs.len()];
-        let mut merged = levels.clone();
-        for p in 0..k {
-            let own: Vec<usize> = (0..gs.len()).filter(|&i| part[i] == p).collect();
-            let mut held: Vec<usize> = own.iter().copied().chain(context(gs, part, p)).collect();
-            let exact = held.len();
-            let around = meeting(gs, &held, |i| !held.contains(&i));
-            held.extend(around);
+        let mut ended = Vec::with_capacity(k);
+        for h in &holdings {
+            let held = h.held();
             let cov = Coverage::with_nodes(
                 held.iter().map(|&i| gs[i].clone()).collect(),
                 None,
                 nodes.clone(),
             )
             .unwrap();
-            let marks: Vec<bool> = (0..held.len()).map(|i| i < exact).collect();
-            let (smoothed, _, ended) = cov.smooth_round(opts, &levels, round, &marks).unwrap();
-            merged.merge(&ended);
-            for (&i, g) in own.iter().zip(smoothed) {
+            let (smoothed, _, levels) = cov
+                .smooth_round(opts, rounds.levels(), rounds.round(), &h.exact())
+                .unwrap();
+            ended.push(levels);
+            for (&i, g) in h.own.iter().zip(smoothed) {
                 out[i] = Some(g);
             }
         }
-        if merged == levels {
+        let round = rounds.round();
+        if !rounds.finish(&ended).unwrap() {
             return (out.into_iter().map(Option::unwrap).collect(), round);
         }
-        levels = merged;
     }
-    panic!("the parts raised levels for 64 rounds");
 }
 
 /// Checks that features of different parts share their borders exactly, and

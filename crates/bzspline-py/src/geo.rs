@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 
 use bzspline_geo::line::smooth_line;
 use bzspline_geo::nodes::{across, meetings, Meeting, Nodes};
-use bzspline_geo::{coverage_chains, Coverage, Levels, SmoothOptions};
+use bzspline_geo::{coverage_chains, parts, Coverage, Levels, SmoothOptions};
 
 /// Coordinates and offsets (innermost first) of a ragged array.
 type Ragged = (Vec<[f64; 2]>, Vec<Vec<i64>>);
@@ -420,22 +420,112 @@ fn levels_to<'py>(py: Python<'py>, l: &Levels) -> PyLevels<'py> {
     )
 }
 
-/// The levels of every part merged (each leg at its highest), and whether
-/// they differ from the first.
+/// The rounds of the conflict search the partitions of a coverage run
+/// together ([`parts::Rounds`]): `round` and `levels` to run the next from,
+/// `finish(ended)` with the levels every partition ended it at.
+#[pyclass(module = "bzspline._core", name = "_Rounds")]
+pub struct Rounds(parts::Rounds);
+
+#[pymethods]
+impl Rounds {
+    #[new]
+    fn new() -> Self {
+        Rounds(parts::Rounds::new())
+    }
+
+    /// The round to run (from 1).
+    #[getter]
+    fn round(&self) -> usize {
+        self.0.round()
+    }
+
+    /// The levels every partition runs the round from.
+    #[getter]
+    fn levels<'py>(&self, py: Python<'py>) -> PyLevels<'py> {
+        levels_to(py, self.0.levels())
+    }
+
+    /// Ends the round: True when another is to run, False when the
+    /// partitions' results of this round are the whole's. RuntimeError past
+    /// the cap of rounds.
+    fn finish(&mut self, ended: Vec<PyLevelsIn<'_>>) -> PyResult<bool> {
+        let ended: Vec<Levels> = ended
+            .into_iter()
+            .map(levels_from)
+            .collect::<PyResult<_>>()?;
+        self.0
+            .finish(&ended)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+}
+
+/// Boxes `(n, 4)` as `xmin, ymin, xmax, ymax` rows; `None` for a row with
+/// NaN (an empty geometry's bounds).
+fn rects(bounds: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Option<Rect<f64>>>> {
+    let b = bounds.as_array();
+    if b.ncols() != 4 {
+        return Err(PyValueError::new_err("bounds must be an (n, 4) array"));
+    }
+    Ok(b.rows()
+        .into_iter()
+        .map(|r| {
+            r.iter()
+                .all(|v| !v.is_nan())
+                .then(|| Rect::new(Coord { x: r[0], y: r[1] }, Coord { x: r[2], y: r[3] }))
+        })
+        .collect())
+}
+
+fn rect(b: (f64, f64, f64, f64)) -> Rect<f64> {
+    Rect::new(Coord { x: b.0, y: b.1 }, Coord { x: b.2, y: b.3 })
+}
+
+/// Which of the boxes are context of a part whose extent is `part`
+/// ([`parts::is_context`]).
 #[pyfunction]
-pub fn _merge_levels<'py>(
+pub fn _context_of<'py>(
     py: Python<'py>,
-    base: PyLevelsIn<'py>,
-    parts: Vec<PyLevelsIn<'py>>,
-) -> PyResult<(PyLevels<'py>, bool)> {
-    crate::guard(|| {
-        let mut merged = levels_from(base)?;
-        let mut changed = false;
-        for p in parts {
-            changed |= merged.merge(&levels_from(p)?);
-        }
-        Ok((levels_to(py, &merged), changed))
-    })
+    bounds: PyReadonlyArray2<'py, f64>,
+    part: (f64, f64, f64, f64),
+) -> PyResult<Bound<'py, PyArray1<bool>>> {
+    let part = rect(part);
+    let mask: Vec<bool> = rects(&bounds)?
+        .iter()
+        .map(|r| r.as_ref().is_some_and(|r| parts::is_context(r, &part)))
+        .collect();
+    Ok(mask.into_pyarray(py))
+}
+
+/// Which of the boxes are held around a part (extent `part`, with its
+/// context `outer`) for the topology only ([`parts::is_around`]).
+#[pyfunction]
+pub fn _around_of<'py>(
+    py: Python<'py>,
+    bounds: PyReadonlyArray2<'py, f64>,
+    part: (f64, f64, f64, f64),
+    outer: (f64, f64, f64, f64),
+) -> PyResult<Bound<'py, PyArray1<bool>>> {
+    let (part, outer) = (rect(part), rect(outer));
+    let mask: Vec<bool> = rects(&bounds)?
+        .iter()
+        .map(|r| {
+            r.as_ref()
+                .is_some_and(|r| parts::is_around(r, &part, &outer))
+        })
+        .collect();
+    Ok(mask.into_pyarray(py))
+}
+
+/// The extent of a part and its context's boxes ([`parts::outer`]).
+#[pyfunction]
+pub fn _outer(
+    part: (f64, f64, f64, f64),
+    context: PyReadonlyArray2<'_, f64>,
+) -> PyResult<(f64, f64, f64, f64)> {
+    let part = rect(part);
+    let boxes = rects(&context)?;
+    let o = parts::outer(&part, boxes.iter().flatten());
+    Ok((o.min().x, o.min().y, o.max().x, o.max().y))
 }
 
 /// The tolerance smoothing takes when none is given, for data whose extent

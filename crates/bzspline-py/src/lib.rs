@@ -1135,7 +1135,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geo::_nodes_of, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_meetings, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_across, m)?)?;
-    m.add_function(wrap_pyfunction!(geo::_merge_levels, m)?)?;
+    m.add_class::<geo::Rounds>()?;
+    m.add_function(wrap_pyfunction!(geo::_context_of, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_around_of, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_outer, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_smooth_spans, m)?)?;
     Ok(())
 }

@@ -310,31 +310,28 @@ def _nodes_over(parts, boxes):
 
 
 def _near(part, box, inner=None):
-    """The geometries of a partition whose bounding box meets ``box`` (and
-    not ``inner``, when given)."""
+    """The geometries of a partition that a part whose extent is ``box``
+    holds by the parts protocol (``bzspline_geo::parts``): its context, or
+    with ``inner`` (the part's own extent; ``box`` then the extent of part and
+    context) those around it."""
     import shapely
 
     arr = _values(part)
     ok = ~(shapely.is_missing(arr) | shapely.is_empty(arr))
-    b = shapely.bounds(arr[ok])
-    near = _meets(b, box)
-    if inner is not None:
-        near &= ~_meets(b, inner)
+    b = np.ascontiguousarray(shapely.bounds(arr[ok]), dtype=np.float64).reshape(-1, 4)
+    if inner is None:
+        near = _core._context_of(b, tuple(box))
+    else:
+        near = _core._around_of(b, tuple(inner), tuple(box))
     return arr[ok][near]
 
 
-def _meets(b, box):
-    """Which of the boxes ``b`` (rows x0, y0, x1, y1) meet ``box``."""
-    x0, y0, x1, y1 = box
-    return (b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1) & (b[:, 3] >= y0)
-
-
 def _bounds(arrs, box):
-    """The box holding ``box`` and every geometry of the arrays ``arrs``."""
+    """The extent of a part (``box``) and its context (the arrays ``arrs``)."""
     import shapely
 
-    b = np.array([box] + [shapely.total_bounds(a) for a in arrs if len(a)], dtype=np.float64)
-    return (b[:, 0].min(), b[:, 1].min(), b[:, 2].max(), b[:, 3].max())
+    b = np.array([shapely.total_bounds(a) for a in arrs if len(a)], dtype=np.float64).reshape(-1, 4)
+    return _core._outer(tuple(box), b)
 
 
 def _smooth_part(part, context, around, nodes, levels, opts, number, round):
@@ -372,12 +369,14 @@ def _like(obj, values):
     return geopandas.GeoSeries(values, index=obj.index, crs=obj.crs, name=obj.name)
 
 
-def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_rounds=64):
-    """A coverage over dask partitions: every partition smoothed with its
-    neighbours' nearby geometries and the whole's nodes, one round of the
-    conflict search at a time, all partitions from the levels all of them
-    ended the round before at, until no partition raises any: the rounds of
-    one process smoothing the whole, so the same result."""
+def _smooth_dask(d, tolerance, through, keep_angle, alpha):
+    """A coverage over dask partitions by the parts protocol of
+    ``bzspline_geo::parts``: every partition smoothed with the whole's nodes,
+    the other partitions' geometries it holds (its context and those around),
+    one round of the conflict search at a time, all partitions from the levels
+    all of them ended the round before at (``_core._Rounds``), until no
+    partition raises any: the rounds of one process smoothing the whole, so
+    the same result."""
     import dask
     import dask.dataframe as dd
 
@@ -388,7 +387,8 @@ def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_rounds=64):
     filled = np.nan_to_num(boxes)
 
     def others(i, box):
-        return [j for j in np.flatnonzero(known & _meets(filled, box)) if j != i] if known[i] else []
+        near = _core._context_of(np.ascontiguousarray(filled), tuple(box))
+        return [j for j in np.flatnonzero(known & near) if j != i] if known[i] else []
 
     # The features of other partitions that may come near each one's (held
     # exactly), then those that share a position with one of them: their
@@ -399,15 +399,14 @@ def _smooth_dask(d, tolerance, through, keep_angle, alpha, max_rounds=64):
     arounds = [list(dask.persist(*[dask.delayed(_near)(parts[j], outer, tuple(box)) for j in others(i, outer)]))
                for i, (box, outer) in enumerate(zip(boxes, outers))]
     opts = (tolerance, True, through, keep_angle, alpha)
-    levels = _NO_LEVELS
-    for round in range(1, max_rounds + 1):
+    rounds = _core._Rounds()
+    while True:
+        levels, round = rounds.levels, rounds.round
         runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, a, nodes, levels, opts, i, round)
                               for i, (p, c, a) in enumerate(zip(parts, contexts, arounds))])
         ended = dask.compute(*[r[1] for r in runs])
-        levels, changed = _core._merge_levels(levels, list(ended))
-        if not changed:
+        if not rounds.finish(list(ended)):
             return dd.from_delayed([r[0] for r in runs], meta=d._meta, verify_meta=False)
-    raise RuntimeError(f"the partitions still raised refinement levels after {max_rounds} rounds")
 
 
 def nodes(obj):
