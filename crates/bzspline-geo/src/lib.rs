@@ -46,6 +46,7 @@ pub mod line;
 pub mod nodes;
 pub mod parts;
 pub mod smooth;
+mod smoothing;
 pub mod topology;
 
 pub use coverage::{coverage_chains, Coverage, Location};
@@ -55,4 +56,5 @@ pub use nodes::Nodes;
 pub use smooth::{
     default_tolerance_of, SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL,
 };
+pub use smoothing::Smooth;
 pub use topology::{ArcRef, Chain, ChainKind, Topology};
