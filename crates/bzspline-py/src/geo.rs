@@ -201,9 +201,14 @@ fn gather(groups: &[Group<'_>]) -> PyResult<(Vec<Geometry<f64>>, Vec<i64>)> {
         }
         for (g, &i) in gs.iter().zip(idx.iter()) {
             if let Some(k) = first_non_finite(g) {
-                return Err(PyValueError::new_err(format!(
-                    "geometry {i}, coordinate {k}: not a finite number"
-                )));
+                return Err(Fault {
+                    message: format!("geometry {i}, coordinate {k}: not a finite number"),
+                    index: Some(i),
+                    member: None,
+                    ring: None,
+                    coordinate: Some(k),
+                }
+                .into());
             }
         }
         geoms.extend(gs);
@@ -243,7 +248,7 @@ fn coords_array<'py>(py: Python<'py>, c: &[[f64; 2]]) -> PyResult<Bound<'py, PyA
 
 /// An error of a coverage, naming the geometry by its index in the caller's
 /// array.
-fn coverage_error(c: &Coverage, index: &[i64], e: &bzspline_geo::Error) -> String {
+fn coverage_error(c: &Coverage, index: &[i64], e: &bzspline_geo::Error) -> Fault {
     match c.locate(e) {
         Some(l) => {
             let at = index.get(l.geometry).copied().unwrap_or(l.geometry as i64);
@@ -251,9 +256,52 @@ fn coverage_error(c: &Coverage, index: &[i64], e: &bzspline_geo::Error) -> Strin
             if let Some(r) = l.ring {
                 msg.push_str(&format!(", ring {r}"));
             }
-            format!("{msg}: {e}")
+            Fault {
+                message: format!("{msg}: {e}"),
+                index: Some(at),
+                member: Some(l.member),
+                ring: l.ring,
+                coordinate: None,
+            }
         }
-        None => e.to_string(),
+        None => Fault {
+            message: e.to_string(),
+            index: None,
+            member: None,
+            ring: None,
+            coordinate: None,
+        },
+    }
+}
+
+/// A geometry that cannot be smoothed, raised as
+/// `bzspline.errors.GeometryError` with its fields; a plain `ValueError`
+/// when the fault is in no one geometry (`index` `None`: an option).
+struct Fault {
+    message: String,
+    index: Option<i64>,
+    member: Option<usize>,
+    ring: Option<usize>,
+    coordinate: Option<usize>,
+}
+
+impl From<Fault> for PyErr {
+    fn from(f: Fault) -> PyErr {
+        let Some(index) = f.index else {
+            return PyValueError::new_err(f.message);
+        };
+        Python::with_gil(|py| {
+            let raised = (|| -> PyResult<PyErr> {
+                let class = py.import("bzspline.errors")?.getattr("GeometryError")?;
+                let kwargs = pyo3::types::PyDict::new(py);
+                kwargs.set_item("member", f.member)?;
+                kwargs.set_item("ring", f.ring)?;
+                kwargs.set_item("coordinate", f.coordinate)?;
+                let e = class.call((f.message.as_str(), index), Some(&kwargs))?;
+                Ok(PyErr::from_value(e))
+            })();
+            raised.unwrap_or_else(|e| e)
+        })
     }
 }
 
@@ -325,11 +373,17 @@ pub fn _smooth_ragged<'py>(
             Some(l) => levels_from(l)?,
             None => Levels::default(),
         };
-        let smoothed = py.allow_threads(|| -> Result<(Vec<Geometry<f64>>, Levels), String> {
+        let smoothed = py.allow_threads(|| -> Result<(Vec<Geometry<f64>>, Levels), Fault> {
             let run = |gs: Vec<Geometry<f64>>,
                        index: &[i64]|
-             -> Result<(Vec<Geometry<f64>>, Levels), String> {
-                let c = Coverage::with_nodes(gs, snap, nodes.clone()).map_err(|e| e.to_string())?;
+             -> Result<(Vec<Geometry<f64>>, Levels), Fault> {
+                let c = Coverage::with_nodes(gs, snap, nodes.clone()).map_err(|e| Fault {
+                    message: e.to_string(),
+                    index: None,
+                    member: None,
+                    ring: None,
+                    coordinate: None,
+                })?;
                 // The caller's first `exact` geometries, wherever they are here.
                 let marks: Vec<bool> = match exact {
                     Some(e) => index
@@ -357,7 +411,7 @@ pub fn _smooth_ragged<'py>(
                 Ok((out, ended))
             }
         });
-        let (smoothed, ended) = smoothed.map_err(PyValueError::new_err)?;
+        let (smoothed, ended) = smoothed?;
         let mut out = Vec::with_capacity(groups.len());
         let mut start = 0;
         for (kind, _, _, idx) in &groups {
@@ -649,17 +703,23 @@ pub fn _smooth_spans<'py>(
                 "invalid tolerance (must be a positive number): {tolerance}"
             )));
         }
-        let out = py.allow_threads(|| -> Result<(Vec<f64>, Vec<i64>), String> {
+        let out = py.allow_threads(|| -> Result<(Vec<f64>, Vec<i64>), Fault> {
             let (mut out, mut ends) = (Vec::with_capacity(flat.len() * 4), vec![0i64]);
             for (j, &(a, b)) in ranges.iter().enumerate() {
                 let s = smooth_line(&flat[a * dim..b * dim], dim, closed, tolerance, &opts)
-                    .map_err(|e| format!("geometry {}: {e}", owner[j]))?;
+                    .map_err(|e| Fault {
+                        message: format!("geometry {}: {e}", owner[j]),
+                        index: Some(owner[j]),
+                        member: None,
+                        ring: None,
+                        coordinate: None,
+                    })?;
                 out.extend_from_slice(&s);
                 ends.push((out.len() / dim.max(1)) as i64);
             }
             Ok((out, ends))
         });
-        let (out, ends) = out.map_err(PyValueError::new_err)?;
+        let (out, ends) = out?;
         let rows = out.len() / dim.max(1);
         let arr = numpy::ndarray::Array2::from_shape_vec((rows, dim), out)
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;

@@ -205,3 +205,22 @@ def test_measures_are_dropped_with_a_warning_as_the_command_does():
     assert tuple(c[0]) == (0, 0, 1) and tuple(c[-1]) == (2, 0, 3)
     assert not out[1].has_z and not shapely.has_m(out[1]) and out[1].is_valid
     assert shapely.get_num_coordinates(out[1]) > 5
+
+
+def test_geometry_errors_carry_their_fields_and_options_are_keywords():
+    import pickle
+
+    bad = shapely.Polygon([(0, 0), (1, 0), (1, np.nan), (0, 1)])
+    with pytest.raises(bzspline.errors.GeometryError) as e:
+        bzspline.geo.smooth(np.array([*cells(), bad], dtype=object))
+    assert isinstance(e.value, ValueError)
+    assert (e.value.index, e.value.coordinate) == (2, 2), vars(e.value)
+    back = pickle.loads(pickle.dumps(e.value))
+    assert (type(back), str(back), back.index) == (type(e.value), str(e.value), 2)
+    # An option out of range is no geometry's fault: a plain ValueError.
+    with pytest.raises(ValueError) as e:
+        bzspline.geo.smooth(np.array(cells(), dtype=object), snap=-1.0)
+    assert not isinstance(e.value, bzspline.errors.GeometryError)
+    # Options are keyword-only, as shapely 2's.
+    with pytest.raises(TypeError):
+        bzspline.geo.smooth(cells()[0], 1e-3)

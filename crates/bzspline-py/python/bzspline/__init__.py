@@ -13,9 +13,9 @@ package converts numpy arrays and releases the GIL while it works.
 """
 
 from ._core import ALPHA_MAX, ALPHA_MIN, Curve, Spline, __version__
-from . import geo
+from . import errors, geo
 
-__all__ = ["ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "geo", "to_ppoly", "to_bpoly"]
+__all__ = ["ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "errors", "geo", "to_ppoly", "to_bpoly"]
 
 
 def to_ppoly(spline):

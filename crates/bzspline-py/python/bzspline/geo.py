@@ -20,12 +20,13 @@ whole gives: every border the same in every partition that holds it, nothing
 crossing.
 """
 
-import re
 import warnings
+from typing import Optional
 
 import numpy as np
 
 from . import _core
+from .errors import GeometryError
 
 __all__ = ["Nodes", "nodes", "smooth"]
 
@@ -354,12 +355,17 @@ def _smooth_part(part, context, around, nodes, levels, opts, number, round):
 def _in_partition(e, part, number):
     """The error ``e`` of partition ``number``, naming its geometry by index
     label (a position past the partition's own is a neighbour's geometry)."""
-    m = re.match(r"geometry (\d+)(.*)", str(e), re.S)
-    if m is None:
+    if not isinstance(e, GeometryError):
         return ValueError(f"partition {number}: {e}")
-    k = int(m.group(1))
-    at = f"index {part.index[k]!r}" if k < len(part) else "a geometry of a neighbouring partition"
-    return ValueError(f"partition {number}, {at}{m.group(2)}")
+    k = e.index
+    own = k < len(part)
+    label = part.index[k] if own else None
+    at = f"index {label!r}" if own else "a geometry of a neighbouring partition"
+    rest = str(e).split(":", 1)[-1].strip()
+    where = "".join(f", {name} {v}" for name, v in (("member", e.member), ("ring", e.ring),
+                                                   ("coordinate", e.coordinate)) if v is not None)
+    return GeometryError(f"partition {number}, {at}{where}: {rest}", k, member=e.member, ring=e.ring,
+                         coordinate=e.coordinate, partition=number, label=label)
 
 
 def _like(obj, values):
@@ -451,8 +457,9 @@ def nodes(obj):
     return Nodes(positions, extent)
 
 
-def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, alpha=0.5, nodes=None,
-           snap=None):
+def smooth(obj, *, tolerance: Optional[float] = None, coverage: bool = True, through: bool = False,
+           keep_angle: Optional[float] = None, alpha: float = 0.5, nodes: Optional[Nodes] = None,
+           snap: Optional[float] = None):
     """Smooth lines and polygon rings with the method, keeping coverages valid.
 
     Parameters
@@ -504,9 +511,13 @@ def smooth(obj, tolerance=None, coverage=True, through=False, keep_angle=None, a
 
     Raises
     ------
+    bzspline.errors.GeometryError
+        A ``ValueError`` for a geometry that cannot be smoothed (coordinates
+        that are not finite), with the geometry's ``index`` (and ``member``,
+        ``ring``, ``coordinate`` where they apply; ``partition`` and ``label``
+        for a dask series).
     ValueError
-        For an option out of range or coordinates that are not finite, naming
-        the geometry.
+        For an option out of range.
     TypeError
         For ``nodes`` that is not a :class:`Nodes`.
     """
