@@ -164,10 +164,7 @@ impl<const D: usize> Flatten for CubicBez<D> {
         let steps = (m2 / (8.0 * tol)).sqrt().ceil().max(1.0);
         // m2 is finite for finite control points; NaN only for non-finite ones.
         if steps.is_nan() || steps > crate::MAX_FLATTEN_VERTICES as f64 {
-            return Err(Error::InvalidArgument {
-                what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-                value: tol,
-            });
+            return Err(Error::TooManyVertices { tolerance: tol });
         }
         let n = steps as usize;
         let mut coords = Vec::with_capacity((n + 1) * D);

@@ -143,6 +143,12 @@ pub enum Error {
         /// The value that was given.
         value: f64,
     },
+    /// Flattening to this tolerance would take more than
+    /// [`MAX_FLATTEN_VERTICES`](crate::MAX_FLATTEN_VERTICES) vertices.
+    TooManyVertices {
+        /// The tolerance asked for.
+        tolerance: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -202,6 +208,11 @@ impl fmt::Display for Error {
             }
             Error::Overflow { what } => write!(f, "{what} overflows a double"),
             Error::InvalidArgument { what, value } => write!(f, "{what} (got {value})"),
+            Error::TooManyVertices { tolerance } => write!(
+                f,
+                "the flattening tolerance is too small for the curve: more than {} vertices (tolerance {tolerance})",
+                crate::MAX_FLATTEN_VERTICES
+            ),
         }
     }
 }

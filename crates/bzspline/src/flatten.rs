@@ -54,11 +54,7 @@ pub(crate) fn steps(accel: f64, tol: f64) -> Result<usize, Error> {
         MAX_FLATTEN_VERTICES
     };
     if m >= MAX_FLATTEN_VERTICES {
-        return Err(Error::InvalidArgument {
-            what:
-                "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-            value: tol,
-        });
+        return Err(Error::TooManyVertices { tolerance: tol });
     }
     Ok(m.max(1))
 }
@@ -101,7 +97,7 @@ pub(crate) mod tests {
         ));
         assert!(matches!(
             c.flatten(1e-300),
-            Err(Error::InvalidArgument { .. })
+            Err(Error::TooManyVertices { tolerance }) if tolerance == 1e-300
         ));
         // A straight planar curve is one chord; in space, one step per segment.
         let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]).unwrap();

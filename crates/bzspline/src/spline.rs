@@ -1116,10 +1116,7 @@ impl Spline {
             let accel = (2.0 * c[2]).abs().max((2.0 * c[2] + 6.0 * c[3]).abs());
             let m = steps(accel, tol)?;
             if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
-                return Err(Error::InvalidArgument {
-                    what: "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-                    value: tol,
-                });
+                return Err(Error::TooManyVertices { tolerance: tol });
             }
             let h = knots[k + 1] - knots[k];
             for j in usize::from(k > 0)..=m {

@@ -100,11 +100,7 @@ impl Curve {
     pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
         check_tol(tol)?;
         let scaled_tol = tol / self.unit();
-        let too_many = || Error::InvalidArgument {
-            what:
-                "the flattening tolerance is too small for the curve: too many vertices; tolerance",
-            value: tol,
-        };
+        let too_many = || Error::TooManyVertices { tolerance: tol };
         let dim = self.dim();
         let knots = self.knots();
         let mut coords = Vec::with_capacity((self.len() + 1) * dim);
@@ -116,7 +112,7 @@ impl Curve {
         let mut window = Window::new(0.999 * scaled_tol, rel);
         let mut k = 0;
         while k < self.len() {
-            let m = steps(self.accel_bound(k), scaled_tol)?;
+            let m = steps(self.accel_bound(k), scaled_tol).map_err(|_| too_many())?;
             if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
                 return Err(too_many());
             }
