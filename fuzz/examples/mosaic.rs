@@ -10,15 +10,26 @@ use libfuzzer_sys::arbitrary::Unstructured;
 
 fn wkt(g: &Geometry<f64>) -> String {
     let ring = |l: &geo_types::LineString<f64>| {
-        let p: Vec<String> = l.0.iter().map(|c| format!("[{:?},{:?}]", c.x, c.y)).collect();
+        let p: Vec<String> =
+            l.0.iter()
+                .map(|c| format!("[{:?},{:?}]", c.x, c.y))
+                .collect();
         format!("[{}]", p.join(","))
     };
     match g {
         Geometry::Polygon(p) => {
-            let rs: Vec<String> = std::iter::once(p.exterior()).chain(p.interiors()).map(ring).collect();
-            format!("{{\"type\":\"Polygon\",\"coordinates\":[{}]}}", rs.join(","))
+            let rs: Vec<String> = std::iter::once(p.exterior())
+                .chain(p.interiors())
+                .map(ring)
+                .collect();
+            format!(
+                "{{\"type\":\"Polygon\",\"coordinates\":[{}]}}",
+                rs.join(",")
+            )
         }
-        Geometry::LineString(l) => format!("{{\"type\":\"LineString\",\"coordinates\":{}}}", ring(l)),
+        Geometry::LineString(l) => {
+            format!("{{\"type\":\"LineString\",\"coordinates\":{}}}", ring(l))
+        }
         other => format!("{other:?}"),
     }
 }
@@ -30,7 +41,10 @@ fn main() {
     for g in &case.geometries {
         println!("{}", wkt(g));
     }
-    println!("opts {:?} snap {:?} exponent {} offset {}", case.opts, case.snap, case.exponent, case.offset);
+    println!(
+        "opts {:?} snap {:?} exponent {} offset {}",
+        case.opts, case.snap, case.exponent, case.offset
+    );
     let c = Coverage::new(case.geometries.clone(), case.snap).expect("accepted");
     let (out, stats) = c.smooth(&case.opts).expect("smoothed");
     println!("{stats:?}");

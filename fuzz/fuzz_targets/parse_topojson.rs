@@ -5,23 +5,18 @@
 //! keeps its arc count.
 #![no_main]
 
-use bzspline_fuzz::topojson;
+use bzspline_fuzz::{finite, topojson};
 use bzspline_geo::SmoothOptions;
 use libfuzzer_sys::fuzz_target;
 use serde_json::Value;
 
-fn finite(v: &Value) -> bool {
-    match v {
-        Value::Null => false,
-        Value::Number(n) => n.as_f64().is_some_and(f64::is_finite),
-        Value::Array(a) => a.iter().all(finite),
-        _ => true,
-    }
-}
-
 fuzz_target!(|bytes: &[u8]| {
-    let Ok(text) = std::str::from_utf8(bytes) else { return };
-    let Ok(v) = serde_json::from_str::<Value>(text) else { return };
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return;
+    };
+    let Ok(v) = serde_json::from_str::<Value>(text) else {
+        return;
+    };
     if !topojson::is_topology(&v) {
         return;
     }

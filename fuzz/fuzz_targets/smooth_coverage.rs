@@ -19,7 +19,9 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|bytes: &[u8]| {
     let mut u = Unstructured::new(bytes);
-    let Ok(case) = mosaic::case(&mut u) else { return };
+    let Ok(case) = mosaic::case(&mut u) else {
+        return;
+    };
     let coverage = Coverage::new(case.geometries.clone(), case.snap)
         .unwrap_or_else(|e| panic!("refused: {e}"));
     let (out, _) = coverage
@@ -66,5 +68,8 @@ fuzz_target!(|bytes: &[u8]| {
         }
     }
     let (before, after) = (brute_force_crossings(&input), brute_force_crossings(&out));
-    assert!(after <= before, "{before} pairs of edges met before, {after} after");
+    assert!(
+        after <= before,
+        "{before} pairs of edges met before, {after} after"
+    );
 });

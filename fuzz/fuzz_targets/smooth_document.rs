@@ -6,19 +6,10 @@
 #![no_main]
 
 use bzspline_fuzz::document::{self, NAME};
+use bzspline_fuzz::finite;
 use bzspline_geo::SmoothOptions;
 use libfuzzer_sys::fuzz_target;
 use serde_json::Value;
-
-fn finite(v: &Value) -> bool {
-    match v {
-        Value::Null => false,
-        Value::Number(n) => n.as_f64().is_some_and(f64::is_finite),
-        Value::Array(a) => a.iter().all(finite),
-        Value::Object(o) => o.values().all(finite),
-        _ => true,
-    }
-}
 
 /// Every ring of every Polygon and MultiPolygon in a GeoJSON value.
 fn rings<'a>(v: &'a Value, out: &mut Vec<&'a Vec<Value>>) {
@@ -48,7 +39,9 @@ fn rings<'a>(v: &'a Value, out: &mut Vec<&'a Vec<Value>>) {
 }
 
 fuzz_target!(|bytes: &[u8]| {
-    let Some((&pick, bytes)) = bytes.split_first() else { return };
+    let Some((&pick, bytes)) = bytes.split_first() else {
+        return;
+    };
     let opts = SmoothOptions::default().through(pick & 2 != 0);
     let independent = pick & 1 != 0;
     match document::smooth(bytes, &opts, independent) {

@@ -41,7 +41,10 @@ fuzz_target!(|bytes: &[u8]| {
             let big = d.values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (k, (v, w)) in t.knot_values().iter().zip(&d.values).enumerate() {
                 assert!(v.is_finite(), "through: knot value {k} is {v}");
-                assert!((v - w).abs() <= 1e-9 * big, "through: knot {k} is {v}, the value {w}");
+                assert!(
+                    (v - w).abs() <= 1e-9 * big,
+                    "through: knot {k} is {v}, the value {w}"
+                );
             }
         }
         Err(Error::Overflow { .. }) => {}

@@ -9,8 +9,8 @@ use bzspline_geo::SmoothOptions;
 use serde_json::Value;
 
 use crate::input;
-use bzspline_io::smooth::{coverage, independent};
 use crate::topojson;
+use bzspline_io::smooth::{coverage, independent};
 
 /// The source name errors start with.
 pub const NAME: &str = "f.json";
@@ -22,8 +22,8 @@ pub const NAME: &str = "f.json";
 /// The command's one-line errors, starting with [`NAME`].
 pub fn smooth(bytes: &[u8], opts: &SmoothOptions, independent: bool) -> Result<Value> {
     let text = input::utf8(NAME, bytes)?;
-    let value: Value =
-        serde_json::from_str(text).map_err(|e| anyhow!("{NAME}:{}: invalid JSON: {e}", e.line()))?;
+    let value: Value = serde_json::from_str(text)
+        .map_err(|e| anyhow!("{NAME}:{}: invalid JSON: {e}", e.line()))?;
     if topojson::is_topology(&value) && !independent {
         let topo = topojson::read(NAME, value)?;
         let s = topo

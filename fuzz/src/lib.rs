@@ -23,6 +23,20 @@ pub mod judge;
 pub mod document;
 pub mod mosaic;
 
+/// No NaN or infinity in a written JSON value: serde_json writes them as
+/// `null`, so a `null` anywhere (or a number that is not finite) fails.
+#[must_use]
+pub fn finite(v: &serde_json::Value) -> bool {
+    use serde_json::Value;
+    match v {
+        Value::Null => false,
+        Value::Number(n) => n.as_f64().is_some_and(f64::is_finite),
+        Value::Array(a) => a.iter().all(finite),
+        Value::Object(o) => o.values().all(finite),
+        _ => true,
+    }
+}
+
 /// The point limit the reader targets run with, small enough to be reached.
 pub const MAX_POINTS: usize = 64;
 

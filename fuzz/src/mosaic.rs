@@ -5,10 +5,10 @@
 //! point, a sliver column, lines ending on rings, at scales from 2^-996 to
 //! 2^996, and random smoothing options.
 
-use libfuzzer_sys::arbitrary::{Result, Unstructured};
 use bzspline::Param;
 use bzspline_geo::SmoothOptions;
 use geo_types::{Coord, Geometry, LineString, Polygon};
+use libfuzzer_sys::arbitrary::{Result, Unstructured};
 
 /// One generated case.
 #[derive(Debug)]
@@ -164,8 +164,16 @@ pub fn case(u: &mut Unstructured) -> Result<Case> {
                     }
                     // Two holes touching at a point.
                     1 => {
-                        holes.push(LineString::from(square(c(m.x - 0.05, m.y - 0.05), 0.05, false)));
-                        holes.push(LineString::from(square(c(m.x + 0.05, m.y + 0.05), 0.05, false)));
+                        holes.push(LineString::from(square(
+                            c(m.x - 0.05, m.y - 0.05),
+                            0.05,
+                            false,
+                        )));
+                        holes.push(LineString::from(square(
+                            c(m.x + 0.05, m.y + 0.05),
+                            0.05,
+                            false,
+                        )));
                     }
                     // A line ending on the cell's corner.
                     2 => lines.push(Geometry::LineString(LineString::from(vec![
@@ -177,7 +185,10 @@ pub fn case(u: &mut Unstructured) -> Result<Case> {
                     _ => {}
                 }
             }
-            geometries.push(Geometry::Polygon(Polygon::new(LineString::from(ring), holes)));
+            geometries.push(Geometry::Polygon(Polygon::new(
+                LineString::from(ring),
+                holes,
+            )));
         }
     }
     geometries.extend(lines);
