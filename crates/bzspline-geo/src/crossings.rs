@@ -65,25 +65,40 @@ pub(crate) fn unit_scale(m: f64) -> f64 {
     2f64.powi(-e.clamp(-1022, 1022))
 }
 
+/// The largest magnitude of the positions' coordinates.
+fn largest(ps: &[Coord]) -> f64 {
+    ps.iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()))
+}
+
+/// `p` times `s`.
+fn times(p: Coord, s: f64) -> Coord {
+    Coord {
+        x: p.x * s,
+        y: p.y * s,
+    }
+}
+
 /// The positions scaled by [`unit_scale`] of their largest coordinate.
 fn scaled<const N: usize>(ps: [Coord; N]) -> [Coord; N] {
-    let m = ps
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let s = unit_scale(m);
+    let s = unit_scale(largest(&ps));
     if s == 1.0 {
         return ps;
     }
-    ps.map(|p| Coord {
-        x: p.x * s,
-        y: p.y * s,
-    })
+    ps.map(|p| times(p, s))
 }
 
 /// The orientation of `c` to the line `a b` (positive to the left), exact at
 /// any scale (see [`unit_scale`]).
-pub(crate) fn orient(a: Coord, b: Coord, c: Coord) -> f64 {
+pub(crate) fn orient_at_any_scale(a: Coord, b: Coord, c: Coord) -> f64 {
     let [a, b, c] = scaled([a, b, c]);
+    orient(a, b, c)
+}
+
+/// The orientation of `c` to the line `a b` (positive to the left), exact
+/// where the products of coordinate differences neither underflow nor
+/// overflow (callers scale first, [`scaled`]).
+fn orient(a: Coord, b: Coord, c: Coord) -> f64 {
     orient2d(
         RCoord { x: a.x, y: a.y },
         RCoord { x: b.x, y: b.y },
@@ -116,7 +131,6 @@ pub(crate) fn intersect(a0: Coord, a1: Coord, b0: Coord, b1: Coord) -> bool {
 /// Segments `a0 a1` and `b0 b1` that share the end `e` (with `a`, `b` their
 /// other ends) have more than `e` in common: they leave `e` in one direction.
 fn overlap_from(e: Coord, a: Coord, b: Coord) -> bool {
-    let [e, a, b] = scaled([e, a, b]);
     orient(e, a, b) == 0.0 && (a.x - e.x) * (b.x - e.x) + (a.y - e.y) * (b.y - e.y) > 0.0
 }
 
@@ -155,16 +169,22 @@ impl Lines<'_> {
                     .map(move |(_, ob)| (ea, oa, ob))
             })
             .collect();
+        // The predicates run on the four positions scaled alike by one power
+        // of two ([`unit_scale`]: exact, equal positions stay equal).
+        let s = unit_scale(largest(&[a0, a1, b0, b1]));
+        let at = |c: Coord| if s == 1.0 { c } else { times(c, s) };
         match shared.as_slice() {
-            [] => intersect(a0, a1, b0, b1),
+            [] => intersect(at(a0), at(a1), at(b0), at(b1)),
             [(e, oa, ob)] => {
                 let may_meet = consecutive || self.nodes.contains(&key(*e));
                 if !may_meet {
                     return true;
                 }
-                overlap_from(*e, *oa, *ob)
-                    || (orient(a0, a1, *ob) == 0.0 && within(a0, a1, *ob))
-                    || (orient(b0, b1, *oa) == 0.0 && within(b0, b1, *oa))
+                let (a0, a1, b0, b1) = (at(a0), at(a1), at(b0), at(b1));
+                let (e, oa, ob) = (at(*e), at(*oa), at(*ob));
+                overlap_from(e, oa, ob)
+                    || (orient(a0, a1, ob) == 0.0 && within(a0, a1, ob))
+                    || (orient(b0, b1, oa) == 0.0 && within(b0, b1, oa))
             }
             // The same segment twice.
             _ => true,

@@ -721,6 +721,12 @@ impl Shoelace {
     /// The sum of `x_i y_{i+1} - x_{i+1} y_i` along an arc.
     fn arc(&self, a: &[Coord]) -> f64 {
         let (o, s) = (self.origin, self.scale);
+        if s == 1.0 {
+            return a
+                .windows(2)
+                .map(|w| (w[0].x - o.x) * (w[1].y - o.y) - (w[1].x - o.x) * (w[0].y - o.y))
+                .sum();
+        }
         a.windows(2)
             .map(|w| {
                 let (x0, y0) = ((w[0].x - o.x) * s, (w[0].y - o.y) * s);
@@ -775,7 +781,7 @@ impl Shoelace {
 /// Whether `p` is inside the closed `ring` (winding number with exact
 /// orientation); `None` on its boundary.
 fn locate(p: Coord, ring: &[Coord]) -> Option<bool> {
-    let orient = |a: Coord, b: Coord| crate::crossings::orient(a, b, p);
+    let orient = |a: Coord, b: Coord| crate::crossings::orient_at_any_scale(a, b, p);
     let mut wn = 0i64;
     for w in ring.windows(2) {
         let (a, b) = (w[0], w[1]);
