@@ -202,11 +202,11 @@ fn gather(groups: &[Group<'_>]) -> PyResult<(Vec<Geometry<f64>>, Vec<i64>)> {
         for (g, &i) in gs.iter().zip(idx.iter()) {
             if let Some(k) = first_non_finite(g) {
                 return Err(Fault {
-                    message: format!("geometry {i}, coordinate {k}: not a finite number"),
-                    index: Some(i),
-                    member: None,
-                    ring: None,
                     coordinate: Some(k),
+                    ..Fault::of(
+                        i,
+                        format!("geometry {i}, coordinate {k}: not a finite number"),
+                    )
                 }
                 .into());
             }
@@ -257,20 +257,12 @@ fn coverage_error(c: &Coverage, index: &[i64], e: &bzspline_geo::Error) -> Fault
                 msg.push_str(&format!(", ring {r}"));
             }
             Fault {
-                message: format!("{msg}: {e}"),
-                index: Some(at),
                 member: Some(l.member),
                 ring: l.ring,
-                coordinate: None,
+                ..Fault::of(at, format!("{msg}: {e}"))
             }
         }
-        None => Fault {
-            message: e.to_string(),
-            index: None,
-            member: None,
-            ring: None,
-            coordinate: None,
-        },
+        None => Fault::option(e.to_string()),
     }
 }
 
@@ -283,6 +275,30 @@ struct Fault {
     member: Option<usize>,
     ring: Option<usize>,
     coordinate: Option<usize>,
+}
+
+impl Fault {
+    /// The fault of geometry `index`, nothing more precise known.
+    fn of(index: i64, message: String) -> Fault {
+        Fault {
+            message,
+            index: Some(index),
+            member: None,
+            ring: None,
+            coordinate: None,
+        }
+    }
+
+    /// A fault in no one geometry (an option): a plain `ValueError`.
+    fn option(message: String) -> Fault {
+        Fault {
+            message,
+            index: None,
+            member: None,
+            ring: None,
+            coordinate: None,
+        }
+    }
 }
 
 impl From<Fault> for PyErr {
@@ -377,13 +393,8 @@ pub fn _smooth_ragged<'py>(
             let run = |gs: Vec<Geometry<f64>>,
                        index: &[i64]|
              -> Result<(Vec<Geometry<f64>>, Levels), Fault> {
-                let c = Coverage::with_nodes(gs, snap, nodes.clone()).map_err(|e| Fault {
-                    message: e.to_string(),
-                    index: None,
-                    member: None,
-                    ring: None,
-                    coordinate: None,
-                })?;
+                let c = Coverage::with_nodes(gs, snap, nodes.clone())
+                    .map_err(|e| Fault::option(e.to_string()))?;
                 // The caller's first `exact` geometries, wherever they are here.
                 let marks: Vec<bool> = match exact {
                     Some(e) => index
@@ -707,13 +718,7 @@ pub fn _smooth_spans<'py>(
             let (mut out, mut ends) = (Vec::with_capacity(flat.len() * 4), vec![0i64]);
             for (j, &(a, b)) in ranges.iter().enumerate() {
                 let s = smooth_line(&flat[a * dim..b * dim], dim, closed, tolerance, &opts)
-                    .map_err(|e| Fault {
-                        message: format!("geometry {}: {e}", owner[j]),
-                        index: Some(owner[j]),
-                        member: None,
-                        ring: None,
-                        coordinate: None,
-                    })?;
+                    .map_err(|e| Fault::of(owner[j], format!("geometry {}: {e}", owner[j])))?;
                 out.extend_from_slice(&s);
                 ends.push((out.len() / dim.max(1)) as i64);
             }

@@ -12,7 +12,7 @@
 //! of such positions is returned so that the command can say so once.
 //! Numbers are finite by construction (the JSON parser refuses overflow).
 
-use std::fmt;
+use std::fmt::{self, Write};
 
 use serde_json::Value;
 
@@ -196,7 +196,8 @@ fn nested(
     };
     for (k, item) in items.iter_mut().enumerate() {
         let len = path.len();
-        path.push_str(&format!("[{k}]"));
+        // Into the one path buffer: no string made per position.
+        let _ = write!(path, "[{k}]");
         nested(item, d - 1, kind, path, cut)?;
         path.truncate(len);
     }
