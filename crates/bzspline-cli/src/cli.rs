@@ -314,22 +314,13 @@ pub struct SmoothArgs {
     /// Output format: GeoJSON (the default) or TopoJSON (also chosen by an
     /// output file name ending in `.topojson`).
     #[arg(long, value_enum, value_name = "FORMAT")]
-    pub output_format: Option<SmoothFormat>,
+    pub output_format: Option<bzspline_io::smooth::job::Output>,
     /// With TopoJSON input and GeoJSON output: only the features of this
     /// object (all objects are smoothed together either way).
     #[arg(long, value_name = "NAME")]
     pub object: Option<String>,
     #[command(flatten)]
     pub output: OutputArgs,
-}
-
-/// Output formats of `smooth`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum SmoothFormat {
-    /// A GeoJSON document (newline-delimited for newline-delimited input).
-    Geojson,
-    /// A TopoJSON Topology with the smoothed arcs.
-    Topojson,
 }
 
 /// An error in the arguments found after parsing them: exit code 2.

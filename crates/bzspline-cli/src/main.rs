@@ -13,7 +13,7 @@ mod serve;
 mod smooth;
 
 // The formats, from the library crate every binding shares.
-use bzspline_io::{input, model, time, topojson};
+use bzspline_io::{input, model, time};
 
 fn main() {
     let args = match commands::Cli::try_parse() {

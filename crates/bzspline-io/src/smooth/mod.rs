@@ -5,6 +5,7 @@
 
 pub mod coverage;
 pub mod independent;
+pub mod job;
 
 use geojson::{GeoJson, GeometryValue, Position};
 

@@ -1,0 +1,316 @@
+//! One smoothing job over whole documents: what `bzspline smooth` does to a
+//! GeoJSON or TopoJSON document, a line of newline-delimited GeoJSON or a
+//! table, and what the JavaScript package's `smooth` does to the same
+//! document, by the same code. A [`Job`] chooses between the coverage and the
+//! ring-by-ring paths, writes GeoJSON or TopoJSON, and keeps the totals and
+//! notes for a summary.
+
+use anyhow::{anyhow, Context, Result};
+use bzspline_geo::{SmoothOptions, Stats};
+use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
+use serde_json::Value;
+
+use super::{chains, coverage, default_tolerance, independent, positions};
+use crate::input::{self, Limits, Points};
+use crate::topojson;
+
+/// What a smoothed document is written as.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+pub enum Output {
+    /// A GeoJSON document (newline-delimited for newline-delimited input).
+    #[default]
+    Geojson,
+    /// A TopoJSON Topology with the smoothed arcs.
+    Topojson,
+}
+
+/// Everything a job is asked to do.
+#[derive(Debug, Clone, Default)]
+pub struct Settings {
+    /// The smoothing options (alpha, parametrisation, tolerance, keep-angle,
+    /// through).
+    pub options: SmoothOptions,
+    /// Every line and ring on its own, not as one coverage.
+    pub independent: bool,
+    /// Join positions within this distance (and positions to edges) before
+    /// building the coverage.
+    pub snap: Option<f64>,
+    /// The one object of a TopoJSON input written as GeoJSON (all of them
+    /// when `None`).
+    pub object: Option<String>,
+    /// GeoJSON or TopoJSON out.
+    pub output: Output,
+    /// The name of the object a GeoJSON input becomes in TopoJSON output
+    /// (`collection` when empty).
+    pub object_name: String,
+    /// Input limits.
+    pub limits: Limits,
+}
+
+impl Settings {
+    /// The combination of settings that cannot be written, as a sentence:
+    /// TopoJSON out of ring-by-ring smoothing, which has no topology.
+    pub fn conflict(&self) -> Option<&'static str> {
+        (self.output == Output::Topojson && self.independent).then_some(
+            "--independent smooths ring by ring and has no topology to write as TopoJSON",
+        )
+    }
+}
+
+/// A smoothing job: settings, and the totals over what it smoothed.
+#[derive(Debug)]
+pub struct Job {
+    settings: Settings,
+    /// Where positions with z sent a document ring by ring.
+    z_at: Option<String>,
+    /// Positions cut to x, y, z (more than 3 numbers), and where the first was.
+    cut: (usize, Option<String>),
+    total: Stats,
+    features: usize,
+}
+
+impl Job {
+    /// A job with nothing smoothed yet.
+    pub fn new(settings: Settings) -> Self {
+        Job {
+            settings,
+            z_at: None,
+            cut: (0, None),
+            total: Stats::default(),
+            features: 0,
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// Smooths a whole document (GeoJSON or a TopoJSON Topology) read from
+    /// `name`.
+    ///
+    /// # Errors
+    ///
+    /// `name: ...` for a document that is not GeoJSON or TopoJSON, `name:
+    /// feature i, ...: ...` for a geometry that cannot be smoothed.
+    pub fn document(&mut self, name: &str, value: Value) -> Result<Value> {
+        if topojson::is_topology(&value) {
+            self.topology(name, value)
+        } else {
+            let doc = self.checked(name, value)?;
+            self.geojson(doc, name, true)
+        }
+    }
+
+    /// Smooths the text of one line of newline-delimited GeoJSON (RFC 8142
+    /// record separators accepted); `None` for a blank line. `here` is
+    /// `FILE:LINE`.
+    ///
+    /// # Errors
+    ///
+    /// `here: invalid JSON: ...` and the errors of [`Job::document`].
+    pub fn line(&mut self, here: &str, text: &str) -> Result<Option<Value>> {
+        let text = text.trim_matches(|c: char| c.is_whitespace() || c == '\u{1e}');
+        if text.is_empty() {
+            return Ok(None);
+        }
+        let value: Value =
+            serde_json::from_str(text).map_err(|e| anyhow!("{here}: invalid JSON: {e}"))?;
+        let doc = self.checked(here, value)?;
+        self.geojson(doc, here, false).map(Some)
+    }
+
+    /// Smooths a table of points as one LineString (its rows are the
+    /// vertices), a Feature with the table's name as property `source`.
+    ///
+    /// # Errors
+    ///
+    /// A table of other than 2 or 3 columns; the errors of [`Job::document`].
+    pub fn table(&mut self, points: &Points) -> Result<Value> {
+        input::check_columns(points, &[2, 3], "2 or 3 coordinates")?;
+        let line: Vec<Position> = points.rows().map(|r| Position::from(r.to_vec())).collect();
+        let mut feature = Feature::from(Geometry::new(GeometryValue::LineString {
+            coordinates: line,
+        }));
+        feature.set_property("source", points.source.clone());
+        self.geojson(GeoJson::Feature(feature), &points.source, false)
+    }
+
+    /// The notes for standard error once the output is written: positions
+    /// cut to x, y, z, and a document smoothed ring by ring for its z.
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        if let (n @ 1.., Some(at)) = &self.cut {
+            notes.push(input::cut_note(at, *n));
+        }
+        if let Some(at) = &self.z_at {
+            notes.push(format!(
+                "{at}: positions with z: smoothed ring by ring (the coverage's topology is planar)"
+            ));
+        }
+        notes
+    }
+
+    /// The totals over everything smoothed so far.
+    pub fn stats(&self) -> &Stats {
+        &self.total
+    }
+
+    /// A GeoJSON document checked ([`input::to_geojson`]) and converted;
+    /// positions cut to x, y, z are counted for the note.
+    fn checked(&mut self, where_: &str, value: Value) -> Result<GeoJson> {
+        let (doc, cut) = input::to_geojson(where_, value)?;
+        if cut > 0 {
+            self.cut.0 += cut;
+            self.cut.1.get_or_insert_with(|| where_.to_owned());
+        }
+        Ok(doc)
+    }
+
+    /// Smooths one GeoJSON document and gives the output document.
+    fn geojson(&mut self, doc: GeoJson, where_: &str, number_single: bool) -> Result<Value> {
+        self.features += match &doc {
+            GeoJson::FeatureCollection(fc) => fc.features.len(),
+            _ => 1,
+        };
+        let z = coverage::document_has_z(&doc);
+        let lib = &self.settings.options;
+        if self.settings.independent || z {
+            if z && !self.settings.independent && number_single && self.z_at.is_none() {
+                self.z_at = Some(where_.to_owned());
+            }
+            let tolerance = lib.tolerance.unwrap_or_else(|| default_tolerance(&doc));
+            let opts = independent::Options {
+                alpha: lib.alpha,
+                param: lib.param.clone(),
+                tolerance,
+                limits: self.settings.limits,
+                through: lib.through,
+            };
+            let positions_in = positions(&doc);
+            let (rings, lines) = chains(&doc);
+            let out = independent::smooth_document(doc, &opts, where_, number_single)?;
+            let mut s = Stats::default();
+            s.rings = rings;
+            s.lines = lines;
+            s.positions_in = positions_in;
+            s.positions_out = positions(&out);
+            s.tolerance = tolerance;
+            add(&mut self.total, &s);
+            return serde_json::to_value(&out).context("formatting GeoJSON");
+        }
+        let s = coverage::smooth_document(
+            doc,
+            lib,
+            self.settings.snap,
+            self.settings.limits.max_points,
+            where_,
+            number_single,
+        )?;
+        add(&mut self.total, &s.stats);
+        match self.settings.output {
+            Output::Geojson => serde_json::to_value(&s.doc).context("formatting GeoJSON"),
+            Output::Topojson => Ok(topojson::from_features(
+                self.object_name(),
+                &coverage::features(&s.doc),
+                s.coverage.topology(),
+                &s.arcs,
+            )),
+        }
+    }
+
+    fn object_name(&self) -> &str {
+        match self.settings.object_name.as_str() {
+            "" => "collection",
+            name => name,
+        }
+    }
+
+    /// Smooths a TopoJSON Topology on its own arcs (or, with a snap distance
+    /// or ring by ring, as the GeoJSON of its objects).
+    fn topology(&mut self, name: &str, value: Value) -> Result<Value> {
+        let topo = topojson::read(name, value)?;
+        let object = self.settings.object.clone();
+        if self.settings.independent || self.settings.snap.is_some() {
+            let fc = topo
+                .to_geojson(topo.topology.arcs(), object.as_deref())
+                .map_err(|e| anyhow!("{name}: {e}"))?;
+            let doc = self.checked(name, fc)?;
+            return self.geojson(doc, name, true);
+        }
+        let s = topo
+            .topology
+            .smooth(&self.settings.options)
+            .map_err(|e| anyhow!("{name}: {}", topo.describe(&e)))?;
+        self.features += topo.features;
+        add(&mut self.total, &s.stats);
+        match self.settings.output {
+            Output::Topojson => Ok(topo.to_topojson(&s.arcs)),
+            Output::Geojson => topo
+                .to_geojson(&s.arcs, object.as_deref())
+                .map_err(|e| anyhow!("{name}: {e}")),
+        }
+    }
+
+    /// The summary `bzspline smooth` prints on standard error.
+    pub fn summary(&self) -> String {
+        let t = &self.total;
+        let mut s = format!(
+            "smooth: {} features, {} rings, {} lines",
+            self.features, t.rings, t.lines
+        );
+        if t.arcs > 0 {
+            s += &format!(
+                "; {} arcs ({} shared, {} not, {} closed)",
+                t.arcs,
+                t.shared_arcs,
+                t.arcs - t.shared_arcs,
+                t.closed_arcs
+            );
+        }
+        s += &format!(
+            "\n  positions {} -> {}; tolerance {}{}\n",
+            t.positions_in,
+            t.positions_out,
+            t.tolerance,
+            if self.settings.options.tolerance.is_none() {
+                " (the default: 1e-4 of the extent's diagonal)"
+            } else {
+                ""
+            }
+        );
+        if !self.settings.independent {
+            s += &format!(
+                "  refined {} legs ({} kept as original edges) in {} rounds; {} pairs of edges already met in the input (left as they were)\n",
+                t.refined_legs, t.straight_legs, t.rounds, t.input_conflicts
+            );
+        }
+        if t.area_in > 0.0 {
+            s += &format!(
+                "  polygon area {:+.4} %\n",
+                100.0 * (t.area_out - t.area_in) / t.area_in
+            );
+        }
+        s
+    }
+}
+
+/// Adds one document's statistics to the totals.
+fn add(total: &mut Stats, s: &Stats) {
+    total.lines += s.lines;
+    total.rings += s.rings;
+    total.arcs += s.arcs;
+    total.shared_arcs += s.shared_arcs;
+    total.closed_arcs += s.closed_arcs;
+    total.positions_in += s.positions_in;
+    total.positions_out += s.positions_out;
+    total.refined_legs += s.refined_legs;
+    total.straight_legs += s.straight_legs;
+    total.rounds = total.rounds.max(s.rounds);
+    total.input_conflicts += s.input_conflicts;
+    total.kept_pieces += s.kept_pieces;
+    total.area_in += s.area_in;
+    total.area_out += s.area_out;
+    total.tolerance = s.tolerance;
+}
