@@ -10,7 +10,7 @@ use clap::{Args, ValueEnum};
 
 use crate::input::{self, Points, Source};
 use crate::model::Mode;
-use bzspline_io::options::parse_alpha;
+use bzspline_io::options::{self, parse_alpha};
 
 pub use crate::input::InputFormat;
 use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
@@ -395,30 +395,15 @@ fn at_least_two(s: &str) -> Result<usize, String> {
 }
 
 fn positive(s: &str) -> Result<f64, String> {
-    let v = parse_number(s)?;
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("must be a positive number (got {s})"))
-    }
+    options::check_positive(parse_number(s)?).map_err(|e| format!("{e} (got {s})"))
 }
 
 fn non_negative(s: &str) -> Result<f64, String> {
-    let v = parse_number(s)?;
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("must be a number of at least 0 (got {s})"))
-    }
+    options::check_snap(parse_number(s)?).map_err(|e| format!("{e} (got {s})"))
 }
 
 fn degrees(s: &str) -> Result<f64, String> {
-    let v = parse_number(s)?;
-    if (0.0..=180.0).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("must be an angle from 0 to 180 degrees (got {s})"))
-    }
+    options::check_keep_angle(parse_number(s)?).map_err(|e| format!("{e} (got {s})"))
 }
 
 /// The validated shape options.

@@ -1,44 +1,48 @@
 //! The options more than one entry point takes (the command, its server,
-//! the bindings), parsed once: shape parameters as decimals or fractions.
-//! The parametrisation's names are [`bzspline::Param`]'s own
+//! the bindings), parsed once: shape parameters as decimals or fractions
+//! ([`bzspline::parse_fraction`], [`bzspline::parse_alpha`], re-exported
+//! here). The parametrisation's names are [`bzspline::Param`]'s own
 //! (`"centripetal".parse()`), the smoothing options' checks and defaults
 //! [`bzspline_geo::SmoothOptions`]'s.
 
-/// A number written as a decimal or a fraction `p/q` (`1/3`, `0.5`): the
-/// quotient of the two parsed numbers, the nearest double to the fraction
-/// when `p` and `q` are exact.
+pub use bzspline::{parse_alpha, parse_fraction};
+
+/// A flattening tolerance (or a sampling step): a positive finite number.
 ///
 /// # Errors
 ///
-/// The text is neither a finite number nor a fraction with a non-zero denominator.
-pub fn parse_fraction(s: &str) -> Result<f64, String> {
-    let item = s.trim();
-    let v = match item.split_once('/') {
-        Some((p, q)) => match (p.trim().parse::<f64>(), q.trim().parse::<f64>()) {
-            (Ok(p), Ok(q)) if q != 0.0 => p / q,
-            _ => f64::NAN,
-        },
-        None => item.parse::<f64>().unwrap_or(f64::NAN),
-    };
-    if v.is_finite() {
+/// Zero, negative, infinite or NaN, as the words of the option's message (`must be ...`).
+pub fn check_positive(v: f64) -> Result<f64, &'static str> {
+    if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
-        Err(format!("{item:?} is not a number or a fraction p/q"))
+        Err("must be a positive number")
     }
 }
 
-/// A shape parameter: a decimal or a fraction `p/q` ([`parse_fraction`]) in
-/// `[1/3, 2/3]`.
+/// A snap distance: a finite number of at least 0.
 ///
 /// # Errors
 ///
-/// Text that is no number or fraction, or a value outside the range.
-pub fn parse_alpha(s: &str) -> Result<f64, String> {
-    let v = parse_fraction(s)?;
-    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&v) {
+/// Negative, infinite or NaN, as the words of the option's message (`must be ...`).
+pub fn check_snap(v: f64) -> Result<f64, &'static str> {
+    if v.is_finite() && v >= 0.0 {
         Ok(v)
     } else {
-        Err(format!("{} is outside [1/3, 2/3]", s.trim()))
+        Err("must be a number of at least 0")
+    }
+}
+
+/// A keep-angle: degrees from 0 to 180.
+///
+/// # Errors
+///
+/// Outside [0, 180] or NaN, as the words of the option's message (`must be ...`).
+pub fn check_keep_angle(v: f64) -> Result<f64, &'static str> {
+    if (0.0..=180.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err("must be an angle from 0 to 180 degrees")
     }
 }
 
@@ -47,14 +51,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn fractions_and_decimals() {
-        assert_eq!(parse_fraction("1/3"), Ok(1.0 / 3.0));
-        assert_eq!(parse_fraction(" 0.5 "), Ok(0.5));
-        assert!(parse_fraction("1/0").is_err());
-        assert!(parse_fraction("NaN").is_err());
-        assert_eq!(parse_alpha("2/3"), Ok(2.0 / 3.0));
-        assert!(parse_alpha("0.7")
-            .unwrap_err()
-            .contains("outside [1/3, 2/3]"));
+    fn ranges() {
+        assert!(check_positive(0.0).is_err());
+        assert!(check_positive(f64::INFINITY).is_err());
+        assert_eq!(check_snap(0.0), Ok(0.0));
+        assert!(check_snap(-1e-9).is_err());
+        assert!(check_keep_angle(f64::NAN).is_err());
+        assert_eq!(check_keep_angle(180.0), Ok(180.0));
     }
 }

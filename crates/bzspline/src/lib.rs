@@ -81,6 +81,7 @@ pub mod curve;
 mod error;
 mod fast;
 pub mod flatten;
+mod fraction;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
 pub(crate) mod method;
@@ -99,6 +100,7 @@ pub use curve::{
 };
 pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
+pub use fraction::{parse_alpha, parse_fraction};
 pub use num::Shortest;
 pub use spline::{
     Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN,

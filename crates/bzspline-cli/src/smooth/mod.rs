@@ -71,9 +71,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             .to_owned(),
         limits: a.input.limits(),
     };
-    if let Some(conflict) = settings.conflict() {
-        return Err(UsageError::new(conflict).into());
-    }
+    settings.check().map_err(|e| UsageError::new(&e))?;
     if output == Output::Topojson && format == InputFormat::Geojsonseq {
         return Err(UsageError::new(
             "newline-delimited GeoJSON is streamed and cannot be written as TopoJSON",

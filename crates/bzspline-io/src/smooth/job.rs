@@ -12,6 +12,7 @@ use serde_json::Value;
 
 use super::{chains, coverage, default_tolerance, independent, positions};
 use crate::input::{self, Limits, Points};
+use crate::options;
 use crate::topojson;
 
 /// What a smoothed document is written as.
@@ -49,12 +50,46 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// The combination of settings that cannot be written, as a sentence:
-    /// TopoJSON out of ring-by-ring smoothing, which has no topology.
-    pub fn conflict(&self) -> Option<&'static str> {
-        (self.output == Output::Topojson && self.independent).then_some(
-            "--independent smooths ring by ring and has no topology to write as TopoJSON",
-        )
+    /// Checks the settings as a whole: every number in its range
+    /// ([`options`](crate::options)), and no combination that cannot be
+    /// done: ring by ring (`independent`) with a snap distance, a keep-angle
+    /// or TopoJSON output, which need the coverage's topology.
+    ///
+    /// # Errors
+    ///
+    /// A sentence naming the option (as the command spells it) at fault.
+    pub fn check(&self) -> Result<(), String> {
+        let o = &self.options;
+        if !(bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&o.alpha) {
+            return Err(format!("alpha = {} is outside [1/3, 2/3]", o.alpha));
+        }
+        let named = |name: &str, v: f64, r: Result<f64, &str>| {
+            r.map(drop).map_err(|e| format!("{name} {e} (got {v})"))
+        };
+        if let Some(t) = o.tolerance {
+            named("tolerance", t, options::check_positive(t))?;
+        }
+        if let Some(a) = o.keep_angle {
+            named("keep-angle", a, options::check_keep_angle(a))?;
+        }
+        if let Some(d) = self.snap {
+            named("snap", d, options::check_snap(d))?;
+        }
+        if self.independent {
+            if self.snap.is_some() {
+                return Err("independent smooths ring by ring and takes no snap distance".into());
+            }
+            if o.keep_angle.is_some() {
+                return Err("independent smooths ring by ring and takes no keep-angle".into());
+            }
+            if self.output == Output::Topojson {
+                return Err(
+                    "--independent smooths ring by ring and has no topology to write as TopoJSON"
+                        .into(),
+                );
+            }
+        }
+        Ok(())
     }
 }
 
