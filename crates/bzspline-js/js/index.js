@@ -1,0 +1,17 @@
+// bzspline: the third-degree Bezier-type spline of Stelia, Potapenko and
+// Sirenko for JavaScript. `Spline` (y = S(x)) and `Curve` (open or closed,
+// in the plane or in space) from the WebAssembly core, and the d3 curves
+// curveBzsplineX, curveBzsplineY, curveBzspline and curveBzsplineClosed.
+// The module loads its WebAssembly itself (a top-level await): importing it
+// is all a page or a Node program does.
+import init, { initSync, Spline, Curve, splinePieces, curvePieces, memoryBytes } from "../wasm/core.js";
+import { curves } from "./curves.js";
+import { load } from "./load.js";
+
+await load(init, initSync, new URL("../wasm/core_bg.wasm", import.meta.url));
+
+export { Spline, Curve, memoryBytes };
+export const { curveBzsplineX, curveBzsplineY, curveBzspline, curveBzsplineClosed } = curves({
+  splinePieces,
+  curvePieces,
+});

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The npm package's checks, on a fresh machine: installs the wasm32 target and
+# wasm-bindgen-cli at the version of Cargo.lock (and Chromium for the page
+# test), builds the WebAssembly, runs the Node tests (d3, Observable Plot, the
+# command's smoothing bit for bit, a page in headless Chromium), then packs
+# the package, installs the tarball in a fresh folder outside the repository
+# and runs a smoke test there. Prints "N passed, M failed".
+set -uo pipefail
+here="$(cd "$(dirname "$0")/.." && pwd)"
+root="$(cd "$here/../.." && pwd)"
+
+fail() {
+    echo "bzspline-js: $*" >&2
+    echo "0 passed, 1 failed"
+    exit 1
+}
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+if [ ! -x /usr/bin/chromium ]; then
+    $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq chromium >/dev/null \
+        || fail "could not install chromium"
+fi
+rustup target list --installed | grep -q wasm32-unknown-unknown \
+    || rustup target add wasm32-unknown-unknown || fail "could not add the wasm32 target"
+want=$(grep -A1 '^name = "wasm-bindgen"$' "$root/Cargo.lock" | sed -n 's/^version = "\(.*\)"/\1/p')
+if [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$want" ]; then
+    cargo install -q wasm-bindgen-cli --version "$want" || fail "could not install wasm-bindgen-cli $want"
+fi
+
+cd "$here" || fail "no package folder"
+PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund --loglevel=error || fail "npm ci failed"
+node scripts/build.mjs || fail "the WebAssembly build failed"
+[ -x "$root/target/debug/bzspline" ] || (cd "$root" && cargo build -q --locked -p bzspline-cli) || fail "cargo build failed"
+
+log=$(mktemp)
+node --test --test-reporter=spec test/*.test.mjs 2>&1 | tee "$log"
+status=${PIPESTATUS[0]}
+passed=$(grep -Eo '^ℹ pass [0-9]+' "$log" | grep -Eo '[0-9]+' | tail -1)
+failed=$(grep -Eo '^ℹ fail [0-9]+' "$log" | grep -Eo '[0-9]+' | tail -1)
+passed=${passed:-0}
+failed=${failed:-0}
+if [ "$status" -ne 0 ] && [ "$failed" -eq 0 ]; then failed=1; fi
+
+# The package as a user gets it: npm pack, installed into a folder of its own.
+smoke=$(mktemp -d)
+if tarball=$(npm pack --silent --pack-destination "$smoke") &&
+    (cd "$smoke" && npm init -y >/dev/null && npm install --no-audit --no-fund --loglevel=error "./$tarball" d3-shape@3) &&
+    cp "$here/test/smoke.mjs" "$smoke/" && (cd "$smoke" && node smoke.mjs); then
+    echo "pack smoke: ok ($tarball, $(du -k "$smoke/$tarball" | cut -f1) kB)"
+    passed=$((passed + 1))
+else
+    echo "pack smoke: FAILED"
+    failed=$((failed + 1))
+    status=1
+fi
+rm -rf "$smoke" "$log"
+echo "$passed passed, $failed failed"
+exit "$status"

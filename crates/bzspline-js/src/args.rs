@@ -1,0 +1,203 @@
+//! Arguments from JavaScript: numbers and arrays of numbers, option objects,
+//! and the errors thrown back.
+
+use bzspline::Alphas;
+use js_sys::{Array, Float64Array, Reflect};
+use wasm_bindgen::{JsCast, JsValue};
+
+/// A `RangeError` with the message.
+pub fn range_error(msg: impl std::fmt::Display) -> JsValue {
+    js_sys::RangeError::new(&msg.to_string()).into()
+}
+
+/// A `TypeError` with the message.
+pub fn type_error(msg: impl std::fmt::Display) -> JsValue {
+    js_sys::TypeError::new(&msg.to_string()).into()
+}
+
+/// A library error as a `RangeError`.
+pub fn lib_error(e: bzspline::Error) -> JsValue {
+    range_error(e)
+}
+
+/// The numbers of an array-like of numbers (a typed array, an Array of
+/// numbers, anything `Float64Array.from` reads); `what` names it in errors.
+/// Entries that are not numbers are a `TypeError` naming the index.
+pub fn numbers(v: &JsValue, what: &str) -> Result<Vec<f64>, JsValue> {
+    if let Some(a) = v.dyn_ref::<Float64Array>() {
+        return Ok(a.to_vec());
+    }
+    if let Some(a) = v.dyn_ref::<Array>() {
+        let mut out = Vec::with_capacity(a.length() as usize);
+        for (i, item) in a.iter().enumerate() {
+            match item.as_f64() {
+                Some(x) => out.push(x),
+                None => {
+                    return Err(type_error(format!(
+                        "{what}[{i}] is not a number (found {})",
+                        kind(&item)
+                    )))
+                }
+            }
+        }
+        return Ok(out);
+    }
+    if js_sys::ArrayBuffer::is_view(v) && !v.is_instance_of::<js_sys::DataView>() {
+        return Ok(Float64Array::new(v).to_vec());
+    }
+    Err(type_error(format!(
+        "{what} must be an array or a typed array of numbers (found {})",
+        kind(v)
+    )))
+}
+
+/// The points of an array of points (`[[x, y], ...]`, all of one
+/// dimension) as one flat array and the dimension.
+pub fn points(v: &JsValue, what: &str) -> Result<(Vec<f64>, usize), JsValue> {
+    let Some(a) = v.dyn_ref::<Array>() else {
+        return Err(type_error(format!(
+            "{what} must be an array of points ([[x, y], ...]; found {})",
+            kind(v)
+        )));
+    };
+    let mut flat = Vec::new();
+    let mut dim = 0;
+    for (i, p) in a.iter().enumerate() {
+        let row = numbers(&p, &format!("{what}[{i}]"))?;
+        if i == 0 {
+            dim = row.len();
+            if dim == 0 {
+                return Err(range_error(format!("{what}[0] has no coordinates")));
+            }
+        } else if row.len() != dim {
+            return Err(range_error(format!(
+                "{what}[{i}] has {} coordinates, {what}[0] has {dim}",
+                row.len()
+            )));
+        }
+        flat.extend_from_slice(&row);
+    }
+    Ok((flat, dim))
+}
+
+/// What a value is, for messages.
+pub fn kind(v: &JsValue) -> String {
+    if v.is_null() {
+        "null".into()
+    } else if v.is_undefined() {
+        "undefined".into()
+    } else if let Some(s) = v.as_string() {
+        format!("the string {s:?}")
+    } else {
+        v.js_typeof().as_string().unwrap_or_default()
+    }
+}
+
+/// An options object (`undefined` and `null` are no options).
+pub struct Options(Option<JsValue>);
+
+impl Options {
+    /// Reads `v` as an options object.
+    pub fn new(v: &JsValue) -> Result<Self, JsValue> {
+        if v.is_undefined() || v.is_null() {
+            Ok(Options(None))
+        } else if v.is_object() && !Array::is_array(v) {
+            Ok(Options(Some(v.clone())))
+        } else {
+            Err(type_error(format!(
+                "options must be an object (found {})",
+                kind(v)
+            )))
+        }
+    }
+
+    /// The value of `name`, `None` when absent or undefined.
+    pub fn get(&self, name: &str) -> Option<JsValue> {
+        let o = self.0.as_ref()?;
+        let v = Reflect::get(o, &JsValue::from_str(name)).ok()?;
+        (!v.is_undefined()).then_some(v)
+    }
+
+    /// A boolean option.
+    pub fn flag(&self, name: &str, default: bool) -> Result<bool, JsValue> {
+        match self.get(name) {
+            None => Ok(default),
+            Some(v) => v.as_bool().ok_or_else(|| {
+                type_error(format!("{name} must be true or false (found {})", kind(&v)))
+            }),
+        }
+    }
+
+    /// A number option.
+    #[cfg_attr(not(feature = "geo"), allow(dead_code))]
+    pub fn number(&self, name: &str) -> Result<Option<f64>, JsValue> {
+        match self.get(name) {
+            None => Ok(None),
+            Some(v) if v.is_null() => Ok(None),
+            Some(v) => v
+                .as_f64()
+                .map(Some)
+                .ok_or_else(|| type_error(format!("{name} must be a number (found {})", kind(&v)))),
+        }
+    }
+
+    /// A string option.
+    #[cfg_attr(not(feature = "geo"), allow(dead_code))]
+    pub fn string(&self, name: &str) -> Result<Option<String>, JsValue> {
+        match self.get(name) {
+            None => Ok(None),
+            Some(v) if v.is_null() => Ok(None),
+            Some(v) => v
+                .as_string()
+                .map(Some)
+                .ok_or_else(|| type_error(format!("{name} must be a string (found {})", kind(&v)))),
+        }
+    }
+
+    /// The shape parameters: `alpha` (one number, or a string fraction such as
+    /// `"1/3"`) or `alphas` (one per interval), not both.
+    pub fn alphas(&self) -> Result<AlphaArg, JsValue> {
+        let one = match self.get("alpha") {
+            None => None,
+            Some(v) => Some(match v.as_string() {
+                Some(s) => bzspline_alpha(&s)?,
+                None => v.as_f64().ok_or_else(|| {
+                    type_error(format!(
+                        "alpha must be a number or a fraction such as \"1/3\" (found {})",
+                        kind(&v)
+                    ))
+                })?,
+            }),
+        };
+        match (one, self.get("alphas")) {
+            (Some(_), Some(_)) => Err(type_error("give alpha or alphas, not both")),
+            (Some(a), None) => Ok(AlphaArg::One(a)),
+            (None, Some(v)) => Ok(AlphaArg::Each(numbers(&v, "alphas")?)),
+            (None, None) => Ok(AlphaArg::One(bzspline::DEFAULT_ALPHA)),
+        }
+    }
+}
+
+/// An alpha written as text: a decimal or a fraction `p/q` in [1/3, 2/3].
+fn bzspline_alpha(s: &str) -> Result<f64, JsValue> {
+    let v = bzspline::parse_alpha(s).map_err(range_error)?;
+    Ok(v)
+}
+
+/// One alpha for every interval, or one each.
+pub enum AlphaArg {
+    /// The same alpha everywhere.
+    One(f64),
+    /// One per interval.
+    Each(Vec<f64>),
+}
+
+impl AlphaArg {
+    /// As the library takes it.
+    pub fn choice(&self) -> Alphas<'_> {
+        match self {
+            AlphaArg::One(a) => Alphas::Uniform(*a),
+            AlphaArg::Each(v) => Alphas::PerInterval(v),
+        }
+    }
+}

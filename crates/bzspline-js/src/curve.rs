@@ -1,0 +1,157 @@
+//! `Curve`: the method's curve through control points in the plane or in
+//! space, open or closed, for JavaScript.
+
+use bzspline::{Arclen, Param, DEFAULT_ACCURACY};
+use js_sys::{Array, Float64Array};
+use wasm_bindgen::prelude::*;
+
+use crate::args::{kind, lib_error, numbers, points, range_error, type_error, Options};
+use crate::spline::set;
+
+/// A curve in R^d by the method: each coordinate the method's spline of one
+/// shared parameter; starts and ends at the end points (open), touches every
+/// leg of the control polygon and stays in the points' convex hull.
+#[wasm_bindgen]
+pub struct Curve {
+    inner: bzspline::Curve,
+}
+
+/// Rows of `d` numbers as `[[...], ...]`.
+fn rows(flat: &[f64], d: usize) -> Array {
+    flat.chunks(d)
+        .map(|r| JsValue::from(Float64Array::from(r)))
+        .collect()
+}
+
+#[wasm_bindgen]
+impl Curve {
+    /// `new Curve(points, {closed, param, alpha, alphas, through})`: points
+    /// `[[x, y], ...]` (or `[x, y, z]`), at least 2 (3 closed, without
+    /// repeating the first); `param` `"centripetal"` (the default),
+    /// `"chordal"`, `"uniform"` or the parameters themselves.
+    #[wasm_bindgen(constructor)]
+    pub fn new(pts: &JsValue, options: &JsValue) -> Result<Curve, JsValue> {
+        let (flat, dim) = points(pts, "points")?;
+        let o = Options::new(options)?;
+        let param = match o.get("param") {
+            None => Param::default(),
+            Some(v) => match v.as_string() {
+                Some(s) => s.parse::<Param>().map_err(range_error)?,
+                None if v.is_object() => Param::Given(numbers(&v, "param")?),
+                None => {
+                    return Err(type_error(format!(
+                        "param must be a name or an array of parameters (found {})",
+                        kind(&v)
+                    )))
+                }
+            },
+        };
+        let alphas = o.alphas()?;
+        let inner = bzspline::CurveBuilder::new(&flat, dim.max(1))
+            .closed(o.flag("closed", false)?)
+            .param(param)
+            .alpha_choice(alphas.choice())
+            .through(o.flag("through", false)?)
+            .build()
+            .map_err(lib_error)?;
+        Ok(Curve { inner })
+    }
+
+    /// The point at parameter t (a `Float64Array` of d numbers), or for an
+    /// array of parameters an array of points; `nu` gives a derivative.
+    pub fn at(&self, t: &JsValue, nu: Option<u32>) -> Result<JsValue, JsValue> {
+        let nu = nu.unwrap_or(0);
+        if let Some(s) = t.as_f64() {
+            let p = self.inner.deriv(s, nu).map_err(lib_error)?;
+            return Ok(Float64Array::from(p.as_slice()).into());
+        }
+        let ts = numbers(t, "t")?;
+        let d = self.inner.dim();
+        let mut out = vec![0.0; ts.len() * d];
+        self.inner
+            .deriv_many(&ts, nu, &mut out)
+            .map_err(lib_error)?;
+        Ok(rows(&out, d).into())
+    }
+
+    /// The parameters of the knots.
+    #[wasm_bindgen(getter)]
+    pub fn knots(&self) -> Float64Array {
+        Float64Array::from(self.inner.knots())
+    }
+
+    /// The dimension d.
+    #[wasm_bindgen(getter)]
+    pub fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+
+    /// True for a closed curve.
+    #[wasm_bindgen(getter)]
+    pub fn closed(&self) -> bool {
+        self.inner.is_closed()
+    }
+
+    /// The arc length, to `accuracy` (absolute, default 1e-9).
+    pub fn arclen(&self, accuracy: Option<f64>) -> Result<f64, JsValue> {
+        Arclen::arclen(&self.inner, accuracy.unwrap_or(DEFAULT_ACCURACY)).map_err(lib_error)
+    }
+
+    /// `n` points (at least 2) at equal arc-length steps from start to end.
+    pub fn resample(&self, n: usize, accuracy: Option<f64>) -> Result<Array, JsValue> {
+        let p = self
+            .inner
+            .resample(n, accuracy.unwrap_or(DEFAULT_ACCURACY))
+            .map_err(lib_error)?;
+        Ok((0..p.len())
+            .filter_map(|i| p.point(i))
+            .map(|r| JsValue::from(Float64Array::from(r)))
+            .collect())
+    }
+
+    /// The point of the curve nearest to `p`: `{t, point, distance}`.
+    pub fn nearest(&self, p: &JsValue) -> Result<JsValue, JsValue> {
+        let q = numbers(p, "p")?;
+        let n = self.inner.nearest(&q).map_err(lib_error)?;
+        let o = js_sys::Object::new();
+        set(&o, "t", n.param.into());
+        set(&o, "point", Float64Array::from(n.point.as_slice()).into());
+        set(&o, "distance", n.distance.into());
+        Ok(o.into())
+    }
+
+    /// The exact bounding box of the curve: `{min, max}`, each of d numbers.
+    pub fn bbox(&self) -> JsValue {
+        let b = self.inner.bbox();
+        let o = js_sys::Object::new();
+        set(&o, "min", Float64Array::from(b.min.as_slice()).into());
+        set(&o, "max", Float64Array::from(b.max.as_slice()).into());
+        o.into()
+    }
+
+    /// A polyline within `tolerance` of the curve, from its start to its end.
+    pub fn flatten(&self, tolerance: f64) -> Result<Array, JsValue> {
+        let p = self.inner.flatten(tolerance).map_err(lib_error)?;
+        Ok((0..p.len())
+            .filter_map(|i| p.point(i))
+            .map(|r| JsValue::from(Float64Array::from(r)))
+            .collect())
+    }
+
+    /// Every segment as its four control points, `[[p0, p1, p2, p3], ...]`.
+    #[wasm_bindgen(getter)]
+    pub fn segments(&self) -> Array {
+        let d = self.inner.dim();
+        (0..self.inner.len())
+            .filter_map(|k| self.inner.segment_points(k))
+            .map(|p| JsValue::from(rows(&p, d)))
+            .collect()
+    }
+
+    /// SVG path data of a planar curve, exactly: `M x y C ...` (with `Z`
+    /// for a closed curve).
+    #[wasm_bindgen(js_name = svgPath)]
+    pub fn svg_path(&self) -> Result<String, JsValue> {
+        self.inner.to_svg_path().map_err(lib_error)
+    }
+}

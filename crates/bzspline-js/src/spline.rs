@@ -1,0 +1,255 @@
+//! `Spline`: the method's spline y = S(x) for JavaScript, with values,
+//! derivatives, integrals, extrema and its exact Bezier pieces.
+
+use std::rc::Rc;
+
+use bzspline::{Extrapolate, ExtremumKind};
+use js_sys::{Array, Float64Array};
+use wasm_bindgen::prelude::*;
+
+use crate::args::{kind, lib_error, numbers, range_error, type_error, Options};
+
+/// What a spline does outside its knots.
+#[derive(Clone, Copy, PartialEq)]
+enum Outside {
+    /// Continue the end cubics (the default, as scipy).
+    Extend,
+    /// NaN (scipy's `extrapolate=False`).
+    Nan,
+    /// Hold the end values.
+    Clamp,
+}
+
+/// The third-degree Bezier-type spline y = S(x) of Stelia, Potapenko and
+/// Sirenko: C1, through the first and last points, touching every leg of
+/// the control polygon, within the range of y; every piece one cubic Bezier
+/// segment.
+#[wasm_bindgen]
+pub struct Spline {
+    inner: Rc<bzspline::Spline>,
+    outside: Outside,
+    /// The derivative order this object evaluates (from `derivative`).
+    nu: u32,
+}
+
+#[wasm_bindgen]
+impl Spline {
+    /// `new Spline(x, y, {alpha, alphas, through, extrapolate})`: x strictly
+    /// increasing and finite, y as many; alpha in [1/3, 2/3] (0.5, or a
+    /// fraction such as `"1/3"`) or alphas one per interval; `through` to
+    /// pass through every (x, y); `extrapolate` true (extend the end cubics),
+    /// false (NaN) or `"clamp"`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Spline, JsValue> {
+        let x = numbers(x, "x")?;
+        let y = numbers(y, "y")?;
+        let o = Options::new(options)?;
+        let alphas = o.alphas()?;
+        let through = o.flag("through", false)?;
+        let outside = match o.get("extrapolate") {
+            None => Outside::Extend,
+            Some(v) => match (v.as_bool(), v.as_string().as_deref()) {
+                (Some(true), _) => Outside::Extend,
+                (Some(false), _) => Outside::Nan,
+                (_, Some("clamp")) => Outside::Clamp,
+                _ => {
+                    return Err(type_error(format!(
+                        "extrapolate must be true, false or \"clamp\" (found {})",
+                        kind(&v)
+                    )))
+                }
+            },
+        };
+        let built = if through {
+            bzspline::Spline::through(&x, &y, alphas.choice())
+        } else {
+            bzspline::Spline::build(&x, &y, alphas.choice())
+        }
+        .map_err(lib_error)?;
+        let policy = match outside {
+            Outside::Clamp => Extrapolate::Clamp,
+            Outside::Extend | Outside::Nan => Extrapolate::Extend,
+        };
+        Ok(Spline {
+            inner: Rc::new(built.with_extrapolation(policy)),
+            outside,
+            nu: 0,
+        })
+    }
+
+    /// S(x) (or this object's derivative) at x: a number for a number, a
+    /// `Float64Array` for an array or typed array. NaN for NaN, and outside
+    /// the knots with `extrapolate: false`.
+    pub fn at(&self, x: &JsValue) -> Result<JsValue, JsValue> {
+        if let Some(v) = x.as_f64() {
+            return Ok(self.value(v).into());
+        }
+        let xs = numbers(x, "x")?;
+        let mut out = vec![0.0; xs.len()];
+        self.values(&xs, &mut out)?;
+        Ok(Float64Array::from(out.as_slice()).into())
+    }
+
+    /// The derivative of order `nu` (default 1) as a new `Spline`-like object
+    /// whose `at` gives S^(nu); orders above 3 are 0.
+    pub fn derivative(&self, nu: Option<u32>) -> Spline {
+        Spline {
+            inner: Rc::clone(&self.inner),
+            outside: self.outside,
+            nu: self.nu.saturating_add(nu.unwrap_or(1)),
+        }
+    }
+
+    /// The integral of S from a to b (b < a gives the negative); NaN when a
+    /// bound is outside the knots with `extrapolate: false`.
+    pub fn integrate(&self, a: f64, b: f64) -> Result<f64, JsValue> {
+        if self.nu != 0 {
+            return Err(range_error(
+                "integrate applies to the spline, not to a derivative",
+            ));
+        }
+        let (lo, hi) = self.inner.domain();
+        let inside = |v: f64| (lo..=hi).contains(&v);
+        if self.outside == Outside::Nan && !(inside(a) && inside(b)) {
+            return Ok(f64::NAN);
+        }
+        self.inner.integral(a, b).map_err(lib_error)
+    }
+
+    /// The points inside the domain where S' = 0: `[{x, y, kind}]` in
+    /// increasing x, kind `"minimum"`, `"maximum"` or `"stationary"`.
+    pub fn extrema(&self) -> Array {
+        self.inner
+            .extrema()
+            .into_iter()
+            .map(|e| {
+                let o = js_sys::Object::new();
+                let kind = match e.kind {
+                    ExtremumKind::Minimum => "minimum",
+                    ExtremumKind::Maximum => "maximum",
+                    _ => "stationary",
+                };
+                set(&o, "x", e.x.into());
+                set(&o, "y", e.y.into());
+                set(&o, "kind", kind.into());
+                JsValue::from(o)
+            })
+            .collect()
+    }
+
+    /// The knots.
+    #[wasm_bindgen(getter)]
+    pub fn x(&self) -> Float64Array {
+        Float64Array::from(self.inner.knots())
+    }
+
+    /// The knot values S(x_k).
+    #[wasm_bindgen(getter, js_name = knotValues)]
+    pub fn knot_values(&self) -> Float64Array {
+        Float64Array::from(self.inner.knot_values().as_slice())
+    }
+
+    /// The control values F_k (for `through`, the solved ones).
+    #[wasm_bindgen(getter, js_name = controlValues)]
+    pub fn control_values(&self) -> Float64Array {
+        Float64Array::from(self.inner.values())
+    }
+
+    /// The shape parameters, one per interval.
+    #[wasm_bindgen(getter)]
+    pub fn alphas(&self) -> Float64Array {
+        Float64Array::from(self.inner.alphas())
+    }
+
+    /// The points where S touches each leg of the control polygon,
+    /// `[[x, y], ...]`.
+    #[wasm_bindgen(getter, js_name = tangentPoints)]
+    pub fn tangent_points(&self) -> Array {
+        self.inner
+            .tangent_points()
+            .into_iter()
+            .map(|(x, y)| JsValue::from(pair(x, y)))
+            .collect()
+    }
+
+    /// Every piece as the four control points of a cubic Bezier segment,
+    /// `[[[x0, y0], [x1, y1], [x2, y2], [x3, y3]], ...]`.
+    #[wasm_bindgen(getter)]
+    pub fn segments(&self) -> Array {
+        self.inner
+            .segments()
+            .into_iter()
+            .map(|b| {
+                JsValue::from(
+                    b.p.iter()
+                        .map(|p| JsValue::from(pair(p[0], p[1])))
+                        .collect::<Array>(),
+                )
+            })
+            .collect()
+    }
+
+    /// The graph as SVG path data, exactly: `M x0 y0 C ...`, one `C` per
+    /// piece, every number the shortest that reads back the same.
+    #[wasm_bindgen(js_name = svgPath)]
+    pub fn svg_path(&self) -> Result<String, JsValue> {
+        let mut s = String::new();
+        match bzspline::write_svg_path(&*self.inner, false, &mut s) {
+            Ok(true) => Ok(s),
+            _ => Err(range_error(
+                "a control point of the path overflows a double",
+            )),
+        }
+    }
+
+    /// The derivative order this object evaluates (0 for the spline).
+    #[wasm_bindgen(getter)]
+    pub fn nu(&self) -> u32 {
+        self.nu
+    }
+}
+
+impl Spline {
+    fn outside_nan(&self, v: f64) -> bool {
+        let (a, b) = self.inner.domain();
+        v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v))
+    }
+
+    fn value(&self, v: f64) -> f64 {
+        if self.outside_nan(v) {
+            return f64::NAN;
+        }
+        if self.nu > 3 {
+            return 0.0;
+        }
+        self.inner.deriv(v, self.nu).unwrap_or(f64::NAN)
+    }
+
+    fn values(&self, xs: &[f64], out: &mut [f64]) -> Result<(), JsValue> {
+        if self.nu <= 3 && self.inner.deriv_many(xs, self.nu, out).is_ok() {
+            if self.outside == Outside::Nan {
+                for (o, &v) in out.iter_mut().zip(xs) {
+                    if self.outside_nan(v) {
+                        *o = f64::NAN;
+                    }
+                }
+            }
+            return Ok(());
+        }
+        for (o, &v) in out.iter_mut().zip(xs) {
+            *o = self.value(v);
+        }
+        Ok(())
+    }
+}
+
+/// `[x, y]`.
+pub(crate) fn pair(x: f64, y: f64) -> Array {
+    Array::of2(&x.into(), &y.into())
+}
+
+/// `o[name] = v`.
+pub(crate) fn set(o: &js_sys::Object, name: &str, v: JsValue) {
+    // Setting a property of a fresh plain object cannot fail.
+    let _ = js_sys::Reflect::set(o, &JsValue::from_str(name), &v);
+}
