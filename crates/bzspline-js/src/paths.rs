@@ -21,8 +21,8 @@ pub fn spline_pieces(x: &[f64], y: &[f64], alpha: f64, through: bool) -> Vec<f64
         return Vec::new();
     };
     let mut out = Vec::with_capacity(2 + 6 * s.len());
-    for (k, b) in s.segments().into_iter().enumerate() {
-        if k == 0 {
+    for b in (0..s.len()).filter_map(|k| s.segment(k)) {
+        if out.is_empty() {
             out.extend_from_slice(&b.p[0]);
         }
         for p in &b.p[1..] {
