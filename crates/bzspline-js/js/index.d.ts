@@ -47,7 +47,6 @@ export class Spline {
   svgPath(): string;
   /** Releases the WebAssembly memory now (otherwise when collected). */
   free(): void;
-  [Symbol.dispose](): void;
   readonly x: Float64Array;
   readonly knotValues: Float64Array;
   readonly controlValues: Float64Array;
@@ -89,7 +88,6 @@ export class Curve {
   /** Exact SVG path data of a planar curve. */
   svgPath(): string;
   free(): void;
-  [Symbol.dispose](): void;
   readonly knots: Float64Array;
   readonly dim: number;
   readonly closed: boolean;

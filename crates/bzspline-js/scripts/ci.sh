@@ -2,7 +2,8 @@
 # The npm package's checks, on a fresh machine: installs the wasm32 target and
 # wasm-bindgen-cli at the version of Cargo.lock (and Chromium for the page
 # test), builds the WebAssembly, runs the Node tests (d3, Observable Plot, the
-# command's smoothing bit for bit, a page in headless Chromium), then packs
+# command's smoothing bit for bit, a page in headless Chromium), checks the
+# TypeScript declarations with tsc, then packs
 # the package, installs the tarball in a fresh folder outside the repository
 # and runs a smoke test there. Prints "N passed, M failed".
 set -uo pipefail
@@ -41,6 +42,16 @@ failed=$(grep -Eo '^ℹ fail [0-9]+' "$log" | grep -Eo '[0-9]+' | tail -1)
 passed=${passed:-0}
 failed=${failed:-0}
 if [ "$status" -ne 0 ] && [ "$failed" -eq 0 ]; then failed=1; fi
+
+# The TypeScript declarations, against what the README shows.
+if npx tsc --noEmit --strict --target es2022 --module nodenext --moduleResolution nodenext test/types.ts; then
+    echo "types: ok"
+    passed=$((passed + 1))
+else
+    echo "types: FAILED"
+    failed=$((failed + 1))
+    status=1
+fi
 
 # The package as a user gets it: npm pack, installed into a folder of its own.
 smoke=$(mktemp -d)

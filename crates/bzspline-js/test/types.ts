@@ -1,0 +1,29 @@
+// Compiled by `tsc --noEmit` (scripts/ci.sh): the package's declarations
+// accept what the README shows and refuse what they should.
+import { line, area } from "d3-shape";
+import { Spline, Curve, curveBzsplineX, curveBzspline, curveBzsplineClosed, type Extremum } from "../js/index.js";
+import { smooth } from "../js/geo.js";
+
+const s = new Spline([0, 1, 2], Float64Array.of(0, 1, 0), { alpha: "1/3", extrapolate: "clamp" });
+const v: number = s.at(0.5);
+const vs: Float64Array = s.at([0.5, 1.5]);
+const e: Extremum[] = s.extrema();
+const d1: number = s.derivative().at(1);
+const segs: [number, number][][] = s.segments;
+const c = new Curve([[0, 0], [1, 0], [1, 1]], { closed: true, param: "chordal" });
+const p: Float64Array = c.at(0.25);
+const near: number = c.nearest([2, 2]).distance;
+const path: string | null = line().curve(curveBzsplineX.alpha(0.4).through(true))([[0, 0], [1, 1]]);
+const outline: string | null = area().curve(curveBzspline.param("uniform"))([[0, 0], [1, 1]]);
+line().curve(curveBzsplineClosed);
+const out: string = smooth("{}", { tolerance: 1, keepAngle: 60, output: "topojson" });
+const obj: object = smooth({ type: "FeatureCollection", features: [] }, { independent: true });
+// @ts-expect-error: alpha is a number or a fraction, not a boolean
+new Spline([0, 1], [0, 1], { alpha: true });
+// @ts-expect-error: the chart curve has no parametrisation
+curveBzsplineX.param("uniform");
+// @ts-expect-error: an unknown parametrisation
+curveBzspline.param("spiral");
+s.free();
+c.free();
+export { v, vs, e, d1, segs, p, near, path, outline, out, obj };
