@@ -290,9 +290,10 @@ pub struct SmoothArgs {
     /// box (of each line's, for newline-delimited GeoJSON).
     #[arg(long, value_name = "T", value_parser = positive, allow_negative_numbers = true)]
     pub tolerance: Option<f64>,
-    /// Smooth every ring and line on its own, as if it had no neighbours (the
-    /// borders that features share are no longer shared afterwards).
-    #[arg(long, conflicts_with_all = ["snap", "keep_angle"])]
+    /// Smooth every feature's geometry on its own, as if it had no
+    /// neighbours: each stays valid, but the borders that features share are
+    /// no longer shared afterwards (Python's `coverage=False`).
+    #[arg(long, conflicts_with = "snap")]
     pub independent: bool,
     /// Merge positions closer than EPS, and put a position within EPS of
     /// another line's or ring's edge into that edge, before finding the

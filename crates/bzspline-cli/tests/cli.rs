@@ -286,13 +286,6 @@ fn usage_errors_exit_2() {
             "smooth",
             "shapes.geojson",
             "--independent",
-            "--keep-angle",
-            "30",
-        ][..],
-        &[
-            "smooth",
-            "shapes.geojson",
-            "--independent",
             "--output-format",
             "topojson",
         ][..],

@@ -113,6 +113,26 @@ fn a_geojson_mosaic_keeps_every_shared_border() {
         })
         .count();
     assert!(kept < pairs.len(), "--independent kept every border");
+    // Each geometry on its own is each geometry as a coverage of its own:
+    // smoothing the features one by one gives the same positions.
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture("mosaic.geojson")).unwrap()).unwrap();
+    for (i, f) in doc["features"].as_array().unwrap().iter().enumerate() {
+        let dir = tempfile::tempdir().unwrap();
+        let one = dir.path().join("one.geojson");
+        std::fs::write(&one, f.to_string()).unwrap();
+        let alone_one = ok(&["smooth", one.to_str().unwrap(), "--tolerance", "0.001"]);
+        let got: serde_json::Value = serde_json::from_str(&alone_one).unwrap();
+        assert_eq!(got["geometry"], alone[i]["geometry"], "feature {i}");
+    }
+    // And it takes a keep-angle, as a coverage does.
+    ok(&[
+        "smooth",
+        "mosaic.geojson",
+        "--independent",
+        "--keep-angle",
+        "60",
+    ]);
 }
 
 #[test]

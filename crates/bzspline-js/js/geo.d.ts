@@ -7,7 +7,7 @@ export interface SmoothOptions {
   keepAngle?: number;
   /** Join positions (and positions to edges) closer than this first. */
   snap?: number;
-  /** Every ring and line on its own, not as one coverage. */
+  /** Every feature's geometry on its own (each stays valid), not the document as one coverage. */
   independent?: boolean;
   /** Pass through every position. */
   through?: boolean;

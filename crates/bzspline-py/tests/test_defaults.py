@@ -51,3 +51,27 @@ def test_a_closed_curve_and_a_spline_with_defaults_are_the_commands():
     got = fit([], "x,y\n" + "".join(f"{a},{b}\n" for a, b in zip(x, y)))
     assert np.array_equal(s.knot_values, np.array(got["knot_values"]))
     assert np.array_equal(s.segments, np.array(got["segments"]))
+
+
+def test_each_geometry_on_its_own_is_the_commands_independent():
+    # `coverage=False` and `bzspline smooth --independent` mean the same thing:
+    # every geometry smoothed as a coverage of its own, with its own default
+    # tolerance; the same positions, bit for bit.
+    import shapely
+    from shapely.geometry import shape
+
+    import bzspline.geo
+
+    path = ROOT / "crates/bzspline-cli/tests/fixtures/mosaic.geojson"
+    features = json.loads(path.read_text())["features"]
+    geoms = np.array([shape(f["geometry"]) for f in features], dtype=object)
+    ours = bzspline.geo.smooth(geoms, coverage=False)
+    out = subprocess.run([command(), "smooth", str(path), "--independent"],
+                         capture_output=True, text=True, check=True)
+    theirs = [shape(f["geometry"]) for f in json.loads(out.stdout)["features"]]
+    assert len(theirs) == len(ours)
+    for a, b in zip(ours, theirs):
+        assert np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b))
+    # And differently from one coverage: the shared borders part.
+    assert not all(np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b))
+                   for a, b in zip(ours, bzspline.geo.smooth(geoms)))

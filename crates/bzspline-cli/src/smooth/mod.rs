@@ -5,8 +5,8 @@
 //! By default a document is smoothed as one coverage ([`bzspline_geo`]):
 //! borders that features share are smoothed once and stay shared, nodes stay
 //! where they are, and what was valid stays valid. `--independent` smooths
-//! every ring on its own ([`independent`]), as do documents whose positions
-//! carry z. Newline-delimited GeoJSON is streamed, a coverage per line; a
+//! every feature's geometry on its own, as a coverage of its own; documents
+//! whose positions carry z are smoothed ring by ring. Newline-delimited GeoJSON is streamed, a coverage per line; a
 //! table of points (or `--example`) is one LineString.
 
 use bzspline_io::smooth::job::{Job, Output, Settings};

@@ -94,74 +94,131 @@ pub fn smooth_document(
     where_: &str,
     number_single: bool,
 ) -> Result<Smoothed> {
-    let collection = matches!(doc, GeoJson::FeatureCollection(_));
-    let place = |i: usize| {
-        if collection || number_single {
-            format!("{where_}: feature {i}")
-        } else {
-            where_.to_owned()
-        }
-    };
-    // Geometries as geo-types; a feature without one holds an empty
-    // collection so that geometry i is feature i.
-    let empty = || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
-    let too_long = |i: usize, g: &Geometry| -> Result<()> {
-        if longest(&g.value) > max_points {
-            return Err(anyhow!(
-                "{}: more than {max_points} positions (--max-points)",
-                place(i)
-            ));
-        }
-        Ok(())
-    };
-    let mut geoms: Vec<geo_types::Geometry<f64>> = Vec::new();
-    if let GeoJson::Geometry(g) = &doc {
-        too_long(0, g)?;
-        geoms.push(
-            geo_types::Geometry::try_from(&g.value).map_err(|e| anyhow!("{}: {e}", place(0)))?,
-        );
-    } else {
-        for (i, slot) in slots(&mut doc).into_iter().enumerate() {
-            geoms.push(match slot {
-                Some(g) => {
-                    too_long(i, g)?;
-                    geo_types::Geometry::try_from(&g.value)
-                        .map_err(|e| anyhow!("{}: {e}", place(i)))?
-                }
-                None => empty(),
-            });
-        }
-    }
+    let place = placer(&doc, where_, number_single);
+    let geoms = geometries(&mut doc, max_points, &place)?;
     let coverage = Coverage::new(geoms, snap).map_err(|e| anyhow!("{where_}: {e}"))?;
-    let located = |e: bzspline_geo::Error| match coverage.locate(&e) {
-        Some(l) => {
-            let ring = l.ring.map(|r| format!(", ring {r}")).unwrap_or_default();
-            anyhow!("{}, member {}{ring}: {e}", place(l.geometry), l.member)
-        }
-        None => anyhow!("{where_}: {e}"),
-    };
-    let s = coverage.topology().smooth(opts).map_err(located)?;
+    let s = coverage
+        .topology()
+        .smooth(opts)
+        .map_err(|e| located(&coverage, &e, &|i| place(i), where_))?;
     let out = coverage.assemble(&s.arcs);
-    let put = |g: &mut Geometry, o: &geo_types::Geometry<f64>| {
-        g.value = GeometryValue::from(o);
-        // A bounding box of the input may no longer be tight: dropped.
-        g.bbox = None;
-    };
-    if let GeoJson::Geometry(g) = &mut doc {
-        put(g, &out[0]);
-    } else {
-        for (slot, o) in slots(&mut doc).into_iter().zip(&out) {
-            if let Some(g) = slot {
-                put(g, o);
-            }
-        }
-    }
+    put_back(&mut doc, &out);
     Ok(Smoothed {
         doc,
         stats: s.stats,
         coverage,
         arcs: s.arcs,
     })
+}
+
+/// Smooths every feature's geometry of `doc` on its own, as a coverage of
+/// its own (its rings and lines together, with no regard for the other
+/// features: `--independent`, Python's `coverage=False`, geo-types'
+/// [`bzspline_geo::Smooth`]), with `opts`' tolerance or, by default, each
+/// geometry's own (of its extent's diagonal). Errors as
+/// [`smooth_document`]'s.
+pub fn smooth_each(
+    mut doc: GeoJson,
+    opts: &SmoothOptions,
+    max_points: usize,
+    where_: &str,
+    number_single: bool,
+) -> Result<(GeoJson, Stats)> {
+    let place = placer(&doc, where_, number_single);
+    let geoms = geometries(&mut doc, max_points, &place)?;
+    let mut total = Stats::default();
+    let mut out = Vec::with_capacity(geoms.len());
+    for (i, g) in geoms.into_iter().enumerate() {
+        let coverage = Coverage::new(vec![g], None).map_err(|e| anyhow!("{}: {e}", place(i)))?;
+        let s = coverage
+            .topology()
+            .smooth(opts)
+            .map_err(|e| located(&coverage, &e, &|_| place(i), where_))?;
+        super::job::add(&mut total, &s.stats);
+        out.extend(coverage.assemble(&s.arcs));
+    }
+    put_back(&mut doc, &out);
+    Ok((doc, total))
+}
+
+/// Where geometry i of `doc` is, for messages.
+fn placer<'a>(
+    doc: &GeoJson,
+    where_: &'a str,
+    number_single: bool,
+) -> impl Fn(usize) -> String + 'a {
+    let collection = matches!(doc, GeoJson::FeatureCollection(_));
+    move |i: usize| {
+        if collection || number_single {
+            format!("{where_}: feature {i}")
+        } else {
+            where_.to_owned()
+        }
+    }
+}
+
+/// A coverage's error located at its geometry, member and ring.
+fn located(
+    coverage: &Coverage,
+    e: &bzspline_geo::Error,
+    place: &dyn Fn(usize) -> String,
+    where_: &str,
+) -> anyhow::Error {
+    match coverage.locate(e) {
+        Some(l) => {
+            let ring = l.ring.map(|r| format!(", ring {r}")).unwrap_or_default();
+            anyhow!("{}, member {}{ring}: {e}", place(l.geometry), l.member)
+        }
+        None => anyhow!("{where_}: {e}"),
+    }
+}
+
+/// The document's geometries as geo-types, geometry i for feature i (an
+/// empty collection for a feature without one).
+fn geometries(
+    doc: &mut GeoJson,
+    max_points: usize,
+    place: &dyn Fn(usize) -> String,
+) -> Result<Vec<geo_types::Geometry<f64>>> {
+    let empty = || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
+    let convert = |i: usize, g: &Geometry| -> Result<geo_types::Geometry<f64>> {
+        if longest(&g.value) > max_points {
+            return Err(anyhow!(
+                "{}: more than {max_points} positions (--max-points)",
+                place(i)
+            ));
+        }
+        geo_types::Geometry::try_from(&g.value).map_err(|e| anyhow!("{}: {e}", place(i)))
+    };
+    if let GeoJson::Geometry(g) = doc {
+        return Ok(vec![convert(0, g)?]);
+    }
+    slots(doc)
+        .into_iter()
+        .enumerate()
+        .map(|(i, slot)| match slot {
+            Some(g) => convert(i, g),
+            None => Ok(empty()),
+        })
+        .collect()
+}
+
+/// Puts the smoothed geometries back into the document's features.
+fn put_back(doc: &mut GeoJson, out: &[geo_types::Geometry<f64>]) {
+    let put = |g: &mut Geometry, o: &geo_types::Geometry<f64>| {
+        g.value = GeometryValue::from(o);
+        // A bounding box of the input may no longer be tight: dropped.
+        g.bbox = None;
+    };
+    if let GeoJson::Geometry(g) = doc {
+        put(g, &out[0]);
+    } else {
+        for (slot, o) in slots(doc).into_iter().zip(out) {
+            if let Some(g) = slot {
+                put(g, o);
+            }
+        }
+    }
 }
 
 /// The features of a smoothed document as (id, properties, geometry), for

@@ -1,5 +1,5 @@
-//! Smoothing ring by ring (`smooth --independent`, and documents whose
-//! positions carry z): every LineString and Polygon ring is replaced by the
+//! Smoothing ring by ring (documents whose positions carry z, which the
+//! planar coverage cannot hold): every LineString and Polygon ring is replaced by the
 //! method's curve with its vertices as control points (open for lines, closed
 //! for rings), flattened to within the tolerance, on its own, with no regard
 //! for neighbours.

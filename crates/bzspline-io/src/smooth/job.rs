@@ -1,8 +1,8 @@
 //! One smoothing job over whole documents: what `bzspline smooth` does to a
 //! GeoJSON or TopoJSON document, a line of newline-delimited GeoJSON or a
 //! table, and what the JavaScript package's `smooth` does to the same
-//! document, by the same code. A [`Job`] chooses between the coverage and the
-//! ring-by-ring paths, writes GeoJSON or TopoJSON, and keeps the totals and
+//! document, by the same code. A [`Job`] chooses between one coverage, a
+//! coverage for each geometry and (for z) ring by ring, writes GeoJSON or TopoJSON, and keeps the totals and
 //! notes for a summary.
 
 use anyhow::{anyhow, Context, Result};
@@ -32,7 +32,8 @@ pub struct Settings {
     /// The smoothing options (alpha, parametrisation, tolerance, keep-angle,
     /// through).
     pub options: SmoothOptions,
-    /// Every line and ring on its own, not as one coverage.
+    /// Every feature's geometry on its own (a coverage of its own), not the
+    /// document as one coverage.
     pub independent: bool,
     /// Join positions within this distance (and positions to edges) before
     /// building the coverage.
@@ -52,8 +53,8 @@ pub struct Settings {
 impl Settings {
     /// Checks the settings as a whole: every number in its range
     /// ([`options`](crate::options)), and no combination that cannot be
-    /// done: ring by ring (`independent`) with a snap distance, a keep-angle
-    /// or TopoJSON output, which need the coverage's topology.
+    /// done: every geometry on its own (`independent`) with a snap distance
+    /// or TopoJSON output, which need one topology for the document.
     ///
     /// # Errors
     ///
@@ -77,14 +78,14 @@ impl Settings {
         }
         if self.independent {
             if self.snap.is_some() {
-                return Err("independent smooths ring by ring and takes no snap distance".into());
-            }
-            if o.keep_angle.is_some() {
-                return Err("independent smooths ring by ring and takes no keep-angle".into());
+                return Err(
+                    "independent smooths every geometry on its own and takes no snap distance"
+                        .into(),
+                );
             }
             if self.output == Output::Topojson {
                 return Err(
-                    "--independent smooths ring by ring and has no topology to write as TopoJSON"
+                    "--independent smooths every geometry on its own and has no topology to write as TopoJSON"
                         .into(),
                 );
             }
@@ -211,8 +212,9 @@ impl Job {
         };
         let z = coverage::document_has_z(&doc);
         let lib = &self.settings.options;
-        if self.settings.independent || z {
-            if z && !self.settings.independent && number_single && self.z_at.is_none() {
+        if z {
+            // Curves in space, ring by ring: the coverage's topology is planar.
+            if !self.settings.independent && number_single && self.z_at.is_none() {
                 self.z_at = Some(where_.to_owned());
             }
             let tolerance = lib.tolerance.unwrap_or_else(|| default_tolerance(&doc));
@@ -232,6 +234,12 @@ impl Job {
             s.positions_in = positions_in;
             s.positions_out = positions(&out);
             s.tolerance = tolerance;
+            add(&mut self.total, &s);
+            return serde_json::to_value(&out).context("formatting GeoJSON");
+        }
+        if self.settings.independent {
+            let limit = self.settings.limits.max_points;
+            let (out, s) = coverage::smooth_each(doc, lib, limit, where_, number_single)?;
             add(&mut self.total, &s);
             return serde_json::to_value(&out).context("formatting GeoJSON");
         }
@@ -304,16 +312,17 @@ impl Job {
                 t.closed_arcs
             );
         }
+        let tolerance = match (self.settings.options.tolerance, self.settings.independent) {
+            (Some(t), _) => format!("{t}"),
+            (None, false) => format!(
+                "{} (the default: 1e-4 of the extent's diagonal)",
+                t.tolerance
+            ),
+            (None, true) => "each geometry's default (1e-4 of its extent's diagonal)".to_owned(),
+        };
         s += &format!(
-            "\n  positions {} -> {}; tolerance {}{}\n",
-            t.positions_in,
-            t.positions_out,
-            t.tolerance,
-            if self.settings.options.tolerance.is_none() {
-                " (the default: 1e-4 of the extent's diagonal)"
-            } else {
-                ""
-            }
+            "\n  positions {} -> {}; tolerance {tolerance}\n",
+            t.positions_in, t.positions_out,
         );
         if !self.settings.independent {
             s += &format!(
@@ -332,7 +341,7 @@ impl Job {
 }
 
 /// Adds one document's statistics to the totals.
-fn add(total: &mut Stats, s: &Stats) {
+pub(crate) fn add(total: &mut Stats, s: &Stats) {
     total.lines += s.lines;
     total.rings += s.rings;
     total.arcs += s.arcs;

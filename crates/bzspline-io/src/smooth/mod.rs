@@ -1,6 +1,7 @@
 //! A GeoJSON document smoothed: as one coverage ([`coverage`], the default:
-//! shared borders smoothed once, valid polygons kept valid) or every line and
-//! ring on its own ([`independent`]; also for positions with z); what a
+//! shared borders smoothed once, valid polygons kept valid), every feature's
+//! geometry as a coverage of its own ([`coverage::smooth_each`]), or, for
+//! positions with z, every line and ring on its own ([`independent`]); what a
 //! document holds ([`positions`], [`chains`]) and its default tolerance.
 
 pub mod coverage;

@@ -476,7 +476,8 @@ def smooth(obj, *, tolerance: Optional[float] = None, coverage: bool = True, thr
         bounding box.
     coverage : bool, default True
         Smooth the whole array as one coverage (shared borders once), or each
-        geometry on its own.
+        geometry on its own as a coverage of its own, with its own default
+        tolerance (``bzspline smooth --independent``).
     through : bool, default False
         Pass through every vertex (the interpolating variant) instead of
         cutting the corners.
