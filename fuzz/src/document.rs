@@ -29,7 +29,11 @@ pub fn smooth(bytes: &[u8], opts: &SmoothOptions, independent: bool) -> Result<V
     let settings = Settings {
         options: opts.clone(),
         independent,
-        output: if topology { Output::Topojson } else { Output::Geojson },
+        output: if topology {
+            Output::Topojson
+        } else {
+            Output::Geojson
+        },
         limits: input::Limits {
             max_points: crate::MAX_POINTS * 16,
             max_bytes: u64::MAX,
