@@ -150,7 +150,7 @@ fn main() {
         let (mut t_topology, mut t_total, mut t_indep) = (0.0, 0.0, 0.0);
         if run("coverage") {
             let t = Instant::now();
-            let cov = Coverage::new(cells.clone(), None).expect("coverage");
+            let cov = Coverage::new(cells.clone()).expect("coverage");
             t_topology = t.elapsed().as_secs_f64();
             let (out, s) = cov.smooth(&opts).expect("smoothed");
             t_total = t.elapsed().as_secs_f64();

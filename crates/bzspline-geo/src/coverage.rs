@@ -36,7 +36,7 @@ struct Origin {
 ///
 /// let a = polygon![(x: 0.0, y: 0.0), (x: 2.0, y: 0.0), (x: 2.0, y: 1.0), (x: 1.0, y: 2.0), (x: 0.0, y: 1.0)];
 /// let b = polygon![(x: 2.0, y: 0.0), (x: 4.0, y: 0.0), (x: 4.0, y: 2.0), (x: 2.0, y: 1.0)];
-/// let coverage = Coverage::new(vec![Geometry::Polygon(a), Geometry::Polygon(b)], None)?;
+/// let coverage = Coverage::new(vec![Geometry::Polygon(a), Geometry::Polygon(b)])?;
 /// let (out, stats) = coverage.smooth(&SmoothOptions::default().tolerance(1e-3))?;
 /// assert_eq!(stats.shared_arcs, 1);
 /// // The border (2, 0) - (2, 1) is in both, unchanged: its ends are nodes
@@ -56,48 +56,77 @@ pub struct Coverage {
     origins: Vec<Origin>,
 }
 
-impl Coverage {
-    /// Finds the topology of `geometries`; with `snap`, positions closer than
-    /// that distance are merged first, and positions that close to another
-    /// line's or ring's edge are put into it ([`crate::topology::snap`]).
+/// The inputs of a [`Coverage`] beyond its geometries, by name
+/// ([`Coverage::builder`]).
+#[derive(Debug, Clone)]
+#[must_use]
+pub struct CoverageBuilder {
+    geometries: Vec<Geometry<f64>>,
+    snap: Option<f64>,
+    nodes: Nodes,
+}
+
+impl CoverageBuilder {
+    /// Merges positions closer than `distance` first, and puts positions
+    /// that close to another line's or ring's edge into it
+    /// ([`crate::topology::snap`]); `None` (the default) does not snap.
+    pub fn snap(mut self, distance: impl Into<Option<f64>>) -> Self {
+        self.snap = distance.into();
+        self
+    }
+
+    /// Smooths the geometries as one part of a larger coverage, with the
+    /// nodes of the whole ([`crate::nodes`]): the part's lines and rings are
+    /// cut as the whole coverage would cut them, and smoothed the same where
+    /// the part also holds the features that meet its extent (see the module
+    /// docs of [`crate::nodes`]); with the nodes' extent the default
+    /// tolerance is the whole's. Snapping is done within the part; snap the
+    /// whole first when parts must agree on it.
+    pub fn nodes(mut self, nodes: Nodes) -> Self {
+        self.nodes = nodes;
+        self
+    }
+
+    /// Finds the topology.
     ///
     /// # Errors
     ///
     /// [`Error::NonFinite`] for a coordinate that is not finite
     /// ([`Coverage::describe`] names the geometry); [`Error::InvalidOption`]
     /// for a snap distance that is not a finite non-negative number.
-    pub fn new(geometries: Vec<Geometry<f64>>, snap_distance: Option<f64>) -> Result<Self, Error> {
-        Coverage::with_nodes(geometries, snap_distance, Nodes::default())
-    }
-
-    /// As [`Coverage::new`] for one part of a larger coverage, with the nodes
-    /// of the whole ([`crate::nodes`]): the part's lines and rings are cut
-    /// as the whole coverage would cut them, and smoothed the same where the
-    /// part also holds the features that meet its extent (see the module
-    /// docs of [`crate::nodes`]); with the nodes' extent the default
-    /// tolerance is the whole's.
-    ///
-    /// Snapping is done within the part; snap the whole first when parts
-    /// must agree on it.
-    ///
-    /// # Errors
-    ///
-    /// As [`Coverage::new`].
-    pub fn with_nodes(
-        geometries: Vec<Geometry<f64>>,
-        snap_distance: Option<f64>,
-        nodes: Nodes,
-    ) -> Result<Self, Error> {
-        let (mut chains, origins, polygons) = gather(&geometries);
-        if let Some(eps) = snap_distance {
+    pub fn build(self) -> Result<Coverage, Error> {
+        let (mut chains, origins, polygons) = gather(&self.geometries);
+        if let Some(eps) = self.snap {
             snap(&mut chains, eps)?;
         }
-        let topology = Topology::from_chains_with_nodes(&chains, polygons, nodes)?;
+        let topology = Topology::from_chains_with_nodes(&chains, polygons, self.nodes)?;
         Ok(Coverage {
-            geometries,
+            geometries: self.geometries,
             topology,
             origins,
         })
+    }
+}
+
+impl Coverage {
+    /// Finds the topology of `geometries` (no snapping, no outside nodes:
+    /// [`Coverage::builder`] for those).
+    ///
+    /// # Errors
+    ///
+    /// As [`CoverageBuilder::build`].
+    pub fn new(geometries: Vec<Geometry<f64>>) -> Result<Self, Error> {
+        Coverage::builder(geometries).build()
+    }
+
+    /// A coverage of `geometries` with options by name:
+    /// `Coverage::builder(gs).snap(1e-6).build()`.
+    pub fn builder(geometries: Vec<Geometry<f64>>) -> CoverageBuilder {
+        CoverageBuilder {
+            geometries,
+            snap: None,
+            nodes: Nodes::default(),
+        }
     }
 
     /// The topology: arcs, the lines and rings made of them, the polygons.

@@ -30,7 +30,7 @@
 //! // Two squares side by side: one shared border.
 //! let left = polygon![(x: 0.0, y: 0.0), (x: 1.0, y: 0.0), (x: 1.0, y: 1.0), (x: 0.0, y: 1.0)];
 //! let right = polygon![(x: 1.0, y: 0.0), (x: 2.0, y: 0.0), (x: 2.0, y: 1.0), (x: 1.0, y: 1.0)];
-//! let cov = Coverage::new(vec![Geometry::Polygon(left), Geometry::Polygon(right)], None)?;
+//! let cov = Coverage::new(vec![Geometry::Polygon(left), Geometry::Polygon(right)])?;
 //! let (smoothed, stats) = cov.smooth(&SmoothOptions::default().tolerance(1e-3))?;
 //! assert_eq!((stats.arcs, stats.shared_arcs), (3, 1));
 //! assert_eq!(smoothed.len(), 2);
@@ -49,7 +49,7 @@ pub mod smooth;
 mod smoothing;
 pub mod topology;
 
-pub use coverage::{coverage_chains, Coverage, Location};
+pub use coverage::{coverage_chains, Coverage, CoverageBuilder, Location};
 pub use error::Error;
 pub use levels::{arc_key, Levels};
 pub use nodes::Nodes;

@@ -8,7 +8,7 @@
 //! junction. [`meetings`] says, for one part, how each of its positions is
 //! met; [`across`] combines the parts' meetings into the positions that are
 //! junctions of the whole but maybe not of a part; given those
-//! ([`Coverage::with_nodes`](crate::Coverage::with_nodes)), every part cuts
+//! ([`CoverageBuilder::nodes`](crate::CoverageBuilder::nodes)), every part cuts
 //! its chains where the whole does. Arcs are stored in a canonical form that
 //! does not depend on the order of the chains, so the same arc is smoothed
 //! to the same positions, bit for bit, in every part that holds it and the
@@ -58,10 +58,10 @@ use crate::graph::{junctions, key, ChainKind, Paths, UNMET};
 /// // The shared border's ends.
 /// assert_eq!(nodes.positions(), [(1.0, 0.0).into(), (1.0, 1.0).into()]);
 /// let opts = SmoothOptions::default().tolerance(1e-3);
-/// let left = Coverage::with_nodes(parts[0].clone(), None, nodes.clone())?.smooth(&opts)?.0;
-/// let right = Coverage::with_nodes(parts[1].clone(), None, nodes)?.smooth(&opts)?.0;
+/// let left = Coverage::builder(parts[0].clone()).nodes(nodes.clone()).build()?.smooth(&opts)?.0;
+/// let right = Coverage::builder(parts[1].clone()).nodes(nodes).build()?.smooth(&opts)?.0;
 /// // Each part is what the whole coverage gives.
-/// let whole = Coverage::new([parts[0].clone(), parts[1].clone()].concat(), None)?.smooth(&opts)?.0;
+/// let whole = Coverage::new([parts[0].clone(), parts[1].clone()].concat())?.smooth(&opts)?.0;
 /// assert_eq!(whole, [left, right].concat());
 /// # Ok::<(), bzspline_geo::Error>(())
 /// ```

@@ -57,7 +57,7 @@ pub trait Smooth {
 
 /// One geometry smoothed as a coverage of its own.
 fn alone(g: Geometry<f64>, opts: &SmoothOptions) -> Result<Geometry<f64>, Error> {
-    let (mut out, _) = Coverage::new(vec![g], None)?.smooth(opts)?;
+    let (mut out, _) = Coverage::new(vec![g])?.smooth(opts)?;
     // A coverage gives back one geometry for each it was given.
     Ok(out
         .pop()
@@ -115,7 +115,7 @@ mod tests {
         let opts = SmoothOptions::default().tolerance(1e-3);
         let both = MultiPolygon(vec![a.clone(), b.clone()]);
         let got = both.smooth(&opts).unwrap();
-        let (want, _) = Coverage::new(vec![Geometry::MultiPolygon(both.clone())], None)
+        let (want, _) = Coverage::new(vec![Geometry::MultiPolygon(both.clone())])
             .unwrap()
             .smooth(&opts)
             .unwrap();

@@ -11,7 +11,7 @@ use geo_types::{Geometry, LineString};
 use proptest::prelude::*;
 
 fn smooth(gs: &[Geometry<f64>], opts: &SmoothOptions) -> (Vec<Geometry<f64>>, bzspline_geo::Stats) {
-    Coverage::new(gs.to_vec(), None)
+    Coverage::new(gs.to_vec())
         .and_then(|c| c.smooth(opts))
         .unwrap_or_else(|e| panic!("smoothing failed: {e}"))
 }
@@ -411,7 +411,7 @@ fn snapping_puts_a_vertex_near_an_edge_into_it() {
     );
     // With it, the vertices a hair off the right cell's edges go into them:
     // one border, the same positions in both, touching only.
-    let coverage = Coverage::new(input.clone(), Some(1e-6)).unwrap();
+    let coverage = Coverage::builder(input.clone()).snap(1e-6).build().unwrap();
     let (out, stats) = coverage.smooth(&opts).unwrap();
     assert_eq!(stats.shared_arcs, 1, "{stats:?}");
     share_border(&out[0], &out[1]).unwrap_or_else(|e| panic!("{e}"));
@@ -429,7 +429,9 @@ fn snapping_puts_a_vertex_near_an_edge_into_it() {
         topo.arcs()[shared[0]]
     );
     // A snap distance below the hair changes nothing.
-    let (same, stats) = Coverage::new(input.clone(), Some(1e-10))
+    let (same, stats) = Coverage::builder(input.clone())
+        .snap(1e-10)
+        .build()
         .unwrap()
         .smooth(&opts)
         .unwrap();

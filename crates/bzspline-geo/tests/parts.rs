@@ -11,7 +11,7 @@ use geo_types::{Geometry, LineString};
 use proptest::prelude::*;
 
 fn whole(gs: &[Geometry<f64>], opts: &SmoothOptions) -> (Vec<Geometry<f64>>, Stats) {
-    Coverage::new(gs.to_vec(), None)
+    Coverage::new(gs.to_vec())
         .and_then(|c| c.smooth(opts))
         .unwrap_or_else(|e| panic!("smoothing failed: {e}"))
 }
@@ -55,7 +55,9 @@ fn by_parts_with(
     }
     let mut out: Vec<Option<Geometry<f64>>> = vec![None; gs.len()];
     for (p, (m, piece)) in members.iter().zip(pieces).enumerate() {
-        let (smoothed, _) = Coverage::with_nodes(piece, None, nodes.clone())
+        let (smoothed, _) = Coverage::builder(piece)
+            .nodes(nodes.clone())
+            .build()
             .and_then(|c| c.smooth(opts))
             .unwrap();
         for (&i, g) in m.iter().zip(smoothed) {
@@ -118,7 +120,9 @@ fn the_nodes_of_the_whole_change_nothing_for_the_whole() {
     let opts = SmoothOptions::default();
     let (plain, _) = whole(&gs, &opts);
     let nodes = Nodes::of(&coverage_chains(&gs)).unwrap();
-    let (given, _) = Coverage::with_nodes(gs.clone(), None, nodes)
+    let (given, _) = Coverage::builder(gs.clone())
+        .nodes(nodes)
+        .build()
         .and_then(|c| c.smooth(&opts))
         .unwrap();
     assert_eq!(plain, given);
@@ -252,12 +256,10 @@ fn by_parts_agreeing(
         let mut ended = Vec::with_capacity(k);
         for h in &holdings {
             let held = h.held();
-            let cov = Coverage::with_nodes(
-                held.iter().map(|&i| gs[i].clone()).collect(),
-                None,
-                nodes.clone(),
-            )
-            .unwrap();
+            let cov = Coverage::builder(held.iter().map(|&i| gs[i].clone()).collect())
+                .nodes(nodes.clone())
+                .build()
+                .unwrap();
             let (smoothed, _, levels) = cov
                 .smooth_round(opts, rounds.levels(), rounds.round(), &h.exact())
                 .unwrap();

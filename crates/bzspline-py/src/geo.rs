@@ -393,7 +393,10 @@ pub fn _smooth_ragged<'py>(
             let run = |gs: Vec<Geometry<f64>>,
                        index: &[i64]|
              -> Result<(Vec<Geometry<f64>>, Levels), Fault> {
-                let c = Coverage::with_nodes(gs, snap, nodes.clone())
+                let c = Coverage::builder(gs)
+                    .snap(snap)
+                    .nodes(nodes.clone())
+                    .build()
                     .map_err(|e| Fault::option(e.to_string()))?;
                 // The caller's first `exact` geometries, wherever they are here.
                 let marks: Vec<bool> = match exact {

@@ -96,7 +96,10 @@ pub fn smooth_document(
 ) -> Result<Smoothed> {
     let place = placer(&doc, where_, number_single);
     let geoms = geometries(&mut doc, max_points, &place)?;
-    let coverage = Coverage::new(geoms, snap).map_err(|e| anyhow!("{where_}: {e}"))?;
+    let coverage = Coverage::builder(geoms)
+        .snap(snap)
+        .build()
+        .map_err(|e| anyhow!("{where_}: {e}"))?;
     let s = coverage
         .topology()
         .smooth(opts)
@@ -129,7 +132,7 @@ pub fn smooth_each(
     let mut total = Stats::default();
     let mut out = Vec::with_capacity(geoms.len());
     for (i, g) in geoms.into_iter().enumerate() {
-        let coverage = Coverage::new(vec![g], None).map_err(|e| anyhow!("{}: {e}", place(i)))?;
+        let coverage = Coverage::new(vec![g]).map_err(|e| anyhow!("{}: {e}", place(i)))?;
         let s = coverage
             .topology()
             .smooth(opts)
