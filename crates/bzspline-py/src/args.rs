@@ -1,0 +1,136 @@
+//! Arguments from Python: float arrays read in place where they can be,
+//! shape parameters, `extrapolate` and `param`, and library errors as
+//! Python exceptions (with panics caught at the boundary).
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use numpy::{PyArray1, PyReadonlyArrayDyn};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyAny;
+
+use bzspline::{Alphas, Param};
+
+/// A library error as Python's `ValueError`, with the library's message
+/// (which names the index or field at fault).
+pub(crate) fn value_error(e: bzspline::Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// Runs `f`, turning a Rust panic (a bug) into `RuntimeError` with its message.
+pub(crate) fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(r) => r,
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_owned())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".to_owned());
+            Err(PyRuntimeError::new_err(format!(
+                "bzspline internal error (please report it): {msg}"
+            )))
+        }
+    }
+}
+
+/// An array-like as a float64 numpy array (the same object when it is one).
+/// Complex numbers are refused rather than cut to their real parts.
+pub(crate) fn as_float_array<'py>(
+    x: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
+    let np = x.py().import("numpy")?;
+    if np.call_method1("iscomplexobj", (x,))?.is_truthy()? {
+        return Err(PyTypeError::new_err(format!(
+            "{what}: complex numbers are not supported (the spline is real)"
+        )));
+    }
+    let arr = np
+        .call_method1("asarray", (x, "float64"))
+        .map_err(|e| PyTypeError::new_err(format!("{what}: {e}")))?;
+    arr.extract()
+}
+
+/// Numbers of an array-like as a flat vector with the array's shape.
+pub(crate) fn floats(x: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
+    let a = as_float_array(x, what)?;
+    let view = a.as_array();
+    let shape = view.shape().to_vec();
+    let flat = match view.as_slice() {
+        Some(s) => s.to_vec(),
+        None => view.iter().copied().collect(),
+    };
+    Ok((flat, shape))
+}
+
+/// The alphas as a constructor takes them back: one number when they are
+/// all one (the same construction, bit for bit), else the array.
+pub(crate) fn alphas_arg<'py>(py: Python<'py>, alphas: &[f64]) -> PyResult<Bound<'py, PyAny>> {
+    match alphas.first() {
+        Some(&a) if alphas.iter().all(|&b| b == a) => Ok(a.into_pyobject(py)?.into_any()),
+        _ => Ok(PyArray1::from_slice(py, alphas).into_any()),
+    }
+}
+
+/// One alpha or one per interval.
+pub(crate) enum AlphaArg {
+    One(f64),
+    Each(Vec<f64>),
+}
+
+pub(crate) fn alpha_arg(alpha: &Bound<'_, PyAny>) -> PyResult<AlphaArg> {
+    if let Ok(a) = alpha.extract::<f64>() {
+        return Ok(AlphaArg::One(a));
+    }
+    let (v, shape) = floats(alpha, "alpha")?;
+    if shape.len() != 1 {
+        return Err(PyValueError::new_err(
+            "alpha must be a number or a 1-D array of one alpha per interval",
+        ));
+    }
+    Ok(AlphaArg::Each(v))
+}
+
+impl AlphaArg {
+    pub(crate) fn choice(&self) -> Alphas<'_> {
+        match self {
+            AlphaArg::One(a) => Alphas::Uniform(*a),
+            AlphaArg::Each(v) => Alphas::PerInterval(v),
+        }
+    }
+}
+
+/// What a spline does outside its knots: `True` extends the end cubics,
+/// `False` gives NaN (as scipy), `'clamp'` holds the end values.
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) enum Outside {
+    Extend,
+    Nan,
+    Clamp,
+}
+
+pub(crate) fn outside_arg(v: &Bound<'_, PyAny>) -> PyResult<Outside> {
+    if let Ok(b) = v.extract::<bool>() {
+        return Ok(if b { Outside::Extend } else { Outside::Nan });
+    }
+    match v.extract::<String>().as_deref() {
+        Ok("clamp") => Ok(Outside::Clamp),
+        _ => Err(PyValueError::new_err(
+            "extrapolate must be True, False or 'clamp'",
+        )),
+    }
+}
+
+pub(crate) fn param_arg(p: &Bound<'_, PyAny>) -> PyResult<(Param, String)> {
+    if let Ok(s) = p.extract::<String>() {
+        return match s.parse::<Param>() {
+            Ok(param) => Ok((param, s)),
+            Err(e) => Err(PyValueError::new_err(format!(
+                "param {e}, nor an array of parameters"
+            ))),
+        };
+    }
+    let (v, _) = floats(p, "param")?;
+    Ok((Param::Given(v), "given".to_owned()))
+}
