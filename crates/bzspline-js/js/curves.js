@@ -7,26 +7,6 @@
 // d3.curveMonotoneX does, a line whose x does not run one way is drawn by the
 // planar curve, and what the method cannot draw (NaN) is drawn straight.
 
-const ALPHA_MIN = 1 / 3;
-const ALPHA_MAX = 2 / 3;
-const PARAMS = ["centripetal", "chordal", "uniform"];
-
-function checkAlpha(a) {
-  const v = typeof a === "string" && a.includes("/") ? a.split("/").reduce((p, q) => +p / +q) : +a;
-  // The method's range, with the rounding of 1/3 and 2/3 allowed.
-  if (!(v >= ALPHA_MIN - 1e-16 && v <= ALPHA_MAX + 1e-16)) {
-    throw new RangeError(`alpha = ${a} is outside [1/3, 2/3]`);
-  }
-  return Math.min(Math.max(v, ALPHA_MIN), ALPHA_MAX);
-}
-
-function checkParam(p) {
-  if (!PARAMS.includes(p)) {
-    throw new RangeError(`param ${JSON.stringify(p)} is not one of ${PARAMS.join(", ")}`);
-  }
-  return p;
-}
-
 /** 1 when x rises strictly, -1 when it falls strictly, 0 otherwise. */
 function direction(x) {
   const n = x.length;
@@ -178,10 +158,11 @@ class Closed {
 /** A d3 curve factory with d3-style parameter methods. */
 function factory(Kind, core, o) {
   const curve = (context) => new Kind(context, core, o);
-  curve.alpha = (a) => factory(Kind, core, { ...o, alpha: checkAlpha(a) });
+  // Checked at once, by the library's own parsers (fractions, names).
+  curve.alpha = (a) => factory(Kind, core, { ...o, alpha: core.checkAlpha(a) });
   curve.through = (t = true) => factory(Kind, core, { ...o, through: !!t });
   if (o.kind === "curve") {
-    curve.param = (p) => factory(Kind, core, { ...o, param: checkParam(p) });
+    curve.param = (p) => factory(Kind, core, { ...o, param: core.checkParam(String(p)) });
   }
   return curve;
 }

@@ -4,7 +4,16 @@
 // curveBzsplineX, curveBzsplineY, curveBzspline and curveBzsplineClosed.
 // The module loads its WebAssembly itself (a top-level await): importing it
 // is all a page or a Node program does.
-import init, { initSync, Spline, Curve, splinePieces, curvePieces, memoryBytes } from "../wasm/core.js";
+import init, {
+  initSync,
+  Spline,
+  Curve,
+  splinePieces,
+  curvePieces,
+  checkAlpha,
+  checkParam,
+  memoryBytes,
+} from "../wasm/core.js";
 import { curves } from "./curves.js";
 import { load } from "./load.js";
 
@@ -14,4 +23,6 @@ export { Spline, Curve, memoryBytes };
 export const { curveBzsplineX, curveBzsplineY, curveBzspline, curveBzsplineClosed } = curves({
   splinePieces,
   curvePieces,
+  checkAlpha,
+  checkParam,
 });

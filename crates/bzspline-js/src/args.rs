@@ -159,15 +159,7 @@ impl Options {
     pub fn alphas(&self) -> Result<AlphaArg, JsValue> {
         let one = match self.get("alpha") {
             None => None,
-            Some(v) => Some(match v.as_string() {
-                Some(s) => bzspline_alpha(&s)?,
-                None => v.as_f64().ok_or_else(|| {
-                    type_error(format!(
-                        "alpha must be a number or a fraction such as \"1/3\" (found {})",
-                        kind(&v)
-                    ))
-                })?,
-            }),
+            Some(v) => Some(alpha_value(&v)?),
         };
         match (one, self.get("alphas")) {
             (Some(_), Some(_)) => Err(type_error("give alpha or alphas, not both")),
@@ -178,10 +170,40 @@ impl Options {
     }
 }
 
-/// An alpha written as text: a decimal or a fraction `p/q` in [1/3, 2/3].
-fn bzspline_alpha(s: &str) -> Result<f64, JsValue> {
-    let v = bzspline::parse_alpha(s).map_err(range_error)?;
-    Ok(v)
+/// One alpha: a number, or text (a decimal or a fraction `p/q`, parsed by
+/// [`bzspline::parse_alpha`], which also checks the range). A number's range
+/// is checked where it is used (by the library, or [`check_alpha`]).
+pub fn alpha_value(v: &JsValue) -> Result<f64, JsValue> {
+    match v.as_string() {
+        Some(s) => bzspline::parse_alpha(&s).map_err(range_error),
+        None => v.as_f64().ok_or_else(|| {
+            type_error(format!(
+                "alpha must be a number or a fraction such as \"1/3\" (found {})",
+                kind(v)
+            ))
+        }),
+    }
+}
+
+/// An alpha for the d3 curve factories, checked at once: as
+/// [`alpha_value`], and a number in [1/3, 2/3].
+#[wasm_bindgen::prelude::wasm_bindgen(js_name = checkAlpha)]
+pub fn check_alpha(v: &JsValue) -> Result<f64, JsValue> {
+    let a = alpha_value(v)?;
+    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
+        Ok(a)
+    } else {
+        Err(range_error(format!("alpha = {a} is outside [1/3, 2/3]")))
+    }
+}
+
+/// A parametrisation's name for the d3 curve factories, checked at once by
+/// [`bzspline::Param`]'s own parser.
+#[wasm_bindgen::prelude::wasm_bindgen(js_name = checkParam)]
+pub fn check_param(name: &str) -> Result<String, JsValue> {
+    name.parse::<bzspline::Param>()
+        .map(|_| name.to_owned())
+        .map_err(range_error)
 }
 
 /// One alpha for every interval, or one each.
