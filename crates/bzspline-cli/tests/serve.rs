@@ -43,6 +43,16 @@ impl Server {
         Server { child, addr }
     }
 
+    /// A client that sends `head` (the request line and headers of a POST
+    /// to /api/fit, without Host) and `body_start`, then nothing more.
+    fn stall(&self, head: &str, body_start: &str) -> TcpStream {
+        let mut s = TcpStream::connect(&self.addr).expect("connecting");
+        let host = &self.addr;
+        s.write_all(format!("{head}Host: {host}\r\n\r\n{body_start}").as_bytes())
+            .unwrap();
+        s
+    }
+
     /// Sends a raw request with `headers` (Host included by the caller) and
     /// returns the status and the body.
     fn raw(&self, head: &str, body: &[u8]) -> (u16, String) {
@@ -293,16 +303,10 @@ fn stalled_uploads_do_not_hold_fit_slots_and_time_out_with_504() {
     let server = Server::start(&["--max-in-flight", "1", "--timeout-ms", "1500"]);
     // A client that promises a body and never sends it.
     let stall = || {
-        let mut s = TcpStream::connect(&server.addr).expect("connecting");
-        s.write_all(
-            format!(
-                "POST /api/fit HTTP/1.1\r\nHost: {}\r\nContent-Length: 100\r\nConnection: close\r\n\r\n{{\"points\"",
-                server.addr
-            )
-            .as_bytes(),
+        server.stall(
+            "POST /api/fit HTTP/1.1\r\nContent-Length: 100\r\nConnection: close\r\n",
+            "{\"points\"",
         )
-        .unwrap();
-        s
     };
     let mut stalled = stall();
     std::thread::sleep(Duration::from_millis(200));
@@ -321,18 +325,7 @@ fn stalled_uploads_do_not_hold_fit_slots_and_time_out_with_504() {
 fn uploads_beyond_their_cap_get_503() {
     // 16 bodies may be in transit per fit slot; the 17th is refused at once.
     let server = Server::start(&["--max-in-flight", "1", "--timeout-ms", "20000"]);
-    let stall = || {
-        let mut s = TcpStream::connect(&server.addr).expect("connecting");
-        s.write_all(
-            format!(
-                "POST /api/fit HTTP/1.1\r\nHost: {}\r\nContent-Length: 100\r\n\r\n{{",
-                server.addr
-            )
-            .as_bytes(),
-        )
-        .unwrap();
-        s
-    };
+    let stall = || server.stall("POST /api/fit HTTP/1.1\r\nContent-Length: 100\r\n", "{");
     let mut stalled: Vec<TcpStream> = (0..16).map(|_| stall()).collect();
     let deadline = Instant::now() + Duration::from_secs(10);
     let mut seen = Vec::new();

@@ -128,29 +128,33 @@ impl Options {
         }
     }
 
-    /// A number option.
+    /// A number option (`null` is none).
     #[cfg_attr(not(feature = "geo"), allow(dead_code))]
     pub fn number(&self, name: &str) -> Result<Option<f64>, JsValue> {
-        match self.get(name) {
-            None => Ok(None),
-            Some(v) if v.is_null() => Ok(None),
-            Some(v) => v
-                .as_f64()
-                .map(Some)
-                .ok_or_else(|| type_error(format!("{name} must be a number (found {})", kind(&v)))),
-        }
+        self.typed(name, "a number", JsValue::as_f64)
     }
 
-    /// A string option.
+    /// A string option (`null` is none).
     #[cfg_attr(not(feature = "geo"), allow(dead_code))]
     pub fn string(&self, name: &str) -> Result<Option<String>, JsValue> {
+        self.typed(name, "a string", JsValue::as_string)
+    }
+
+    /// The option `name` read by `read`, `None` when absent or `null`, a
+    /// `TypeError` saying it must be `what` otherwise.
+    #[cfg_attr(not(feature = "geo"), allow(dead_code))]
+    fn typed<T>(
+        &self,
+        name: &str,
+        what: &str,
+        read: impl Fn(&JsValue) -> Option<T>,
+    ) -> Result<Option<T>, JsValue> {
         match self.get(name) {
             None => Ok(None),
             Some(v) if v.is_null() => Ok(None),
-            Some(v) => v
-                .as_string()
+            Some(v) => read(&v)
                 .map(Some)
-                .ok_or_else(|| type_error(format!("{name} must be a string (found {})", kind(&v)))),
+                .ok_or_else(|| type_error(format!("{name} must be {what} (found {})", kind(&v)))),
         }
     }
 
