@@ -45,6 +45,7 @@ use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::poly::{deriv_of, horner, quadratic_roots};
 use crate::polyline::Polyline;
+use crate::smoothing::{self, check_weights, Smoothed, Smoothing};
 pub use crate::traits::BBox;
 use crate::traits::{check_out, Arclen, BezierPieces, Bounds, Flatten, ParamCurve};
 use crate::validate::{
@@ -179,6 +180,8 @@ pub struct CurveBuilder<'a> {
     alphas: Option<Vec<f64>>,
     repeats: Repeats,
     through: bool,
+    smoothing: Option<Smoothing>,
+    weights: Option<Vec<f64>>,
 }
 
 impl<'a> CurveBuilder<'a> {
@@ -194,6 +197,8 @@ impl<'a> CurveBuilder<'a> {
             alphas: None,
             repeats: Repeats::Reject,
             through: false,
+            smoothing: None,
+            weights: None,
         }
     }
 
@@ -266,6 +271,104 @@ impl<'a> CurveBuilder<'a> {
     pub fn through(mut self, through: bool) -> Self {
         self.through = through;
         self
+    }
+
+    /// A smoothing curve of noisy points (`docs/method.md` §12): the
+    /// parameters are chosen from the points as without it, and the control
+    /// points minimise `sum_j w_j |C(t_j) - P_j|^2 + lambda int |C''|^2` with
+    /// one `lambda` for every coordinate (under [`Smoothing::Gcv`] the one of
+    /// least cross-validation score summed over the coordinates). Open curves
+    /// only; [`CurveBuilder::build_smoothed`] also returns `lambda` and the
+    /// score. Each coordinate is then the function fit
+    /// [`crate::Spline::smoothing`] on the curve's parameters.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, Smoothing};
+    /// let pts: Vec<[f64; 2]> = (0..40)
+    ///     .map(|i| [i as f64, if i % 2 == 0 { 0.2 } else { -0.2 }])
+    ///     .collect();
+    /// let s = Curve::builder_from(&pts).smoothing(Smoothing::Lambda(1e9)).build_smoothed()?;
+    /// // Smoothed hard, the zigzag of height 0.4 flattens to its
+    /// // least-squares line, within 0.02 of y = 0.
+    /// let worst = s.fit.knot_points().iter().fold(0.0f64, |m, p| m.max(p[1].abs()));
+    /// assert!(worst < 0.02);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    #[must_use]
+    pub fn smoothing(mut self, smoothing: Smoothing) -> Self {
+        self.smoothing = Some(smoothing);
+        self
+    }
+
+    /// One weight per point for [`CurveBuilder::smoothing`] (default all 1;
+    /// finite, `>= 0`); a dropped repeat adds its weight to the point it
+    /// repeats.
+    #[must_use]
+    pub fn weights(mut self, weights: &[f64]) -> Self {
+        self.weights = Some(weights.to_vec());
+        self
+    }
+
+    /// Builds a smoothing curve ([`CurveBuilder::smoothing`], by default
+    /// [`Smoothing::Gcv`]) and returns it with its `lambda`, score and
+    /// degrees of freedom.
+    ///
+    /// # Errors
+    ///
+    /// As [`CurveBuilder::build`], and as [`crate::Spline::smoothing`] for
+    /// the weights and `lambda`; [`Error::InvalidArgument`] for a closed curve
+    /// or with [`CurveBuilder::through`].
+    pub fn build_smoothed(mut self) -> Result<Smoothed<Curve>, Error> {
+        let smoothing = self.smoothing.take().unwrap_or_default();
+        let weights = self.weights.take();
+        if self.closed || self.through {
+            return Err(Error::InvalidArgument {
+                what: "smoothing is for open curves, without through",
+                value: 0.0,
+            });
+        }
+        let dim = self.dim;
+        let data = self.build()?;
+        let n_in = data.point_count() + data.dropped.len();
+        let w = match weights {
+            None => vec![1.0; data.point_count()],
+            Some(w) => {
+                check_weights(Some(&w), n_in).or_else(|e| match e {
+                    // Fewer than two positive is judged after merging.
+                    Error::InvalidArgument { .. } => Ok(w.clone()),
+                    e => Err(e),
+                })?;
+                // Each dropped repeat's weight goes to the kept point before it.
+                let mut kept = Vec::with_capacity(data.point_count());
+                let mut drops = data.dropped.iter().peekable();
+                for (i, &v) in w.iter().enumerate() {
+                    if drops.peek() == Some(&&i) {
+                        drops.next();
+                        if let Some(last) = kept.last_mut() {
+                            *last += v;
+                        }
+                    } else {
+                        kept.push(v);
+                    }
+                }
+                kept
+            }
+        };
+        let w = check_weights(Some(&w), data.point_count())?;
+        let fit = smoothing::fit(data.knots(), &data.points, dim, &w, &data.alphas, smoothing)?;
+        let mut c = CurveBuilder::new(&fit.controls, dim)
+            .param(Param::Given(data.knots().to_vec()))
+            .alphas(&data.alphas)
+            .build()?;
+        c.dropped = data.dropped;
+        Ok(Smoothed {
+            fit: c,
+            lambda: fit.lambda,
+            gcv: fit.gcv,
+            dof: fit.dof,
+        })
     }
 
     /// Validates the inputs and solves.
@@ -622,6 +725,10 @@ impl Curve {
     }
 
     fn build_from(b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
+        if b.smoothing.is_some() {
+            *target = b.build_smoothed()?.fit;
+            return Ok(());
+        }
         if b.through {
             return Self::build_through(b, target);
         }

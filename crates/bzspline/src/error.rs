@@ -18,6 +18,8 @@ pub enum Field {
     Query,
     /// A tolerance or accuracy argument.
     Tolerance,
+    /// The weights of a smoothing fit, one per point.
+    Weight,
 }
 
 impl Field {
@@ -31,6 +33,7 @@ impl Field {
             Field::Coordinate => "points",
             Field::Query => "queries",
             Field::Tolerance => "tolerance",
+            Field::Weight => "weights",
         }
     }
 }
@@ -119,6 +122,13 @@ pub enum Error {
         /// Position of the last point.
         last: usize,
     },
+    /// A negative weight given to a smoothing fit.
+    NegativeWeight {
+        /// Its position in the weights.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
     /// A query lies outside the spline's domain and the extrapolation policy is
     /// [`Extrapolate::Error`](crate::Extrapolate::Error).
     OutOfDomain {
@@ -203,6 +213,9 @@ impl fmt::Display for Error {
                 f,
                 "points[{last}] repeats points[0]: a closed curve closes by itself, do not repeat the first point"
             ),
+            Error::NegativeWeight { index, value } => {
+                write!(f, "weights[{index}] = {value} is negative: weights must be >= 0")
+            }
             Error::OutOfDomain { x, min, max } => {
                 write!(f, "x = {x} is outside the domain [{min}, {max}]")
             }

@@ -89,6 +89,7 @@ mod num;
 mod pieces;
 mod poly;
 mod polyline;
+mod smoothing;
 pub mod spline;
 mod traits;
 mod tridiag;
@@ -102,6 +103,7 @@ pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
 pub use fraction::{parse_alpha, parse_fraction};
 pub use num::Shortest;
+pub use smoothing::{Smoothed, Smoothing};
 pub use spline::{
     Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN,
     DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,

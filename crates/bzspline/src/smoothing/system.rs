@@ -1,0 +1,460 @@
+//! The smoothing spline's optimality system (`docs/method.md` §12) as a
+//! symmetric block-tridiagonal matrix, factored by block elimination; solves,
+//! and the diagonal of the inverse that the trace of the influence matrix
+//! needs, each in O(N).
+//!
+//! Unknowns per interior knot `k`: the knot value `phi_k`, the deviation `d_k`
+//! and the multiplier `m_k` of the continuity row of §11,
+//! `c_k = lo_k d_{k-1} + di_k d_k + up_k d_{k+1} - (q_k (phi_{k+1} - phi_k) - p_k (phi_k - phi_{k-1}))`.
+//!
+//! A leading section of the matrix is the optimality system of a smaller
+//! problem, regular exactly when it holds a point of positive weight (§12).
+//! So the first block, the *head*, holds `phi_0` and every knot up to the
+//! first point of positive weight (knot 1 when `w_0 > 0`), factored densely;
+//! every later interior knot is a 3 by 3 block `(phi_k, d_k, m_k)`; and
+//! `phi_{N-1}` closes the sequence in a block of its own (padded to 3 by 3
+//! with two decoupled unit rows). Each pivot block is inverted by
+//! Gauss-Jordan with partial pivoting.
+
+// Small fixed-size matrices read best indexed as they are written on paper.
+#![allow(clippy::needless_range_loop)]
+
+use crate::method::{alpha_terms, neighbour_weights, through_row};
+
+type M3 = [[f64; 3]; 3];
+
+fn mul(a: &M3, b: &M3) -> M3 {
+    let mut o = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            o[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+        }
+    }
+    o
+}
+
+/// `a * b^T`.
+fn mul_t(a: &M3, b: &M3) -> M3 {
+    let mut o = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            o[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2];
+        }
+    }
+    o
+}
+
+/// `a^T * b`.
+fn t_mul(a: &M3, b: &M3) -> M3 {
+    let mut o = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            o[i][j] = a[0][i] * b[0][j] + a[1][i] * b[1][j] + a[2][i] * b[2][j];
+        }
+    }
+    o
+}
+
+fn apply(a: &M3, v: &[f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| a[i][0] * v[0] + a[i][1] * v[1] + a[i][2] * v[2])
+}
+
+fn apply_t(a: &M3, v: &[f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|j| a[0][j] * v[0] + a[1][j] * v[1] + a[2][j] * v[2])
+}
+
+/// Inverts the `n x n` row-major matrix `a` into `inv` by Gauss-Jordan with
+/// partial pivoting (destroying `a`); `false` when a pivot vanishes.
+fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
+    inv[..n * n].fill(0.0);
+    for i in 0..n {
+        inv[i * n + i] = 1.0;
+    }
+    let norm = a[..n * n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for col in 0..n {
+        let mut p = col;
+        for r in col + 1..n {
+            if a[r * n + col].abs() > a[p * n + col].abs() {
+                p = r;
+            }
+        }
+        let big = a[p * n + col].abs();
+        if !(big > norm * 1e-300 && big.is_finite()) {
+            return false;
+        }
+        if p != col {
+            for j in 0..n {
+                a.swap(p * n + j, col * n + j);
+                inv.swap(p * n + j, col * n + j);
+            }
+        }
+        let piv = 1.0 / a[col * n + col];
+        for j in 0..n {
+            a[col * n + j] *= piv;
+            inv[col * n + j] *= piv;
+        }
+        for r in 0..n {
+            let f = a[r * n + col];
+            if r != col && f != 0.0 {
+                for j in 0..n {
+                    a[r * n + j] -= f * a[col * n + j];
+                    inv[r * n + j] -= f * inv[col * n + j];
+                }
+            }
+        }
+    }
+    true
+}
+
+/// The inverse of a 3 by 3 matrix by Gauss-Jordan with partial pivoting,
+/// unrolled; `None` when a pivot vanishes.
+fn invert3(m: &M3) -> Option<M3> {
+    let norm = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+    let mut a = *m;
+    let mut inv = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for col in 0..3 {
+        let mut p = col;
+        for r in col + 1..3 {
+            if a[r][col].abs() > a[p][col].abs() {
+                p = r;
+            }
+        }
+        let big = a[p][col].abs();
+        if !(big > norm * 1e-300 && big.is_finite()) {
+            return None;
+        }
+        a.swap(p, col);
+        inv.swap(p, col);
+        let piv = 1.0 / a[col][col];
+        for j in 0..3 {
+            a[col][j] *= piv;
+            inv[col][j] *= piv;
+        }
+        for r in 0..3 {
+            if r != col {
+                let f = a[r][col];
+                for j in 0..3 {
+                    a[r][j] -= f * a[col][j];
+                    inv[r][j] -= f * inv[col][j];
+                }
+            }
+        }
+    }
+    Some(inv)
+}
+
+/// The continuity row of an interior knot: `(lo, di, up)` of §11 and the
+/// neighbour weights `p`, `q`.
+#[derive(Clone, Copy, Default)]
+struct Row {
+    lo: f64,
+    di: f64,
+    up: f64,
+    p: f64,
+    q: f64,
+}
+
+/// One smoothing problem's grid and weights in the normalised units of §12
+/// (knots spanning 1, weights of mean 1), with everything that does not
+/// depend on `lambda` formed once.
+pub(crate) struct Grid {
+    /// One weight per knot.
+    w: Vec<f64>,
+    /// Row of interior knot `k` at `k` (0 and N-1 unused).
+    rows: Vec<Row>,
+    /// `Q[k][k]` and `Q[k+1][k]` of the penalty `int S''^2 = d^T Q d`, at `k`.
+    q_diag: Vec<f64>,
+    q_off: Vec<f64>,
+    /// The last knot of the head block.
+    head: usize,
+}
+
+impl Grid {
+    /// `widths` (N - 1), one alpha per interval, one weight per knot, at least
+    /// one positive.
+    pub(crate) fn new(widths: &[f64], alphas: &[f64], weights: &[f64]) -> Self {
+        let n = weights.len();
+        let terms: Vec<[f64; 4]> = alphas.iter().map(|&a| alpha_terms(a)).collect();
+        // The penalty of interval k as a form in (d_k, d_{k+1}): S'' at its
+        // ends in t, e0 and e1, are linear in them (§12), and
+        // int_0^1 (e0 (1-t) + e1 t)^2 dt / h^3 = (e0^2 + e0 e1 + e1^2) / (3 h^3).
+        let forms: Vec<[f64; 3]> = widths
+            .iter()
+            .zip(&terms)
+            .map(|(&h, &[al, b1, b2, cr])| {
+                let e0 = [-2.0 * (3.0 - 2.0 * b2 - al), -2.0 * (2.0 * cr + b1 - 3.0)];
+                let e1 = [2.0 * (3.0 - b2 - 2.0 * al), 2.0 * (cr + 2.0 * b1 - 3.0)];
+                let c = 1.0 / (3.0 * h * h * h);
+                let f = |i: usize, j: usize| {
+                    c * (e0[i] * e0[j] + 0.5 * (e0[i] * e1[j] + e1[i] * e0[j]) + e1[i] * e1[j])
+                };
+                [f(0, 0), f(0, 1), f(1, 1)]
+            })
+            .collect();
+        let mut rows = vec![Row::default(); n];
+        let mut q_diag = vec![0.0; n];
+        let mut q_off = vec![0.0; n];
+        for k in 1..n - 1 {
+            let (p, q) = neighbour_weights(widths[k - 1], widths[k]);
+            let [al, b1, _, _] = terms[k - 1];
+            let [_, _, b2, cr] = terms[k];
+            let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
+            rows[k] = Row { lo, di, up, p, q };
+            q_diag[k] = forms[k - 1][2] + forms[k][0];
+            q_off[k] = forms[k][1];
+        }
+        let first = weights.iter().position(|&w| w > 1e-8).unwrap_or(0);
+        Grid {
+            w: weights.to_vec(),
+            rows,
+            q_diag,
+            q_off,
+            head: first.clamp(1, n - 2),
+        }
+    }
+
+    fn n(&self) -> usize {
+        self.w.len()
+    }
+
+    /// The diagonal block of interior knot `k` (or of `phi_{N-1}`, padded,
+    /// for `k = N - 1`).
+    fn own(&self, k: usize, lambda: f64) -> M3 {
+        if k == self.n() - 1 {
+            return [[self.w[k], 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        }
+        let r = self.rows[k];
+        [
+            [self.w[k], 0.0, 1.0],
+            [0.0, lambda * self.q_diag[k], r.di],
+            [1.0, r.di, 0.0],
+        ]
+    }
+
+    /// `H[knot k, knot k-1]`: rows `(phi, d, m)` of knot `k` (or `phi_{N-1}`
+    /// and padding for `k = N - 1`), columns those of knot `k - 1`.
+    fn link(&self, k: usize, lambda: f64) -> M3 {
+        let prev = self.rows[k - 1];
+        if k == self.n() - 1 {
+            return [[0.0, 0.0, -prev.q], [0.0; 3], [0.0; 3]];
+        }
+        let r = self.rows[k];
+        [
+            [0.0, 0.0, -prev.q],
+            [0.0, lambda * self.q_off[k - 1], prev.up],
+            [-r.p, r.lo, 0.0],
+        ]
+    }
+
+    /// Size of the head block: `phi_0`, then `(phi, d, m)` of knots `1..=head`.
+    fn head_size(&self) -> usize {
+        1 + 3 * self.head
+    }
+
+    /// The head block, row-major.
+    fn head_block(&self, lambda: f64) -> Vec<f64> {
+        let sz = self.head_size();
+        let mut a = vec![0.0; sz * sz];
+        let at = |k: usize, o: usize| 1 + 3 * (k - 1) + o;
+        let mut put = |i: usize, j: usize, v: f64| {
+            a[i * sz + j] = v;
+            a[j * sz + i] = v;
+        };
+        put(0, 0, self.w[0]);
+        put(at(1, 2), 0, -self.rows[1].p);
+        for k in 1..=self.head {
+            let own = self.own(k, lambda);
+            for i in 0..3 {
+                for j in 0..=i {
+                    put(at(k, i), at(k, j), own[i][j]);
+                }
+            }
+            if k > 1 {
+                let link = self.link(k, lambda);
+                for i in 0..3 {
+                    for j in 0..3 {
+                        if link[i][j] != 0.0 {
+                            put(at(k, i), at(k - 1, j), link[i][j]);
+                        }
+                    }
+                }
+            }
+        }
+        a
+    }
+}
+
+/// The system factored for one `lambda` at a time: the inverse of the head's
+/// pivot block and of every later pivot block (the multipliers of the
+/// elimination are formed again where they are used). Factoring again for
+/// another `lambda` reuses the memory.
+pub(crate) struct Factored<'a> {
+    grid: &'a Grid,
+    lambda: f64,
+    head_inv: Vec<f64>,
+    /// Pivot inverses of knots `head + 1 ..= N - 1` (the last is `phi_{N-1}`'s).
+    inv: Vec<M3>,
+    /// The forward sweep's right-hand sides, kept between solves.
+    z: Vec<[f64; 3]>,
+}
+
+impl<'a> Factored<'a> {
+    /// The system of `grid`, not yet factored.
+    pub(crate) fn new(grid: &'a Grid) -> Self {
+        Factored {
+            grid,
+            lambda: f64::NAN,
+            head_inv: Vec::new(),
+            inv: Vec::with_capacity(grid.n() - 1 - grid.head),
+            z: Vec::new(),
+        }
+    }
+
+    /// Factors the system for `lambda` (normalised units); `false` when a
+    /// pivot block is singular: the problem has no unique solution.
+    pub(crate) fn factor(&mut self, lambda: f64) -> bool {
+        let grid = self.grid;
+        self.lambda = lambda;
+        let n = grid.n();
+        let sz = grid.head_size();
+        let mut a = grid.head_block(lambda);
+        self.head_inv.clear();
+        self.head_inv.resize(sz * sz, 0.0);
+        self.inv.clear();
+        if !invert(&mut a, sz, &mut self.head_inv) {
+            return false;
+        }
+        // The first later block meets the head through its last knot only:
+        // S = A - B (S_head^-1 restricted to that knot) B^T.
+        let tail = sz - 3;
+        let hi = &self.head_inv;
+        let mut prev: M3 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| hi[(tail + i) * sz + tail + j]));
+        for k in grid.head + 1..n {
+            let b = grid.link(k, lambda);
+            let l = mul(&b, &prev);
+            let lb = mul_t(&l, &b);
+            let mut s = grid.own(k, lambda);
+            for i in 0..3 {
+                for j in 0..3 {
+                    s[i][j] -= lb[i][j];
+                }
+            }
+            let Some(si) = invert3(&s) else {
+                return false;
+            };
+            self.inv.push(si);
+            prev = si;
+        }
+        true
+    }
+
+    /// Solves for the knot values `phi` and deviations `d` (both length N,
+    /// `d` zero at the ends) of the data `y`.
+    pub(crate) fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]) {
+        let g = self.grid;
+        let n = g.n();
+        let sz = g.head_size();
+        let tail = sz - 3;
+        // Forward: z_0 = r_0; z_b = r_b - B_b S_{b-1}^-1 z_{b-1}.
+        let mut z0 = vec![0.0; sz];
+        z0[0] = g.w[0] * y[0];
+        for k in 1..=g.head {
+            z0[1 + 3 * (k - 1)] = g.w[k] * y[k];
+        }
+        let mut s0z0 = [0.0; 3];
+        for (i, v) in s0z0.iter_mut().enumerate() {
+            let row = &self.head_inv[(tail + i) * sz..(tail + i + 1) * sz];
+            *v = row.iter().zip(&z0).map(|(a, b)| a * b).sum();
+        }
+        let mut z = std::mem::take(&mut self.z);
+        z.clear();
+        let mut prev_sz = s0z0;
+        for (b, k) in (g.head + 1..n).enumerate() {
+            let link = g.link(k, self.lambda);
+            let lz = apply(&link, &prev_sz);
+            let zb = [g.w[k] * y[k] - lz[0], -lz[1], -lz[2]];
+            prev_sz = apply(&self.inv[b], &zb);
+            z.push(zb);
+        }
+        // Backward: x_b = S_b^-1 (z_b - B_{b+1}^T x_{b+1}).
+        let mut next = [0.0; 3];
+        for (b, k) in (g.head + 1..n).enumerate().rev() {
+            let mut rhs = z[b];
+            if k < n - 1 {
+                let bt = apply_t(&g.link(k + 1, self.lambda), &next);
+                for i in 0..3 {
+                    rhs[i] -= bt[i];
+                }
+            }
+            next = apply(&self.inv[b], &rhs);
+            if k == n - 1 {
+                phi[k] = next[0];
+            } else {
+                phi[k] = next[0];
+                d[k] = next[1];
+            }
+        }
+        self.z = z;
+        let bt = apply_t(&g.link(g.head + 1, self.lambda), &next);
+        for i in 0..3 {
+            z0[tail + i] -= bt[i];
+        }
+        let mut x0 = vec![0.0; sz];
+        for (i, v) in x0.iter_mut().enumerate() {
+            *v = self.head_inv[i * sz..(i + 1) * sz]
+                .iter()
+                .zip(&z0)
+                .map(|(a, b)| a * b)
+                .sum();
+        }
+        phi[0] = x0[0];
+        for k in 1..=g.head {
+            phi[k] = x0[1 + 3 * (k - 1)];
+            d[k] = x0[2 + 3 * (k - 1)];
+        }
+        d[0] = 0.0;
+        d[n - 1] = 0.0;
+    }
+
+    /// The trace of the influence matrix, `sum_j w_j (H^-1)[phi_j, phi_j]`,
+    /// from the diagonal blocks of the inverse, `Z_b = S_b^-1 + L_{b+1}^T
+    /// Z_{b+1} L_{b+1}` with `L_{b+1} = B_{b+1} S_b^-1`, without forming any
+    /// other part of it.
+    pub(crate) fn trace(&self) -> f64 {
+        let g = self.grid;
+        let n = g.n();
+        let last = self.inv.len() - 1;
+        let mut zm = self.inv[last];
+        let mut tr = g.w[n - 1] * zm[0][0];
+        for b in (0..last).rev() {
+            let k = g.head + 1 + b;
+            let l = mul(&g.link(k + 1, self.lambda), &self.inv[b]);
+            let mut next = t_mul(&l, &mul(&zm, &l));
+            for i in 0..3 {
+                for j in 0..3 {
+                    next[i][j] += self.inv[b][i][j];
+                }
+            }
+            zm = next;
+            tr += g.w[k] * zm[0][0];
+        }
+        // The head: L = B (rows of S_head^-1 at its last knot), 3 x size;
+        // (Z_head)_ii = (S_head^-1)_ii + l_i^T Z l_i for column l_i of L.
+        let sz = g.head_size();
+        let tail = sz - 3;
+        let b = g.link(g.head + 1, self.lambda);
+        let phis = std::iter::once(0).chain((1..=g.head).map(|k| 1 + 3 * (k - 1)));
+        let knot = |i: usize| if i == 0 { 0 } else { (i - 1) / 3 + 1 };
+        for i in phis {
+            let col: [f64; 3] = [0, 1, 2].map(|r| {
+                (0..3)
+                    .map(|c| b[r][c] * self.head_inv[(tail + c) * sz + i])
+                    .sum()
+            });
+            let zl = apply(&zm, &col);
+            let quad: f64 = (0..3).map(|r| col[r] * zl[r]).sum();
+            tr += g.w[knot(i)] * (self.head_inv[i * sz + i] + quad);
+        }
+        tr
+    }
+}
