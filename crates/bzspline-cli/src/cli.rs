@@ -143,6 +143,19 @@ pub struct ShapeArgs {
     /// the solved control values are what `fit` prints as `values`.
     #[arg(long)]
     pub through: bool,
+    /// Fit the points as noisy data with a smoothing spline (knots at the
+    /// points, control values minimising the squared residuals plus LAMBDA
+    /// times the integral of S''^2): `auto` chooses LAMBDA by generalized
+    /// cross-validation. Functions and open curves; `fit` adds `lambda`, `gcv`
+    /// and `dof` to its JSON.
+    #[arg(
+        long,
+        value_name = "auto|LAMBDA",
+        conflicts_with_all = ["through", "closed"],
+        allow_hyphen_values = true,
+        value_parser = bzspline_io::options::parse_smoothing
+    )]
+    pub smooth: Option<bzspline::Smoothing>,
 }
 
 /// `--param`: one of [`bzspline::Param::NAMES`], read by the library.
@@ -422,6 +435,8 @@ pub struct Shape {
     pub alphas: Option<Vec<f64>>,
     /// Through the points (the interpolating variant).
     pub through: bool,
+    /// A smoothing fit of the points as noisy data.
+    pub smoothing: Option<bzspline::Smoothing>,
 }
 
 impl ShapeArgs {
@@ -450,6 +465,7 @@ impl ShapeArgs {
             alpha: self.alpha,
             alphas: self.alphas.clone(),
             through: self.through,
+            smoothing: self.smooth,
         })
     }
 }

@@ -12,7 +12,7 @@ use crate::cli::{
     usage, Abscissa, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs,
     TableFormat,
 };
-use crate::fit::fit_points;
+use crate::fit::{fit_points, fit_points_reported};
 use crate::input;
 use crate::model::{self, Fitted, Mode};
 use crate::output;
@@ -80,13 +80,13 @@ pub fn num(v: f64) -> String {
 fn fit(a: &FitArgs) -> Result<()> {
     let shape = a.shape.validate()?;
     let points = a.input.load()?;
-    let fitted = fit_points(&points, &shape)?;
+    let (fitted, report) = fit_points_reported(&points, &shape)?;
     let mut sink = output::Sink::create(a.output.output.as_deref())?;
     match a.format {
         FitFormat::Json => match points.time.filter(|_| shape.mode == Mode::Function) {
-            None => model::write_fit_json(&fitted, &mut sink).context("writing output")?,
+            None => model::write_fit_json(&fitted, report, &mut sink).context("writing output")?,
             Some(kind) => {
-                let v = with_knot_times(model::fit_json(&fitted), kind)?;
+                let v = with_knot_times(model::fit_json(&fitted, report), kind)?;
                 model::write_json_lines(&v, &mut sink).context("writing output")?;
             }
         },

@@ -6,7 +6,7 @@ use anyhow::{bail, Result};
 
 use crate::cli::Shape;
 use crate::input::{self, Points};
-use crate::model::{self, FitSpec, Fitted, Mode};
+use crate::model::{self, FitSpec, Fitted, Mode, SmoothingReport};
 
 /// Builds the spline for `points` with the validated `shape`, naming the file
 /// and line of any fault.
@@ -16,9 +16,24 @@ use crate::model::{self, FitSpec, Fitted, Mode};
 /// Rows of the wrong width, the library's refusals mapped to lines, and results
 /// that overflow a double.
 pub fn fit_points(points: &Points, shape: &Shape) -> Result<Fitted> {
+    fit_points_reported(points, shape).map(|(f, _)| f)
+}
+
+/// [`fit_points`], with the report of a smoothing fit.
+///
+/// # Errors
+///
+/// As [`fit_points`].
+pub fn fit_points_reported(
+    points: &Points,
+    shape: &Shape,
+) -> Result<(Fitted, Option<SmoothingReport>)> {
     check_columns(points, shape)?;
-    let built = model::build(&spec_of(points, shape));
-    checked(points, built)
+    let (built, report) = match model::build_reported(&spec_of(points, shape)) {
+        Ok((f, r)) => (Ok(f), r),
+        Err(e) => (Err(e), None),
+    };
+    Ok((checked(points, built)?, report))
 }
 
 fn check_columns(points: &Points, shape: &Shape) -> Result<()> {
@@ -38,6 +53,7 @@ fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
         alpha: shape.alpha,
         alphas: shape.alphas.clone(),
         through: shape.through,
+        smoothing: shape.smoothing,
     }
 }
 

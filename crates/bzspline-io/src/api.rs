@@ -66,6 +66,9 @@ struct RawRequest {
     /// Through the points (the interpolating variant).
     #[serde(default)]
     through: Option<bool>,
+    /// A smoothing fit: `"auto"` or a lambda (as `--smooth`).
+    #[serde(default)]
+    smooth: Option<Value>,
 }
 
 /// A validated request.
@@ -176,6 +179,19 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
                 .collect::<Result<Vec<f64>, ApiError>>()?,
         ),
     };
+    let smoothing = match &raw.smooth {
+        None | Some(Value::Null) => None,
+        Some(Value::String(text)) => Some(
+            crate::options::parse_smoothing(text)
+                .map_err(|e| ApiError::new(422, format!("smooth {e}")))?,
+        ),
+        Some(v) => {
+            let l = number(v, || "smooth".to_owned())?;
+            let l = crate::options::check_lambda(l)
+                .map_err(|e| ApiError::new(422, format!("smooth {e} (got {l})")))?;
+            Some(bzspline::Smoothing::Lambda(l))
+        }
+    };
     let samples = raw.samples.unwrap_or(0);
     let total = samples.saturating_mul(raw.points.len());
     if total > limits.max_samples {
@@ -198,6 +214,7 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
             alpha,
             alphas,
             through: raw.through.unwrap_or(false),
+            smoothing,
         },
         samples,
     })
@@ -211,9 +228,10 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
 /// 422 with the library's message when the library refuses the data.
 pub fn fit(req: &FitRequest) -> Result<Value, ApiError> {
     let started = std::time::Instant::now();
-    let fitted = model::build(&req.spec).map_err(|e| ApiError::new(422, e.to_string()))?;
+    let (fitted, report) =
+        model::build_reported(&req.spec).map_err(|e| ApiError::new(422, e.to_string()))?;
     let build_ms = started.elapsed().as_secs_f64() * 1e3;
-    let mut out = model::fit_json(&fitted);
+    let mut out = model::fit_json(&fitted, report);
     out["build_ms"] = json!(build_ms);
     if req.samples > 0 {
         out["comb"] = comb(fitted.pieces(), req.samples);
@@ -271,6 +289,30 @@ mod tests {
         assert!(e.message.contains("unknown field"), "{}", e.message);
         assert!(!e.message.contains('\n'), "{:?}", e.message);
         assert!(e.message.contains(r"\n"), "escaped: {:?}", e.message);
+    }
+
+    #[test]
+    fn smooth_takes_auto_or_a_lambda_and_reports_them() {
+        let body = br#"{"points": [[0,0],[1,2],[2,1],[3,3],[4,2]], "smooth": "auto"}"#;
+        let out = fit(&parse(body, LIMITS).unwrap()).unwrap();
+        let (lambda, dof) = (
+            out["lambda"].as_f64().unwrap(),
+            out["dof"].as_f64().unwrap(),
+        );
+        assert!(lambda > 0.0 && (2.0..=5.0).contains(&dof), "{out}");
+        assert!(out["gcv"].as_f64().is_some());
+        let body = br#"{"points": [[0,0],[1,2],[2,1],[3,3],[4,2]], "smooth": 0.5}"#;
+        let out = fit(&parse(body, LIMITS).unwrap()).unwrap();
+        assert_eq!(out["lambda"].as_f64(), Some(0.5));
+        for bad in [r#""lots""#, "-1", r#""-1""#] {
+            let body = format!(r#"{{"points": [[0,0],[1,2],[2,1]], "smooth": {bad}}}"#);
+            let e = parse(body.as_bytes(), LIMITS).unwrap_err();
+            assert_eq!(e.status, 422);
+            assert!(e.message.starts_with("smooth"), "{}", e.message);
+        }
+        // Without smooth, no smoothing keys.
+        let out = fit(&parse(br#"{"points": [[0,0],[1,2],[2,1]]}"#, LIMITS).unwrap()).unwrap();
+        assert!(out.get("lambda").is_none());
     }
 
     #[test]

@@ -6,7 +6,8 @@ use std::borrow::Cow;
 use std::fmt;
 
 use bzspline::{
-    Alphas, Arclen, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Spline,
+    Alphas, Arclen, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Smoothing,
+    Spline,
 };
 use serde::Serialize;
 use serde_json::Value;
@@ -41,6 +42,31 @@ pub struct FitSpec<'a> {
     /// Through the points (the interpolating variant) instead of touching the
     /// legs of their polygon.
     pub through: bool,
+    /// A smoothing fit of the points as noisy data (`docs/method.md` §12)
+    /// instead of taking them as control points; open curves and functions.
+    pub smoothing: Option<Smoothing>,
+}
+
+/// How a smoothing fit came out: its `lambda`, GCV score and degrees of
+/// freedom (the `lambda`, `gcv` and `dof` keys of the `fit` object).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SmoothingReport {
+    /// The `lambda` used (chosen, under `auto`).
+    pub lambda: f64,
+    /// The generalized cross-validation score at `lambda`.
+    pub gcv: f64,
+    /// The effective degrees of freedom (trace of the influence matrix).
+    pub dof: f64,
+}
+
+impl<T> From<&bzspline::Smoothed<T>> for SmoothingReport {
+    fn from(s: &bzspline::Smoothed<T>) -> Self {
+        SmoothingReport {
+            lambda: s.lambda,
+            gcv: s.gcv,
+            dof: s.dof,
+        }
+    }
 }
 
 /// A fitted spline.
@@ -61,6 +87,18 @@ pub enum Fitted {
 /// `points`) when a row of a function is not a pair (callers that know lines
 /// check the columns first, see `input::check_columns`).
 pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
+    build_reported(spec).map(|(f, _)| f)
+}
+
+/// [`build`], with the [`SmoothingReport`] of a smoothing fit.
+///
+/// # Errors
+///
+/// As [`build`], and the library's refusals of a smoothing fit (fewer than 3
+/// points, a closed curve).
+pub fn build_reported(
+    spec: &FitSpec<'_>,
+) -> Result<(Fitted, Option<SmoothingReport>), bzspline::Error> {
     let rows = spec.points.len().checked_div(spec.dim).unwrap_or(0);
     match spec.mode {
         Mode::Function => {
@@ -78,11 +116,19 @@ pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
                 (None, Some(a)) => Alphas::Uniform(a),
                 (None, None) => Alphas::default(),
             };
-            Ok(Fitted::Function(if spec.through {
-                Spline::through(&xs, &ys, alphas)?
-            } else {
-                Spline::build(&xs, &ys, alphas)?
-            }))
+            if let Some(how) = spec.smoothing {
+                let s = Spline::smoothing(&xs, &ys, None, alphas, how)?;
+                let report = SmoothingReport::from(&s);
+                return Ok((Fitted::Function(s.fit), Some(report)));
+            }
+            Ok((
+                Fitted::Function(if spec.through {
+                    Spline::through(&xs, &ys, alphas)?
+                } else {
+                    Spline::build(&xs, &ys, alphas)?
+                }),
+                None,
+            ))
         }
         Mode::Curve => {
             if rows == 0 {
@@ -100,7 +146,12 @@ pub fn build(spec: &FitSpec<'_>) -> Result<Fitted, bzspline::Error> {
             } else if let Some(a) = spec.alpha {
                 b = b.alpha(a);
             }
-            Ok(Fitted::Curve(b.build()?))
+            if let Some(how) = spec.smoothing {
+                let s = b.smoothing(how).build_smoothed()?;
+                let report = SmoothingReport::from(&s);
+                return Ok((Fitted::Curve(s.fit), Some(report)));
+            }
+            Ok((Fitted::Curve(b.build()?), None))
         }
     }
 }
@@ -292,6 +343,8 @@ struct FunctionFit<'a> {
     tangent_points: FunctionTangents<'a>,
     segments: FunctionSegments<'a>,
     svg_path: AsStr<FunctionPath<'a>>,
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    smoothing: Option<SmoothingReport>,
 }
 
 /// The `fit` object of a curve, in key order.
@@ -308,10 +361,16 @@ struct CurveFit<'a> {
     tangent_points: Vec<Vec<f64>>,
     segments: CurveSegments<'a>,
     svg_path: Option<String>,
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    smoothing: Option<SmoothingReport>,
 }
 
 /// Serializes the `fit` object of `f` with `ser`.
-fn serialize_fit<S: serde::Serializer>(f: &Fitted, ser: S) -> Result<S::Ok, S::Error> {
+fn serialize_fit<S: serde::Serializer>(
+    f: &Fitted,
+    smoothing: Option<SmoothingReport>,
+    ser: S,
+) -> Result<S::Ok, S::Error> {
     match f {
         Fitted::Function(s) => FunctionFit {
             mode: "function",
@@ -324,6 +383,7 @@ fn serialize_fit<S: serde::Serializer>(f: &Fitted, ser: S) -> Result<S::Ok, S::E
             tangent_points: FunctionTangents(s),
             segments: FunctionSegments(s),
             svg_path: AsStr(FunctionPath(s)),
+            smoothing,
         }
         .serialize(ser),
         Fitted::Curve(c) => {
@@ -346,6 +406,7 @@ fn serialize_fit<S: serde::Serializer>(f: &Fitted, ser: S) -> Result<S::Ok, S::E
                 tangent_points,
                 segments: CurveSegments(c),
                 svg_path: svg(f),
+                smoothing,
             }
             .serialize(ser)
         }
@@ -358,12 +419,12 @@ fn serialize_fit<S: serde::Serializer>(f: &Fitted, ser: S) -> Result<S::Ok, S::E
 /// `tangent_points` (`[x, f]` for a function, points for a curve; a curve also
 /// has `tangent_params`), `segments` (four control points each) and `svg_path`
 /// (null in 3D). A closed curve has N + 1 knots and N + 1 knot values, the last
-/// equal to the first. Numbers are printed so that they parse back to the same
-/// double.
+/// equal to the first. A smoothing fit adds `lambda`, `gcv` and `dof`
+/// ([`SmoothingReport`]). Numbers are printed so that they parse back to the
+/// same double.
 #[must_use]
-#[allow(dead_code)] // the entry point of `serve` and `plot`; `fit` streams with write_fit_json
-pub fn fit_json(f: &Fitted) -> Value {
-    serialize_fit(f, serde_json::value::Serializer).unwrap_or(Value::Null)
+pub fn fit_json(f: &Fitted, smoothing: Option<SmoothingReport>) -> Value {
+    serialize_fit(f, smoothing, serde_json::value::Serializer).unwrap_or(Value::Null)
 }
 
 /// Writes the `fit` object of `f` as [`write_json_lines`] lays it out, without
@@ -372,9 +433,13 @@ pub fn fit_json(f: &Fitted) -> Value {
 /// # Errors
 ///
 /// Write errors of `w`.
-pub fn write_fit_json<W: std::io::Write>(f: &Fitted, w: W) -> std::io::Result<()> {
+pub fn write_fit_json<W: std::io::Write>(
+    f: &Fitted,
+    smoothing: Option<SmoothingReport>,
+    w: W,
+) -> std::io::Result<()> {
     let mut ser = serde_json::Serializer::with_formatter(w, LinesFormatter::default());
-    serialize_fit(f, &mut ser).map_err(std::io::Error::from)?;
+    serialize_fit(f, smoothing, &mut ser).map_err(std::io::Error::from)?;
     ser.into_inner().write_all(b"\n")
 }
 
@@ -486,13 +551,14 @@ mod tests {
             alpha: None,
             alphas: None,
             through: false,
+            smoothing: None,
         }
     }
 
     #[test]
     fn fit_json_has_the_documented_keys_and_lengths() {
         let fitted = build(&example1()).unwrap();
-        let v = fit_json(&fitted);
+        let v = fit_json(&fitted, None);
         for key in [
             "knots",
             "alphas",
@@ -521,8 +587,8 @@ mod tests {
         for spec in [example1(), closed] {
             let f = build(&spec).unwrap();
             let (mut a, mut b) = (Vec::new(), Vec::new());
-            write_fit_json(&f, &mut a).unwrap();
-            write_json_lines(&fit_json(&f), &mut b).unwrap();
+            write_fit_json(&f, None, &mut a).unwrap();
+            write_json_lines(&fit_json(&f, None), &mut b).unwrap();
             assert_eq!(String::from_utf8(a).unwrap(), String::from_utf8(b).unwrap());
         }
         let mut out = Vec::new();

@@ -5,7 +5,41 @@
 //! (`"centripetal".parse()`), the smoothing options' checks and defaults
 //! [`bzspline_geo::SmoothOptions`]'s.
 
+use bzspline::Smoothing;
 pub use bzspline::{parse_alpha, parse_fraction};
+
+/// A smoothing weight, as `--smooth` and the bindings take it: `auto` (or
+/// `gcv`) for the `lambda` of least generalized cross-validation score, or
+/// a `lambda` itself, a finite number of at least 0.
+///
+/// # Errors
+///
+/// Anything else, as the words of the option's message.
+pub fn parse_smoothing(s: &str) -> Result<Smoothing, String> {
+    let t = s.trim();
+    if t.eq_ignore_ascii_case("auto") || t.eq_ignore_ascii_case("gcv") {
+        return Ok(Smoothing::Gcv);
+    }
+    match t.parse::<f64>() {
+        Ok(v) => check_lambda(v)
+            .map(Smoothing::Lambda)
+            .map_err(str::to_owned),
+        Err(_) => Err(format!("must be auto or a number of at least 0 (got {s})")),
+    }
+}
+
+/// A smoothing `lambda`: a finite number of at least 0.
+///
+/// # Errors
+///
+/// Negative, infinite or NaN, as the words of the option's message (`must be ...`).
+pub fn check_lambda(v: f64) -> Result<f64, &'static str> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err("must be auto or a number of at least 0")
+    }
+}
 
 /// A flattening tolerance (or a sampling step): a positive finite number.
 ///
@@ -48,6 +82,19 @@ pub fn check_keep_angle(v: f64) -> Result<f64, &'static str> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn smoothing_is_auto_or_a_lambda() {
+        use super::parse_smoothing;
+        use bzspline::Smoothing;
+        assert_eq!(parse_smoothing("auto"), Ok(Smoothing::Gcv));
+        assert_eq!(parse_smoothing(" GCV "), Ok(Smoothing::Gcv));
+        assert_eq!(parse_smoothing("0"), Ok(Smoothing::Lambda(0.0)));
+        assert_eq!(parse_smoothing("1e-3"), Ok(Smoothing::Lambda(1e-3)));
+        for bad in ["-1", "nan", "inf", "", "lots"] {
+            assert!(parse_smoothing(bad).is_err(), "{bad}");
+        }
+    }
+
     use super::*;
 
     #[test]

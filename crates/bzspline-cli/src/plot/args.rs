@@ -87,6 +87,7 @@ impl FigureArgs {
             png_scale: self.scale,
             x_time: None,
             through: false,
+            smoothing: false,
         }
     }
 }

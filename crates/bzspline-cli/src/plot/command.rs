@@ -76,6 +76,21 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     // Through the points, the knot points are the data: always shown.
     opts.through = shape.through;
     opts.show_knots |= shape.through;
+    // A smoothing fit: the data as points, the fitted control polygon faint.
+    if shape.smoothing.is_some() {
+        opts.smoothing = true;
+        opts.show_points = false;
+        opts.show_tangents = false;
+        let w = points.width.max(2);
+        let obs: Vec<[f64; 2]> = points
+            .coords
+            .chunks_exact(w)
+            .map(|p| [p[0], p[1]])
+            .collect();
+        if let Some(first) = data.first_mut() {
+            first.observations = obs;
+        }
+    }
     let bytes = match format {
         Figure::Svg => render_svg(&data, &opts).into_bytes(),
         Figure::Png => render_png(&data, &opts)?,

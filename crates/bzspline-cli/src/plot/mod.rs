@@ -43,6 +43,8 @@ pub struct PlotData {
     pub tangent_points: Vec<[f64; 2]>,
     /// The curve's points at the knots.
     pub knot_points: Vec<[f64; 2]>,
+    /// Data a smoothing fit approximates, drawn as small points.
+    pub observations: Vec<[f64; 2]>,
 }
 
 impl PlotData {
@@ -71,6 +73,7 @@ impl PlotData {
                 .map(|(x, y)| [x, y])
                 .collect(),
             knot_points: zip(s.knots(), &s.knot_values()),
+            observations: Vec::new(),
         }
     }
 
@@ -112,6 +115,7 @@ impl PlotData {
                 .filter_map(|(_, p)| xy(p))
                 .collect(),
             knot_points: c.knot_points().iter().filter_map(|p| xy(p)).collect(),
+            observations: Vec::new(),
         })
     }
 
@@ -176,6 +180,9 @@ pub struct PlotOptions {
     /// The curves pass through the points (the interpolating variant): the
     /// knot points are the data and the control polygon is the solved one.
     pub through: bool,
+    /// The curves are smoothing fits of their observations: the control
+    /// polygon is the fitted one, drawn faint.
+    pub smoothing: bool,
 }
 
 impl Default for PlotOptions {
@@ -196,6 +203,7 @@ impl Default for PlotOptions {
             png_scale: 1.0,
             x_time: None,
             through: false,
+            smoothing: false,
         }
     }
 }

@@ -87,6 +87,8 @@ enum Key {
         width: f64,
     },
     Dot,
+    /// A small faint point: an observation.
+    Speck,
     Ring(String),
     Square(String),
     Area,
@@ -126,6 +128,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         d.curve_points().for_each(&mut grow);
         d.control.iter().copied().for_each(&mut grow);
         d.tangent_points.iter().copied().for_each(&mut grow);
+        d.observations.iter().copied().for_each(&mut grow);
     }
     // At most one tick per 55 px across and per 45 px up (the values are small).
     let x_ticks = ((width - 120.0) / 55.0).clamp(2.0, 12.0) as usize;
@@ -151,7 +154,16 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
 
     // Legend entries, then the layout (margins from the text they hold).
     let mut keys: Vec<(Key, String)> = Vec::new();
-    let solved = if opts.through { "solved " } else { "" };
+    let solved = if opts.through {
+        "solved "
+    } else if opts.smoothing {
+        "fitted "
+    } else {
+        ""
+    };
+    if data.iter().any(|d| !d.observations.is_empty()) {
+        keys.push((Key::Speck, "data".into()));
+    }
     if opts.show_points && !all_control.is_empty() {
         keys.push((Key::Dot, format!("{solved}control points")));
     }
@@ -346,12 +358,22 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             );
         }
     }
+    for d in data {
+        for p in d.observations.iter().filter(|p| finite(p)) {
+            let (x, y) = f.px(*p);
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{x}" cy="{y}" r="2.2" fill="{INK}" fill-opacity="0.45"/>"#
+            );
+        }
+    }
     if opts.show_polygon {
+        let faint = if opts.smoothing { 0.35 } else { 1.0 };
         for (c, closed) in &controls {
             let tag = if *closed { "polygon" } else { "polyline" };
             let _ = write!(
                 s,
-                r#"<{tag} fill="none" stroke="{POLYGON}" stroke-width="1.3" stroke-dasharray="6 4" stroke-linejoin="round" points=""#
+                r#"<{tag} fill="none" stroke="{POLYGON}" stroke-opacity="{faint}" stroke-width="1.3" stroke-dasharray="6 4" stroke-linejoin="round" points=""#
             );
             write_points(&mut s, &f, c);
             let _ = writeln!(s, r#""/>"#);
@@ -566,6 +588,12 @@ fn write_key(s: &mut String, (key, text): &(Key, String), x: f64, y: f64, sym: f
         }
         Key::Dot => {
             let _ = writeln!(s, r#"<circle cx="{xm}" cy="{yy}" r="4.2" fill="{INK}"/>"#);
+        }
+        Key::Speck => {
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{xm}" cy="{yy}" r="2.2" fill="{INK}" fill-opacity="0.45"/>"#
+            );
         }
         Key::Ring(c) => {
             let _ = writeln!(

@@ -1,0 +1,186 @@
+//! `--smooth`: the smoothing spline of noisy data through `fit`, `eval`,
+//! `sample` and `plot`, checked against the library number for number.
+
+use bzspline::{Alphas, Curve, Param, Smoothing, Spline};
+use serde_json::Value;
+
+mod common;
+
+use common::run;
+
+/// A noisy sine as a CSV table, and its columns.
+fn noisy(n: usize) -> (String, Vec<f64>, Vec<f64>) {
+    let mut state = 12345u64;
+    let mut unit = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let x: Vec<f64> = (0..n).map(|i| i as f64 * 0.05).collect();
+    let y: Vec<f64> = x.iter().map(|&t| t.sin() + 0.6 * unit()).collect();
+    let mut csv = String::from("x,y\n");
+    for (a, b) in x.iter().zip(&y) {
+        csv.push_str(&format!("{a},{b}\n"));
+    }
+    (csv, x, y)
+}
+
+fn ok_stdin(args: &[&str], stdin: &str) -> String {
+    let o = run(args, Some(stdin.as_bytes()));
+    assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
+    o.stdout
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn fit_prints_the_librarys_smoothing_spline_with_lambda_gcv_and_dof() {
+    let (csv, x, y) = noisy(120);
+    for (arg, how) in [("auto", Smoothing::Gcv), ("0.25", Smoothing::Lambda(0.25))] {
+        let v: Value = serde_json::from_str(&ok_stdin(&["fit", "--smooth", arg], &csv)).unwrap();
+        let s = Spline::smoothing(&x, &y, None, Alphas::default(), how).unwrap();
+        assert_eq!(numbers(&v["values"]), s.fit.values(), "--smooth {arg}");
+        assert_eq!(
+            numbers(&v["knot_values"]),
+            s.fit.knot_values(),
+            "--smooth {arg}"
+        );
+        assert_eq!(v["lambda"].as_f64(), Some(s.lambda));
+        assert_eq!(v["gcv"].as_f64(), Some(s.gcv));
+        assert_eq!(v["dof"].as_f64(), Some(s.dof));
+    }
+    // Without --smooth the object has no smoothing keys.
+    let v: Value = serde_json::from_str(&ok_stdin(&["fit"], &csv)).unwrap();
+    assert!(v.get("lambda").is_none());
+    // --alpha reaches the fit.
+    let v: Value =
+        serde_json::from_str(&ok_stdin(&["fit", "--smooth", "1", "--alpha", "1/3"], &csv)).unwrap();
+    let s = Spline::smoothing(
+        &x,
+        &y,
+        None,
+        Alphas::Uniform(1.0 / 3.0),
+        Smoothing::Lambda(1.0),
+    )
+    .unwrap();
+    assert_eq!(numbers(&v["values"]), s.fit.values());
+}
+
+#[test]
+fn eval_and_sample_use_the_fit() {
+    let (csv, x, y) = noisy(80);
+    let s = Spline::smoothing(&x, &y, None, Alphas::default(), Smoothing::Gcv)
+        .unwrap()
+        .fit;
+    let out = ok_stdin(&["eval", "--smooth", "auto", "--at", "0.5,1.7,3.9"], &csv);
+    let got: Vec<f64> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    for (g, at) in got.iter().zip([0.5, 1.7, 3.9]) {
+        assert_eq!(*g, s.eval(at).unwrap());
+    }
+    let out = ok_stdin(&["sample", "--smooth", "auto", "-n", "5"], &csv);
+    assert_eq!(out.lines().count(), 6);
+}
+
+#[test]
+fn curves_smooth_on_their_parameters() {
+    let (csv, x, y) = noisy(60);
+    let out = ok_stdin(
+        &["fit", "--curve", "--param", "uniform", "--smooth", "auto"],
+        &csv,
+    );
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let pts: Vec<[f64; 2]> = x.iter().zip(&y).map(|(a, b)| [*a, *b]).collect();
+    let c = Curve::builder_from(&pts)
+        .param(Param::Uniform)
+        .smoothing(Smoothing::Gcv)
+        .build_smoothed()
+        .unwrap();
+    let got: Vec<f64> = v["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(numbers)
+        .collect();
+    assert_eq!(got, c.fit.points());
+    assert_eq!(v["lambda"].as_f64(), Some(c.lambda));
+}
+
+#[test]
+fn plot_draws_the_data_and_the_fit() {
+    let (csv, _, _) = noisy(50);
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit.svg");
+    let data = dir.path().join("noisy.csv");
+    std::fs::write(&data, csv).unwrap();
+    let o = run(
+        &[
+            "plot",
+            data.to_str().unwrap(),
+            "--smooth",
+            "auto",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let svg = std::fs::read_to_string(&out).unwrap();
+    // 50 observations and the legend's one.
+    assert_eq!(svg.matches(r#"r="2.2""#).count(), 51);
+    assert!(svg.contains(">data<"));
+    assert!(svg.contains("fitted control polygon"));
+}
+
+#[test]
+fn bad_smoothing_is_refused() {
+    for (args, code, want) in [
+        (
+            &["fit", "--smooth", "-1"][..],
+            2,
+            "must be auto or a number of at least 0",
+        ),
+        (
+            &["fit", "--smooth", "lots"][..],
+            2,
+            "must be auto or a number",
+        ),
+        (
+            &["fit", "--smooth", "auto", "--through"][..],
+            2,
+            "cannot be used with",
+        ),
+        (
+            &["fit", "--smooth", "auto", "--closed"][..],
+            2,
+            "cannot be used with",
+        ),
+    ] {
+        let o = run(args, None);
+        assert_eq!(o.code, code, "{args:?}: {}", o.stderr);
+        assert!(o.stderr.contains(want), "{args:?}: {}", o.stderr);
+    }
+    let o = run(&["fit", "--smooth", "auto"], Some(b"x,y\n0,1\n1,2\n"));
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    assert!(o.stderr.contains("need at least 3"), "{}", o.stderr);
+    let o = run(
+        &["fit", "--smooth", "auto"],
+        Some(b"x,y\n0,1\n1,2\n1,3\n2,2\n"),
+    );
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    assert!(
+        o.stderr.contains("<stdin>:4:") && o.stderr.contains("strictly increasing"),
+        "{}",
+        o.stderr
+    );
+}
