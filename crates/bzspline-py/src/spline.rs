@@ -77,6 +77,8 @@ pub(crate) struct Spline {
     /// Subtracted from the values of order `nu` (from `antiderivative` of a
     /// derivative: scipy's constant, which makes them 0 at the first knot).
     offset: f64,
+    /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
+    smoothing: Option<[f64; 3]>,
 }
 
 impl Spline {
@@ -96,6 +98,7 @@ impl Spline {
             nu,
             anti,
             offset,
+            smoothing: self.smoothing,
         }
     }
 
@@ -233,6 +236,7 @@ impl Spline {
                 nu: 0,
                 anti: None,
                 offset: 0.0,
+                smoothing: None,
             })
         })
     }
@@ -540,6 +544,28 @@ impl Spline {
         self.offset
     }
 
+    /// For a spline from :func:`bzspline.smoothing_spline`: the ``lam`` used
+    /// (the one chosen by cross-validation when none was given); else None.
+    #[getter]
+    fn lam(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[0])
+    }
+
+    /// For a smoothing spline: the generalized cross-validation score at
+    /// ``lam``; else None.
+    #[getter]
+    fn gcv(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[1])
+    }
+
+    /// For a smoothing spline: its effective degrees of freedom (the trace
+    /// of the influence matrix, from 2 for a line to n for interpolation);
+    /// else None.
+    #[getter]
+    fn dof(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[2])
+    }
+
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let restore = py
             .import("bzspline._core")?
@@ -564,6 +590,7 @@ impl Spline {
                 self.extrapolate(py).into_bound(py),
                 self.nu.into_pyobject(py)?.into_any(),
                 self.offset.into_pyobject(py)?.into_any(),
+                self.smoothing.into_pyobject(py)?.into_any(),
             ],
         )?;
         Ok((restore, args))
@@ -588,7 +615,7 @@ impl Spline {
 /// A spline (or its derivative of order `nu`) from the parts `__reduce__`
 /// gives: how a pickled `Spline` is rebuilt.
 #[pyfunction]
-#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0))]
+#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0, smoothing=None))]
 #[allow(clippy::too_many_arguments)] // the parts of a pickled Spline
 pub(crate) fn _spline_from_parts(
     py: Python<'_>,
@@ -599,6 +626,7 @@ pub(crate) fn _spline_from_parts(
     extrapolate: &Bound<'_, PyAny>,
     nu: i32,
     offset: f64,
+    smoothing: Option<[f64; 3]>,
 ) -> PyResult<Spline> {
     let s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
     let anti = (nu < 0).then(|| Arc::new(s.inner.antiderivative()));
@@ -606,6 +634,110 @@ pub(crate) fn _spline_from_parts(
         nu: nu.max(-1),
         anti,
         offset,
+        smoothing,
         ..s
+    })
+}
+
+/// A contiguous copy (or the data itself) of a 1-D float array argument.
+fn vector(v: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    let a = as_float_array(v, what)?;
+    let view = a.as_array();
+    if view.ndim() != 1 {
+        return Err(PyValueError::new_err(format!("{what} must be a 1-D array")));
+    }
+    Ok(view.iter().copied().collect())
+}
+
+/// The smoothing spline of noisy data in the method's basis.
+///
+/// Knots at ``x``; control values chosen to minimise
+/// ``sum(w * (S(x) - y)**2) + lam * integral(S''(x)**2)`` over the method's
+/// splines with this ``alpha``, in O(n) time and memory (``docs/method.md``
+/// section 12). The arguments are those of
+/// ``scipy.interpolate.make_smoothing_spline``; the result is a
+/// :class:`Spline` (the method's spline of the solved control values: C1,
+/// touching every leg of that polygon, inside its hull).
+///
+/// Parameters
+/// ----------
+/// x : array_like, shape (n,)
+///     Strictly increasing, finite abscissas; n >= 3.
+/// y : array_like, shape (n,)
+///     The noisy values.
+/// w : array_like, shape (n,), optional
+///     Weights, finite and >= 0 (not squared, as scipy); default all 1. A point
+///     of weight 0 does not move the fit.
+/// lam : float, optional
+///     The weight of the roughness penalty, >= 0. None (the default) chooses
+///     it by generalized cross-validation, as scipy does; 0 passes through
+///     every point (``Spline(x, y, through=True)``).
+/// alpha : float or array_like, shape (n - 1,), default 0.5
+///     The shape parameter in [1/3, 2/3].
+/// extrapolate : {True, False, 'clamp'}, default True
+///     As for :class:`Spline`.
+///
+/// Returns
+/// -------
+/// Spline
+///     With ``lam`` (the one used), ``gcv`` (its cross-validation score) and
+///     ``dof`` (the effective degrees of freedom) set.
+///
+/// Raises
+/// ------
+/// ValueError
+///     Fewer than 3 points, x not increasing, a negative or non-finite weight
+///     or ``lam``, fewer than 2 positive weights, naming the index at fault.
+///
+/// Examples
+/// --------
+/// >>> import numpy as np, bzspline
+/// >>> x = np.linspace(0, 1, 200)
+/// >>> y = np.sin(6 * x) + np.random.default_rng(0).normal(0, 0.2, 200)
+/// >>> s = bzspline.smoothing_spline(x, y)
+/// >>> bool(abs(s(0.5) - np.sin(3)) < 0.1), 2 < s.dof < 20
+/// (True, True)
+#[pyfunction]
+#[pyo3(signature = (x, y, w=None, lam=None, *, alpha=None, extrapolate=None))]
+pub(crate) fn smoothing_spline(
+    py: Python<'_>,
+    x: &Bound<'_, PyAny>,
+    y: &Bound<'_, PyAny>,
+    w: Option<&Bound<'_, PyAny>>,
+    lam: Option<f64>,
+    alpha: Option<&Bound<'_, PyAny>>,
+    extrapolate: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Spline> {
+    guard(|| {
+        let (x, y) = (vector(x, "x")?, vector(y, "y")?);
+        let w = w.map(|w| vector(w, "w")).transpose()?;
+        let alpha = match alpha {
+            Some(a) => alpha_arg(a)?,
+            None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
+        };
+        let outside = match extrapolate {
+            Some(e) => outside_arg(e)?,
+            None => Outside::Extend,
+        };
+        let how = lam.map_or(bzspline::Smoothing::Gcv, bzspline::Smoothing::Lambda);
+        let fit = py
+            .allow_threads(|| {
+                bzspline::Spline::smoothing(&x, &y, w.as_deref(), alpha.choice(), how)
+            })
+            .map_err(value_error)?;
+        let policy = match outside {
+            Outside::Extend | Outside::Nan => Extrapolate::Extend,
+            Outside::Clamp => Extrapolate::Clamp,
+        };
+        Ok(Spline {
+            inner: Arc::new(fit.fit.with_extrapolation(policy)),
+            y: Vec::new(),
+            through: false,
+            outside,
+            nu: 0,
+            anti: None,
+            offset: 0.0,
+            smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
+        })
     })
 }

@@ -12,10 +12,13 @@ package converts numpy arrays and releases the GIL while it works.
 3.0
 """
 
-from ._core import ALPHA_MAX, ALPHA_MIN, Curve, Spline, __version__
+from ._core import ALPHA_MAX, ALPHA_MIN, Curve, Spline, __version__, smoothing_spline
 from . import errors, geo
 
-__all__ = ["ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "errors", "geo", "to_ppoly", "to_bpoly"]
+__all__ = [
+    "ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "errors", "geo", "smoothing_spline",
+    "to_ppoly", "to_bpoly",
+]
 
 
 def to_ppoly(spline):

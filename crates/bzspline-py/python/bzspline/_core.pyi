@@ -48,6 +48,12 @@ class Spline:
     def extrapolate(self) -> _Extrapolate: ...
     @property
     def nu(self) -> int: ...
+    @property
+    def lam(self) -> Optional[float]: ...
+    @property
+    def gcv(self) -> Optional[float]: ...
+    @property
+    def dof(self) -> Optional[float]: ...
 
 class Curve:
     def __init__(
@@ -76,3 +82,13 @@ class Curve:
     def segments(self) -> NDArray[np.float64]: ...
     @property
     def dim(self) -> int: ...
+
+def smoothing_spline(
+    x: ArrayLike,
+    y: ArrayLike,
+    w: Optional[ArrayLike] = None,
+    lam: Optional[float] = None,
+    *,
+    alpha: Optional[Union[float, ArrayLike]] = None,
+    extrapolate: _Extrapolate = True,
+) -> Spline: ...
