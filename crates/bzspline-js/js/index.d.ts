@@ -17,6 +17,19 @@ export interface SplineOptions {
   extrapolate?: boolean | "clamp";
 }
 
+export interface SmoothingOptions {
+  /** One weight per point, finite and >= 0 (default 1); a point of weight 0 does not move the fit. */
+  w?: Numbers;
+  /** The roughness penalty's weight, >= 0; omitted or null: chosen by generalized cross-validation. */
+  lam?: number | null;
+  /** One shape parameter for every interval (default 0.5). */
+  alpha?: Alpha;
+  /** One shape parameter per interval (n - 1 of them); not with `alpha`. */
+  alphas?: Numbers;
+  /** Outside the knots, as for `new Spline`. */
+  extrapolate?: boolean | "clamp";
+}
+
 export interface Extremum {
   x: number;
   y: number;
@@ -34,6 +47,13 @@ export type Point = [number, number];
  */
 export class Spline {
   constructor(x: Numbers, y: Numbers, options?: SplineOptions);
+  /**
+   * The smoothing spline of noisy data in the method's basis (knots at x),
+   * as scipy's make_smoothing_spline: control values minimising
+   * sum w (S(x) - y)^2 + lam * integral S''^2, lam chosen by cross-validation
+   * when omitted. O(n).
+   */
+  static smoothing(x: Numbers, y: Numbers, options?: SmoothingOptions): Spline;
   /** S(x) (or this derivative): a number for a number, a Float64Array for an array. */
   at(x: number): number;
   at(x: Numbers): Float64Array;
@@ -56,6 +76,12 @@ export class Spline {
   readonly segments: [Point, Point, Point, Point][];
   /** The derivative order this object evaluates. */
   readonly nu: number;
+  /** For a smoothing fit, the lam used; else undefined. */
+  readonly lam: number | undefined;
+  /** For a smoothing fit, its generalized cross-validation score; else undefined. */
+  readonly gcv: number | undefined;
+  /** For a smoothing fit, its effective degrees of freedom; else undefined. */
+  readonly dof: number | undefined;
 }
 
 export interface CurveOptions {

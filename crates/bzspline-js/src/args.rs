@@ -129,7 +129,6 @@ impl Options {
     }
 
     /// A number option (`null` is none).
-    #[cfg_attr(not(feature = "geo"), allow(dead_code))]
     pub fn number(&self, name: &str) -> Result<Option<f64>, JsValue> {
         self.typed(name, "a number", JsValue::as_f64)
     }

@@ -30,6 +30,34 @@ pub struct Spline {
     outside: Outside,
     /// The derivative order this object evaluates (from `derivative`).
     nu: u32,
+    /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
+    smoothing: Option<[f64; 3]>,
+}
+
+/// The `extrapolate` option: true (extend, the default), false (NaN) or
+/// `"clamp"`.
+fn outside_of(o: &Options) -> Result<Outside, JsValue> {
+    match o.get("extrapolate") {
+        None => Ok(Outside::Extend),
+        Some(v) => match (v.as_bool(), v.as_string().as_deref()) {
+            (Some(true), _) => Ok(Outside::Extend),
+            (Some(false), _) => Ok(Outside::Nan),
+            (_, Some("clamp")) => Ok(Outside::Clamp),
+            _ => Err(type_error(format!(
+                "extrapolate must be true, false or \"clamp\" (found {})",
+                kind(&v)
+            ))),
+        },
+    }
+}
+
+impl Outside {
+    fn policy(self) -> Extrapolate {
+        match self {
+            Outside::Clamp => Extrapolate::Clamp,
+            Outside::Extend | Outside::Nan => Extrapolate::Extend,
+        }
+    }
 }
 
 #[wasm_bindgen]
@@ -46,35 +74,71 @@ impl Spline {
         let o = Options::new(options)?;
         let alphas = o.alphas()?;
         let through = o.flag("through", false)?;
-        let outside = match o.get("extrapolate") {
-            None => Outside::Extend,
-            Some(v) => match (v.as_bool(), v.as_string().as_deref()) {
-                (Some(true), _) => Outside::Extend,
-                (Some(false), _) => Outside::Nan,
-                (_, Some("clamp")) => Outside::Clamp,
-                _ => {
-                    return Err(type_error(format!(
-                        "extrapolate must be true, false or \"clamp\" (found {})",
-                        kind(&v)
-                    )))
-                }
-            },
-        };
+        let outside = outside_of(&o)?;
         let built = if through {
             bzspline::Spline::through(&x, &y, alphas.choice())
         } else {
             bzspline::Spline::build(&x, &y, alphas.choice())
         }
         .map_err(lib_error)?;
-        let policy = match outside {
-            Outside::Clamp => Extrapolate::Clamp,
-            Outside::Extend | Outside::Nan => Extrapolate::Extend,
-        };
         Ok(Spline {
-            inner: Rc::new(built.with_extrapolation(policy)),
+            inner: Rc::new(built.with_extrapolation(outside.policy())),
             outside,
             nu: 0,
+            smoothing: None,
         })
+    }
+
+    /// `Spline.smoothing(x, y, {w, lam, alpha, alphas, extrapolate})`: the
+    /// smoothing spline of noisy data in the method's basis (knots at x,
+    /// control values minimising `sum w (S(x) - y)^2 + lam int S''^2`), as
+    /// scipy's `make_smoothing_spline`: `lam` omitted (or null) is chosen by
+    /// generalized cross-validation; `w` one weight per point, finite and
+    /// >= 0 (default 1). The result's `lam`, `gcv` and `dof` report the fit.
+    pub fn smoothing(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Spline, JsValue> {
+        let x = numbers(x, "x")?;
+        let y = numbers(y, "y")?;
+        let o = Options::new(options)?;
+        let alphas = o.alphas()?;
+        let outside = outside_of(&o)?;
+        let w = o
+            .get("w")
+            .filter(|v| !v.is_null())
+            .map(|v| numbers(&v, "w"))
+            .transpose()?;
+        let how = match o.number("lam")? {
+            None => bzspline::Smoothing::Gcv,
+            Some(l) => bzspline::Smoothing::Lambda(l),
+        };
+        let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.choice(), how)
+            .map_err(lib_error)?;
+        Ok(Spline {
+            inner: Rc::new(fit.fit.with_extrapolation(outside.policy())),
+            outside,
+            nu: 0,
+            smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
+        })
+    }
+
+    /// For a smoothing fit, the `lam` used (the one chosen when none was
+    /// given); else undefined.
+    #[wasm_bindgen(getter)]
+    pub fn lam(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[0])
+    }
+
+    /// For a smoothing fit, its generalized cross-validation score; else
+    /// undefined.
+    #[wasm_bindgen(getter)]
+    pub fn gcv(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[1])
+    }
+
+    /// For a smoothing fit, its effective degrees of freedom (2 for a line,
+    /// n for interpolation); else undefined.
+    #[wasm_bindgen(getter)]
+    pub fn dof(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[2])
     }
 
     /// S(x) (or this object's derivative) at x: a number for a number, a
@@ -97,6 +161,7 @@ impl Spline {
             inner: Rc::clone(&self.inner),
             outside: self.outside,
             nu: self.nu.saturating_add(nu.unwrap_or(1)),
+            smoothing: self.smoothing,
         }
     }
 

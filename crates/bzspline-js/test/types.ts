@@ -10,6 +10,11 @@ const vs: Float64Array = s.at([0.5, 1.5]);
 const e: Extremum[] = s.extrema();
 const d1: number = s.derivative().at(1);
 const segs: [number, number][][] = s.segments;
+const sm = Spline.smoothing([0, 1, 2, 3], [0, 1, 0, 1], { w: [1, 1, 0, 1] });
+const lam: number | undefined = sm.lam;
+Spline.smoothing([0, 1, 2], [0, 1, 0], { lam: 0.5, alpha: "1/3" });
+// @ts-expect-error: lam is a number (or omitted for cross-validation)
+Spline.smoothing([0, 1, 2], [0, 1, 0], { lam: "auto" });
 const c = new Curve([[0, 0], [1, 0], [1, 1]], { closed: true, param: "chordal" });
 const p: Float64Array = c.at(0.25);
 const near: number = c.nearest([2, 2]).distance;
@@ -26,4 +31,4 @@ curveBzsplineX.param("uniform");
 curveBzspline.param("spiral");
 s.free();
 c.free();
-export { v, vs, e, d1, segs, p, near, path, outline, out, obj };
+export { lam, v, vs, e, d1, segs, p, near, path, outline, out, obj };

@@ -193,6 +193,52 @@ pub(crate) fn fit(
     })
 }
 
+/// `10^t` from additions and multiplications only, so that the search
+/// chooses the same `lambda` on every platform (libm's `pow` is not
+/// correctly rounded, and differs between them): `2^(t log2 10)` split into
+/// a power of two and `2^f`, `f` in `[0, 1)`, by its Taylor series (within
+/// 1e-13 of `10^t` relative, from the rounding of `t log2 10`; only its
+/// determinism matters here).
+fn exp10(t: f64) -> f64 {
+    let y = t * std::f64::consts::LOG2_10;
+    let k = y.floor();
+    let z = (y - k) * std::f64::consts::LN_2;
+    let mut term = 1.0;
+    let mut sum = 1.0;
+    for i in 1..=20 {
+        term *= z / f64::from(i);
+        sum += term;
+    }
+    let k = k.clamp(-1000.0, 1000.0) as i32;
+    // 2^k in two steps, each a power of two in the normal range.
+    let half = k / 2;
+    sum * pow2(half) * pow2(k - half)
+}
+
+/// `2^k` for `|k| <= 1000`, exactly.
+fn pow2(k: i32) -> f64 {
+    f64::from_bits(((i64::from(k) + 1023) as u64) << 52)
+}
+
+/// `floor(log10 v)` for a positive finite `v`, by exact comparisons with
+/// powers of ten formed by multiplication (the same on every platform).
+fn decade(v: f64) -> i32 {
+    let mut d = 0;
+    let mut p = 1.0;
+    if v >= 1.0 {
+        while p * 10.0 <= v {
+            p *= 10.0;
+            d += 1;
+        }
+    } else {
+        while p > v && d > -400 {
+            p /= 10.0;
+            d -= 1;
+        }
+    }
+    d
+}
+
 /// `(rss / n) / (1 - dof / n)^2`.
 fn gcv_score(rss: f64, dof: f64, n: usize) -> f64 {
     let n = n as f64;
@@ -218,7 +264,7 @@ impl Evaluator<'_> {
     fn score(&mut self, t: f64) -> f64 {
         let n = self.weights.len();
         let f = &mut self.system;
-        if !f.factor(10f64.powf(t)) {
+        if !f.factor(exp10(t)) {
             return f64::INFINITY;
         }
         let (phi, d) = (&mut self.phi, &mut self.d);
@@ -253,10 +299,10 @@ impl Evaluator<'_> {
         // With the span 1 and weights of mean 1, the equivalent kernel of
         // weight lambda spans about (lambda h)^(1/4) where the knots are h
         // apart: from the narrowest interval (lambda = h_min^3) to the whole
-        // span (lambda = n).
+        // span (lambda = n); a decade past each.
         let h_min = self.widths.iter().fold(1.0f64, |m, &h| m.min(h));
-        let lo = (3.0 * h_min.log10()).floor() - 1.0;
-        let hi = n.log10().ceil() + 2.0;
+        let lo = f64::from(3 * decade(h_min) - 1);
+        let hi = f64::from(decade(n) + 3);
         let mut scan: Vec<(f64, f64)> = (0..=(hi - lo) as usize)
             .map(|i| {
                 let t = lo + i as f64;
@@ -295,7 +341,7 @@ impl Evaluator<'_> {
                 best = found;
             }
         }
-        Ok(10f64.powf(best.0))
+        Ok(exp10(best.0))
     }
 
     /// Brent's minimisation of the score on `[a, b]` (in `log10 lambda`)
@@ -442,5 +488,23 @@ impl crate::Spline {
             gcv: fit.gcv,
             dof: fit.dof,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{decade, exp10};
+
+    #[test]
+    fn exp10_and_decade_agree_with_libm() {
+        for i in -3000..=3000 {
+            let t = f64::from(i) / 100.0;
+            let (a, b) = (exp10(t), 10f64.powf(t));
+            assert!((a / b - 1.0).abs() < 1e-13, "{t}: {a} against {b}");
+        }
+        // Below 1, away from exact powers of ten (where the divided powers round).
+        for v in [3e-17, 2e-5, 0.5, 1.0, 9.99, 10.0, 123.0, 1e6, 3.5e9] {
+            assert_eq!(decade(v), v.log10().floor() as i32, "{v}");
+        }
     }
 }

@@ -1,0 +1,73 @@
+// Spline.smoothing: the smoothing spline of noisy data, the command's own
+// (`bzspline fit --smooth`) bit for bit, with its exact limits and refusals.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { existsSync } from "node:fs";
+import { dirname, join } from "node:path";
+import { fileURLToPath } from "node:url";
+import { Spline } from "../js/index.js";
+import { random, close } from "./record.mjs";
+
+const root = join(dirname(fileURLToPath(import.meta.url)), "../../..");
+const bin = process.env.BZSPLINE_BIN || join(root, "target/debug/bzspline");
+
+/** A noisy sine: x increasing, y = sin x + noise. */
+function noisy(n, seed) {
+  const r = random(seed);
+  const x = [];
+  const y = [];
+  let t = 0;
+  for (let i = 0; i < n; i++) {
+    t += 0.02 + 0.08 * r();
+    x.push(t);
+    y.push(Math.sin(t) + 0.6 * (r() - 0.5));
+  }
+  return { x, y };
+}
+
+test("the fit is the command's, bit for bit, with lam, gcv and dof", () => {
+  assert.ok(existsSync(bin), `${bin} is missing: cargo build -p bzspline-cli`);
+  for (const [seed, smooth] of [[1, "auto"], [2, "auto"], [3, "0.5"]]) {
+    const { x, y } = noisy(150, seed);
+    const table = "x,y\n" + x.map((v, i) => `${v},${y[i]}`).join("\n") + "\n";
+    const got = JSON.parse(
+      execFileSync(bin, ["fit", "--input-format", "csv", "--smooth", smooth], { input: table }),
+    );
+    const lam = smooth === "auto" ? undefined : Number(smooth);
+    const s = Spline.smoothing(x, y, { lam });
+    assert.deepEqual(Array.from(s.controlValues), got.values, `seed ${seed}`);
+    assert.equal(s.lam, got.lambda);
+    assert.equal(s.gcv, got.gcv);
+    assert.equal(s.dof, got.dof);
+    s.free();
+  }
+});
+
+test("lam 0 passes through; weights of zero are ignored; a plain spline has no lam", () => {
+  const { x, y } = noisy(60, 4);
+  const s = Spline.smoothing(x, y, { lam: 0 });
+  x.forEach((v, i) => close(s.at(v), y[i], 1e-12, `point ${i}`));
+  const w = x.map((_, i) => (i % 7 === 0 ? 0 : 1));
+  const a = Spline.smoothing(x, y, { w });
+  const moved = y.map((v, i) => (w[i] === 0 ? v + 100 : v));
+  const b = Spline.smoothing(x, moved, { w: Float64Array.from(w) });
+  assert.deepEqual(Array.from(a.controlValues), Array.from(b.controlValues));
+  assert.equal(new Spline(x, y).lam, undefined);
+  assert.equal(a.derivative().lam, a.lam);
+});
+
+test("bad input throws naming the index", () => {
+  const { x, y } = noisy(10, 5);
+  const cases = [
+    [() => Spline.smoothing(x.slice(0, 2), y.slice(0, 2)), RangeError, /at least 3/],
+    [() => Spline.smoothing(x, y, { w: x.map((_, i) => (i === 3 ? -1 : 1)) }), RangeError, /weights\[3\]/],
+    [() => Spline.smoothing(x, y, { lam: -1 }), RangeError, /lambda/],
+    [() => Spline.smoothing(x, y, { lam: "lots" }), TypeError, /lam/],
+    [() => Spline.smoothing(x, y, { w: [1, 2] }), RangeError, /weights/],
+    [() => Spline.smoothing([...x].reverse(), y), RangeError, /increasing/],
+  ];
+  for (const [f, kind, message] of cases) {
+    assert.throws(f, (e) => e instanceof kind && message.test(e.message), String(f));
+  }
+});
