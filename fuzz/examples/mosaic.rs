@@ -45,7 +45,10 @@ fn main() {
         "opts {:?} snap {:?} exponent {} offset {}",
         case.opts, case.snap, case.exponent, case.offset
     );
-    let c = Coverage::builder(case.geometries.clone()).snap(case.snap).build().expect("accepted");
+    let c = Coverage::builder(case.geometries.clone())
+        .snap(case.snap)
+        .build()
+        .expect("accepted");
     let (out, stats) = c.smooth(&case.opts).expect("smoothed");
     println!("{stats:?}");
     for g in &out {

@@ -22,7 +22,9 @@ fuzz_target!(|bytes: &[u8]| {
     let Ok(case) = mosaic::case(&mut u) else {
         return;
     };
-    let coverage = Coverage::builder(case.geometries.clone()).snap(case.snap).build()
+    let coverage = Coverage::builder(case.geometries.clone())
+        .snap(case.snap)
+        .build()
         .unwrap_or_else(|e| panic!("refused: {e}"));
     let (out, _) = coverage
         .smooth(&case.opts)

@@ -512,6 +512,25 @@ fn readme_tour_output_is_current() {
             "README's output of {args:?} is stale:\n{out}"
         );
     }
+    for args in [
+        &["eval", "noisy.csv", "--smooth", "auto", "--at", "1.5,4.7,8"][..],
+        &["fit", "noisy.csv", "--smooth", "auto"][..],
+    ] {
+        let out = ok(args);
+        let tail: String = out
+            .lines()
+            .rev()
+            .take(4)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .map(|l| format!("{l}\n"))
+            .collect();
+        assert!(
+            readme.contains(&tail),
+            "README's output of {args:?} is stale:\n{tail}"
+        );
+    }
     let road = dir.path().join("road.geojson");
     std::fs::write(
         &road,

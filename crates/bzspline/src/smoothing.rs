@@ -39,12 +39,18 @@ pub struct Smoothed<T> {
     /// The generalized cross-validation score at `lambda`,
     /// `(1/n) sum_j w_j r_j^2 / (1 - dof/n)^2` with `n` the number of points of
     /// positive weight (for a curve, `r_j^2` summed over the coordinates and
-    /// divided by their number).
+    /// divided by their number); infinite when the fit interpolates
+    /// (`lambda = 0`), where it is undefined.
     pub gcv: f64,
     /// The effective degrees of freedom: the trace of the influence matrix
     /// (from 2 for the straight line to `n` for interpolation).
     pub dof: f64,
 }
+
+/// A weight below this, relative to the mean weight, counts as none where
+/// conditioning is concerned (`system` starts its head block after such
+/// points).
+pub(crate) const NEGLIGIBLE_WEIGHT: f64 = 1e-8;
 
 /// The solved control values of a smoothing fit, flat (`dim` per point).
 pub(crate) struct Fit {
@@ -133,7 +139,17 @@ pub(crate) fn fit(
             (scale, (0..n).map(|i| values[i * dim + c] / scale).collect())
         })
         .collect();
+    // Where a point has no weight (or next to none against the others), only
+    // the penalty shapes the fit there, and a lambda far below the one that
+    // interpolates (h_min^3) leaves it to rounding: such lambdas are refused.
+    let h_min = widths.iter().fold(1.0f64, |m, &h| m.min(h));
+    let floor = if w.iter().any(|&v| v < NEGLIGIBLE_WEIGHT) {
+        1e-12 * h_min * h_min * h_min
+    } else {
+        0.0
+    };
     let mut eval = Evaluator {
+        floor,
         system: Factored::new(&grid),
         weights: &w,
         widths: &widths,
@@ -146,6 +162,13 @@ pub(crate) fn fit(
     let lam = match smoothing {
         Smoothing::Lambda(l) => {
             let t = l / unit;
+            if eval.floor > 0.0 && t < eval.floor {
+                return Err(Error::InvalidArgument {
+                    what: "lambda is too small for the points of weight 0 (or next to it): \
+                           the fit between them would be left to rounding",
+                    value: l,
+                });
+            }
             if t.is_finite() {
                 t
             } else {
@@ -165,26 +188,44 @@ pub(crate) fn fit(
     let mut phi = vec![0.0; n];
     let mut d = vec![0.0; n];
     let mut rss = 0.0;
+    let mut g = vec![0.0; n];
     for (c, (scale, y)) in coords.iter().enumerate() {
         f.solve(y, &mut phi, &mut d);
         for i in 0..n {
-            let g = (phi[i] - d[i]) * scale;
-            if !g.is_finite() {
+            g[i] = phi[i] - d[i];
+            if !(g[i] * scale).is_finite() {
                 return Err(Error::Overflow {
                     what: "a solved control value",
                 });
             }
-            controls[i * dim + c] = g;
+            controls[i * dim + c] = g[i] * scale;
             let r = (y[i] - phi[i]) * scale;
             rss += weights[i] * r * r;
         }
+        // The solution must be the method's spline of its control values: its
+        // knot values, solved again by the method, are phi. Intervals of
+        // widths many decades apart under a large lambda can defeat the
+        // elimination; that is refused rather than returned.
+        if !consistent(knots, &g, alphas, &phi) {
+            return Err(ill_conditioned());
+        }
     }
     let dof = f.trace();
+    if !(dof > 1.0 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
+        return Err(ill_conditioned());
+    }
     let gcv = gcv_score(rss / dim as f64, dof, positive);
     let lambda = match smoothing {
         Smoothing::Lambda(l) => l,
-        Smoothing::Gcv => lam * unit,
+        // lambda's unit is (mean weight) span^3, which a span near the
+        // largest double takes past it.
+        Smoothing::Gcv => lam * mean_w * span * span * span,
     };
+    if !lambda.is_finite() {
+        return Err(Error::Overflow {
+            what: "the chosen lambda (x spans too far: scale it)",
+        });
+    }
     Ok(Fit {
         controls,
         lambda,
@@ -239,15 +280,44 @@ fn decade(v: f64) -> i32 {
     d
 }
 
-/// `(rss / n) / (1 - dof / n)^2`.
+fn ill_conditioned() -> Error {
+    Error::InvalidArgument {
+        what: "the smoothing system is too ill-conditioned for these knots and lambda \
+               (intervals of widths many decades apart)",
+        value: f64::NAN,
+    }
+}
+
+/// Whether the knot values of the method's spline of the (scaled) control
+/// values `g` are `phi`, to 1e-7 of their largest magnitude.
+fn consistent(knots: &[f64], g: &[f64], alphas: &[f64], phi: &[f64]) -> bool {
+    let Ok(s) = crate::Spline::with_alphas(knots, g, alphas) else {
+        return false;
+    };
+    let big = phi.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+    s.knot_values()
+        .iter()
+        .zip(phi)
+        .all(|(a, b)| (a - b).abs() <= 1e-7 * big)
+}
+
+/// `(rss / n) / (1 - dof / n)^2`; infinite when the fit interpolates
+/// (`dof = n`: no residual degrees of freedom, the score is undefined).
 fn gcv_score(rss: f64, dof: f64, n: usize) -> f64 {
     let n = n as f64;
     let den = 1.0 - dof / n;
-    (rss / n) / (den * den)
+    let s = (rss / n) / (den * den);
+    if den > 0.0 && !s.is_nan() {
+        s
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// Evaluates the GCV score of one `lambda` (normalised units).
 struct Evaluator<'a> {
+    /// The least lambda accepted (0: any).
+    floor: f64,
     system: Factored<'a>,
     weights: &'a [f64],
     widths: &'a [f64],
@@ -263,8 +333,9 @@ impl Evaluator<'_> {
     /// system cannot be solved.
     fn score(&mut self, t: f64) -> f64 {
         let n = self.weights.len();
+        let lambda = exp10(t);
         let f = &mut self.system;
-        if !f.factor(exp10(t)) {
+        if lambda < self.floor || !f.factor(lambda) {
             return f64::INFINITY;
         }
         let (phi, d) = (&mut self.phi, &mut self.d);

@@ -515,3 +515,52 @@ fn bad_input_is_refused_with_its_place() {
     ));
     assert!(e.to_string().contains("weights[2]"), "{e}");
 }
+
+#[test]
+fn hostile_input_gives_an_error_or_a_finite_fit_never_a_panic() {
+    let mut rng = Rng::new(23);
+    let picks = [0.0, 1e-300, 1e-30, 1e-8, 1.0, 1e8, 1e30, 1e300];
+    for case in 0..400 {
+        let n = rng.int(3, 30);
+        let x: Vec<f64> = match case % 4 {
+            0 => rng.grid(n, 12.0),
+            1 => (0..n)
+                .map(|i| 1e300 * (i as f64 / n as f64 - 0.5))
+                .collect(),
+            2 => (0..n).map(|i| 1e-300 * i as f64).collect(),
+            _ => (0..n).map(|i| 1e15 + i as f64).collect(),
+        };
+        let m = picks[rng.int(1, picks.len() - 1)];
+        let y: Vec<f64> = (0..n).map(|_| m * rng.uniform(-1.0, 1.0)).collect();
+        let w: Vec<f64> = (0..n).map(|_| picks[rng.int(0, picks.len() - 1)]).collect();
+        let how = match case % 3 {
+            0 => Smoothing::Gcv,
+            _ => Smoothing::Lambda(picks[rng.int(0, picks.len() - 1)]),
+        };
+        let weights = if case % 5 == 0 { None } else { Some(&w[..]) };
+        match Spline::smoothing(&x, &y, weights, Alphas::default(), how) {
+            Ok(s) => {
+                assert!(s.fit.values().iter().all(|v| v.is_finite()), "case {case}");
+                assert!(
+                    s.lambda.is_finite() && s.lambda >= 0.0,
+                    "case {case}: {}",
+                    s.lambda
+                );
+                assert!(
+                    !s.dof.is_nan() && !s.gcv.is_nan() && s.gcv >= 0.0,
+                    "case {case}: {} {}",
+                    s.dof,
+                    s.gcv
+                );
+                for k in 0..n - 1 {
+                    let t = 0.5 * (x[k] + x[k + 1]);
+                    assert!(s.fit.eval(t).unwrap().is_finite(), "case {case}");
+                }
+            }
+            Err(e) => {
+                // Every refusal names what is wrong in words.
+                assert!(!e.to_string().is_empty(), "case {case}");
+            }
+        }
+    }
+}

@@ -203,7 +203,10 @@ impl Grid {
             q_diag[k] = forms[k - 1][2] + forms[k][0];
             q_off[k] = forms[k][1];
         }
-        let first = weights.iter().position(|&w| w > 1e-8).unwrap_or(0);
+        let first = weights
+            .iter()
+            .position(|&w| w >= super::NEGLIGIBLE_WEIGHT)
+            .unwrap_or(0);
         Grid {
             w: weights.to_vec(),
             rows,
