@@ -79,7 +79,11 @@ pub(crate) enum AlphaArg {
     Each(Vec<f64>),
 }
 
-pub(crate) fn alpha_arg(alpha: &Bound<'_, PyAny>) -> PyResult<AlphaArg> {
+/// `alpha=`: one alpha or one per interval; absent, the default 1/2.
+pub(crate) fn alpha_arg(alpha: Option<&Bound<'_, PyAny>>) -> PyResult<AlphaArg> {
+    let Some(alpha) = alpha else {
+        return Ok(AlphaArg::One(bzspline::DEFAULT_ALPHA));
+    };
     if let Ok(a) = alpha.extract::<f64>() {
         return Ok(AlphaArg::One(a));
     }
@@ -110,7 +114,11 @@ pub(crate) enum Outside {
     Clamp,
 }
 
-pub(crate) fn outside_arg(v: &Bound<'_, PyAny>) -> PyResult<Outside> {
+/// `extrapolate=`; absent, `True`.
+pub(crate) fn outside_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Outside> {
+    let Some(v) = v else {
+        return Ok(Outside::Extend);
+    };
     if let Ok(b) = v.extract::<bool>() {
         return Ok(if b { Outside::Extend } else { Outside::Nan });
     }
@@ -119,6 +127,16 @@ pub(crate) fn outside_arg(v: &Bound<'_, PyAny>) -> PyResult<Outside> {
         _ => Err(PyValueError::new_err(
             "extrapolate must be True, False or 'clamp'",
         )),
+    }
+}
+
+impl Outside {
+    /// The library's policy: NaN outside is applied here, over extension.
+    pub(crate) fn policy(self) -> bzspline::Extrapolate {
+        match self {
+            Outside::Extend | Outside::Nan => bzspline::Extrapolate::Extend,
+            Outside::Clamp => bzspline::Extrapolate::Clamp,
+        }
     }
 }
 

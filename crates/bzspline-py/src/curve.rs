@@ -88,10 +88,7 @@ impl Curve {
                 Some(p) => param_arg(p)?,
                 None => (Param::default(), Param::default().to_string()),
             };
-            let alpha = match alpha {
-                Some(a) => alpha_arg(a)?,
-                None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
-            };
+            let alpha = alpha_arg(alpha)?;
             let built = py.allow_threads(|| {
                 bzspline::CurveBuilder::new(&pts, dim)
                     .closed(closed)

@@ -12,7 +12,6 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyTuple};
 
-use bzspline::Extrapolate;
 
 use crate::args::*;
 
@@ -170,10 +169,7 @@ fn build_spline(
     outside: Outside,
     py: Python<'_>,
 ) -> PyResult<bzspline::Spline> {
-    let policy = match outside {
-        Outside::Extend | Outside::Nan => Extrapolate::Extend,
-        Outside::Clamp => Extrapolate::Clamp,
-    };
+    let policy = outside.policy();
     let built = py.allow_threads(|| {
         if through {
             bzspline::Spline::through(x, y, alpha.choice())
@@ -219,14 +215,8 @@ impl Spline {
                     &yc
                 }
             };
-            let alpha = match alpha {
-                Some(a) => alpha_arg(a)?,
-                None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
-            };
-            let outside = match extrapolate {
-                Some(e) => outside_arg(e)?,
-                None => Outside::Extend,
-            };
+            let alpha = alpha_arg(alpha)?;
+            let outside = outside_arg(extrapolate)?;
             let inner = build_spline(x, y, &alpha, through, outside, py)?;
             Ok(Spline {
                 inner: Arc::new(inner),
@@ -711,26 +701,16 @@ pub(crate) fn smoothing_spline(
     guard(|| {
         let (x, y) = (vector(x, "x")?, vector(y, "y")?);
         let w = w.map(|w| vector(w, "w")).transpose()?;
-        let alpha = match alpha {
-            Some(a) => alpha_arg(a)?,
-            None => AlphaArg::One(bzspline::DEFAULT_ALPHA),
-        };
-        let outside = match extrapolate {
-            Some(e) => outside_arg(e)?,
-            None => Outside::Extend,
-        };
+        let alpha = alpha_arg(alpha)?;
+        let outside = outside_arg(extrapolate)?;
         let how = lam.map_or(bzspline::Smoothing::Gcv, bzspline::Smoothing::Lambda);
         let fit = py
             .allow_threads(|| {
                 bzspline::Spline::smoothing(&x, &y, w.as_deref(), alpha.choice(), how)
             })
             .map_err(value_error)?;
-        let policy = match outside {
-            Outside::Extend | Outside::Nan => Extrapolate::Extend,
-            Outside::Clamp => Extrapolate::Clamp,
-        };
         Ok(Spline {
-            inner: Arc::new(fit.fit.with_extrapolation(policy)),
+            inner: Arc::new(fit.fit.with_extrapolation(outside.policy())),
             y: Vec::new(),
             through: false,
             outside,

@@ -159,23 +159,39 @@ pub(crate) fn fit(
         phi: Vec::new(),
         d: Vec::new(),
     };
-    let lam = match smoothing {
+    // The lambda of the data's units, given or chosen; the fit is made from
+    // it as Smoothing::Lambda(lambda) makes it, so the reported lambda
+    // reproduces the fit bit for bit.
+    let lambda = match smoothing {
         Smoothing::Lambda(l) => {
-            let t = l / unit;
-            if eval.floor > 0.0 && t < eval.floor {
+            if eval.floor > 0.0 && l / unit < eval.floor {
                 return Err(Error::InvalidArgument {
                     what: "lambda is too small for the points of weight 0 (or next to it): \
                            the fit between them would be left to rounding",
                     value: l,
                 });
             }
-            if t.is_finite() {
-                t
-            } else {
-                f64::MAX
-            }
+            l
         }
-        Smoothing::Gcv => eval.search()?,
+        Smoothing::Gcv => {
+            let chosen = eval.search()? * unit;
+            if !(chosen.is_finite() && chosen > 0.0 && unit.is_normal()) {
+                return Err(Error::InvalidArgument {
+                    what: "the chosen lambda is beyond the range of a double in the units of x \
+                           (lambda scales as the span of x cubed): scale x; the span is",
+                    value: span,
+                });
+            }
+            chosen
+        }
+    };
+    let lam = {
+        let t = lambda / unit;
+        if t.is_finite() {
+            t
+        } else {
+            f64::MAX
+        }
     };
     let mut f = Factored::new(&grid);
     if !f.factor(lam) {
@@ -215,17 +231,6 @@ pub(crate) fn fit(
         return Err(ill_conditioned());
     }
     let gcv = gcv_score(rss / dim as f64, dof, positive);
-    let lambda = match smoothing {
-        Smoothing::Lambda(l) => l,
-        // lambda's unit is (mean weight) span^3, which a span near the
-        // largest double takes past it.
-        Smoothing::Gcv => lam * mean_w * span * span * span,
-    };
-    if !lambda.is_finite() {
-        return Err(Error::Overflow {
-            what: "the chosen lambda (x spans too far: scale it)",
-        });
-    }
     Ok(Fit {
         controls,
         lambda,

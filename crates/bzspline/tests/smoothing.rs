@@ -155,6 +155,9 @@ fn gcv_score_is_the_dense_one_and_a_minimum() {
             "case {case}: gcv {} against the dense {score}",
             g.gcv
         );
+        // The lambda reported reproduces the fit, bit for bit.
+        let again = Spline::smoothing(&x, &y, Some(&w), a, Smoothing::Lambda(g.lambda)).unwrap();
+        assert_eq!(again, g, "case {case}");
         // No lambda nearby or far scores lower, beyond the search's tolerance
         // (and the flat approach to interpolation when the least score is
         // there).

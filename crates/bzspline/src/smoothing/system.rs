@@ -56,11 +56,30 @@ fn t_mul(a: &M3, b: &M3) -> M3 {
 }
 
 fn apply(a: &M3, v: &[f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| a[i][0] * v[0] + a[i][1] * v[1] + a[i][2] * v[2])
+    let row = |r: &[f64; 3]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    [row(&a[0]), row(&a[1]), row(&a[2])]
 }
 
 fn apply_t(a: &M3, v: &[f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|j| a[0][j] * v[0] + a[1][j] * v[1] + a[2][j] * v[2])
+    let col = |j: usize| a[0][j] * v[0] + a[1][j] * v[1] + a[2][j] * v[2];
+    [col(0), col(1), col(2)]
+}
+
+/// `B P` for a link block `B` (five entries, the others zero: see
+/// [`Grid::link`]) and any `P`.
+fn link_mul(b: &M3, p: &M3) -> M3 {
+    let comb = |x: f64, r: &[f64; 3], y: f64, t: &[f64; 3]| {
+        [
+            x * r[0] + y * t[0],
+            x * r[1] + y * t[1],
+            x * r[2] + y * t[2],
+        ]
+    };
+    [
+        comb(b[0][2], &p[2], 0.0, &p[0]),
+        comb(b[1][1], &p[1], b[1][2], &p[2]),
+        comb(b[2][0], &p[0], b[2][1], &p[1]),
+    ]
 }
 
 /// Inverts the `n x n` row-major matrix `a` into `inv` by Gauss-Jordan with
@@ -106,9 +125,34 @@ fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
     true
 }
 
+/// The inverse of a symmetric 3 by 3 matrix from its cofactors (each a 2 by
+/// 2 determinant, so a diagonal scaling of the matrix scales them alike and
+/// does not cost accuracy); where the determinant cancels, by
+/// [`invert3_pivoting`].
+fn invert3(m: &M3) -> Option<M3> {
+    let [[a, b, c], [_, d, e], [_, _, f]] = *m;
+    let c00 = d * f - e * e;
+    let c01 = c * e - b * f;
+    let c02 = b * e - c * d;
+    let det = a * c00 + b * c01 + c * c02;
+    let size = (a * c00).abs() + (b * c01).abs() + (c * c02).abs();
+    if !(det.abs() > 1e-8 * size && det.is_finite()) {
+        return invert3_pivoting(m);
+    }
+    let r = 1.0 / det;
+    let c11 = a * f - c * c;
+    let c12 = b * c - a * e;
+    let c22 = a * d - b * b;
+    Some([
+        [c00 * r, c01 * r, c02 * r],
+        [c01 * r, c11 * r, c12 * r],
+        [c02 * r, c12 * r, c22 * r],
+    ])
+}
+
 /// The inverse of a 3 by 3 matrix by Gauss-Jordan with partial pivoting,
 /// unrolled; `None` when a pivot vanishes.
-fn invert3(m: &M3) -> Option<M3> {
+fn invert3_pivoting(m: &M3) -> Option<M3> {
     let norm = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
     let mut a = *m;
     let mut inv = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -334,7 +378,7 @@ impl<'a> Factored<'a> {
         let mut prev: M3 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| hi[(tail + i) * sz + tail + j]));
         for k in grid.head + 1..n {
             let b = grid.link(k, lambda);
-            let l = mul(&b, &prev);
+            let l = link_mul(&b, &prev);
             let lb = mul_t(&l, &b);
             let mut s = grid.own(k, lambda);
             for i in 0..3 {
@@ -431,7 +475,7 @@ impl<'a> Factored<'a> {
         let mut tr = g.w[n - 1] * zm[0][0];
         for b in (0..last).rev() {
             let k = g.head + 1 + b;
-            let l = mul(&g.link(k + 1, self.lambda), &self.inv[b]);
+            let l = link_mul(&g.link(k + 1, self.lambda), &self.inv[b]);
             let mut next = t_mul(&l, &mul(&zm, &l));
             for i in 0..3 {
                 for j in 0..3 {
