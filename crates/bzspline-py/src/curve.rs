@@ -59,6 +59,8 @@ pub(crate) struct Curve {
     closed: bool,
     through: bool,
     param: String,
+    /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
+    smoothing: Option<[f64; 3]>,
 }
 
 #[pymethods]
@@ -103,6 +105,7 @@ impl Curve {
                 closed,
                 through,
                 param: name,
+                smoothing: None,
             })
         })
     }
@@ -355,6 +358,25 @@ impl Curve {
         self.inner.to_svg_path().map_err(value_error)
     }
 
+    /// For a curve from :func:`bzspline.smoothing_curve`: the ``lam`` used;
+    /// else None (and after pickling, which keeps the curve).
+    #[getter]
+    fn lam(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[0])
+    }
+
+    /// For a smoothing curve: its generalized cross-validation score; else None.
+    #[getter]
+    fn gcv(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[1])
+    }
+
+    /// For a smoothing curve: its effective degrees of freedom; else None.
+    #[getter]
+    fn dof(&self) -> Option<f64> {
+        self.smoothing.map(|s| s[2])
+    }
+
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let cls = py.get_type::<Curve>().into_any().unbind();
         let d = self.inner.dim();
@@ -389,4 +411,91 @@ impl Curve {
             self.param
         )
     }
+}
+
+/// The smoothing curve of noisy points (a GPS track, a digitised outline) in
+/// the method's basis.
+///
+/// The parameters come from the points as for :class:`Curve` (centripetal
+/// by default, or given, for example the times of a track); the control
+/// points minimise ``sum(w * |C(t) - p|**2) + lam * integral(|C''(t)|**2)``
+/// with one ``lam`` for every coordinate, chosen by generalized
+/// cross-validation over their sum when omitted. O(n).
+///
+/// Parameters
+/// ----------
+/// points : array_like, shape (n, d)
+///     n >= 3 points, an open curve.
+/// w : array_like, shape (n,), optional
+///     Weights, finite and >= 0 (default all 1).
+/// lam : float, optional
+///     The penalty's weight, >= 0; None chooses it.
+/// param : {'centripetal', 'chordal', 'uniform'} or array_like, optional
+///     As for :class:`Curve`. On points as noisy as their spacing, chordal and
+///     centripetal parameters follow the noise (cross-validation then picks
+///     interpolation): give 'uniform' or the times.
+/// alpha : float or array_like, default 0.5
+///
+/// Returns
+/// -------
+/// Curve
+///     Its control points solved, parameters given, with ``lam``, ``gcv`` and
+///     ``dof`` set.
+///
+/// Examples
+/// --------
+/// >>> import numpy as np, bzspline
+/// >>> t = np.linspace(0, 6, 300)
+/// >>> noise = np.random.default_rng(0).normal(0, 0.2, (300, 2))
+/// >>> track = np.c_[10 * np.cos(t), 10 * np.sin(t)] + noise
+/// >>> c = bzspline.smoothing_curve(track, param=t)
+/// >>> r = np.hypot(*c(t).T)
+/// >>> bool(np.abs(r - 10).mean() < 0.5 * np.abs(np.hypot(*track.T) - 10).mean())
+/// True
+#[pyfunction]
+#[pyo3(signature = (points, w=None, lam=None, *, param=None, alpha=None))]
+pub(crate) fn smoothing_curve(
+    py: Python<'_>,
+    points: &Bound<'_, PyAny>,
+    w: Option<&Bound<'_, PyAny>>,
+    lam: Option<f64>,
+    param: Option<&Bound<'_, PyAny>>,
+    alpha: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Curve> {
+    guard(|| {
+        let (pts, shape) = floats(points, "points")?;
+        if shape.len() != 2 || shape[1] == 0 {
+            return Err(PyValueError::new_err(
+                "points must be an (n, d) array: one row per point",
+            ));
+        }
+        let dim = shape[1];
+        let w = w.map(|w| floats(w, "w").map(|f| f.0)).transpose()?;
+        let param = match param {
+            Some(p) => param_arg(p)?.0,
+            None => Param::default(),
+        };
+        let alpha = alpha_arg(alpha)?;
+        let how = lam.map_or(bzspline::Smoothing::Gcv, bzspline::Smoothing::Lambda);
+        let fit = py
+            .allow_threads(|| {
+                let mut b = bzspline::CurveBuilder::new(&pts, dim)
+                    .param(param)
+                    .alpha_choice(alpha.choice())
+                    .smoothing(how);
+                if let Some(w) = &w {
+                    b = b.weights(w);
+                }
+                b.build_smoothed()
+            })
+            .map_err(value_error)?;
+        Ok(Curve {
+            points: fit.fit.points().to_vec(),
+            inner: Arc::new(fit.fit),
+            closed: false,
+            through: false,
+            param: "given".to_owned(),
+            smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
+        })
+    })
 }

@@ -17,7 +17,7 @@ static ALLOCATOR: alloc::HugePages = alloc::HugePages;
 use pyo3::prelude::*;
 
 pub(crate) use args::guard;
-use curve::Curve;
+use curve::{smoothing_curve, Curve};
 use spline::{_spline_from_parts, smoothing_spline, Spline};
 
 #[pymodule]
@@ -29,6 +29,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Curve>()?;
     m.add_function(wrap_pyfunction!(_spline_from_parts, m)?)?;
     m.add_function(wrap_pyfunction!(smoothing_spline, m)?)?;
+    m.add_function(wrap_pyfunction!(smoothing_curve, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_smooth_ragged, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_default_tolerance, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_nodes_of, m)?)?;

@@ -12,7 +12,6 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyTuple};
 
-
 use crate::args::*;
 
 /// The third-degree Bezier-type spline y = S(x) of Stelia, Potapenko and

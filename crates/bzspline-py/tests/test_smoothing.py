@@ -102,3 +102,25 @@ def test_a_long_series_lands_closer_to_the_truth_than_the_data():
     x, y, truth = noisy(200_000, seed=5)
     s = bzspline.smoothing_spline(x, y)
     assert np.mean((s(x) - truth) ** 2) < 0.05 * np.mean((y - truth) ** 2)
+
+
+def test_a_noisy_track_is_smoothed_on_its_times():
+    rng = np.random.default_rng(6)
+    t = np.linspace(0, 6, 400)
+    track = np.c_[10 * np.cos(t), 10 * np.sin(t), t] + rng.normal(0, 0.3, (400, 3))
+    c = bzspline.smoothing_curve(track, param=t)
+    assert isinstance(c, bzspline.Curve)
+    assert np.array_equal(c.knots, t)
+    assert c.lam > 0 and 3 < c.dof < 400
+    off = lambda p: np.abs(np.hypot(p[:, 0], p[:, 1]) - 10).mean()
+    assert off(c(t)) < 0.5 * off(track)
+    # Each coordinate is the function fit with the same lam on those parameters:
+    # the same Bezier ordinates.
+    for d in range(3):
+        s = bzspline.smoothing_spline(t, track[:, d], lam=c.lam)
+        assert np.allclose(c.segments[:, :, d], s.segments[:, :, 1], rtol=0, atol=1e-11)
+    # Pickled, the curve is the same curve.
+    r = pickle.loads(pickle.dumps(c))
+    assert np.array_equal(r(t), c(t))
+    with pytest.raises(ValueError, match=r"weights\[1\]"):
+        bzspline.smoothing_curve(track[:5], w=[1, -1, 1, 1, 1])

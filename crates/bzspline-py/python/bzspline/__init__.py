@@ -12,11 +12,14 @@ package converts numpy arrays and releases the GIL while it works.
 3.0
 """
 
-from ._core import ALPHA_MAX, ALPHA_MIN, Curve, Spline, __version__, smoothing_spline
+from ._core import (
+    ALPHA_MAX, ALPHA_MIN, Curve, Spline, __version__, smoothing_curve, smoothing_spline,
+)
 from . import errors, geo
 
 __all__ = [
-    "ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "errors", "geo", "smoothing_spline",
+    "ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "errors", "geo", "smoothing_curve",
+    "smoothing_spline",
     "to_ppoly", "to_bpoly",
 ]
 
