@@ -96,8 +96,32 @@ export interface CurveOptions {
 }
 
 /** A curve by the method in the plane or in space, open or closed. */
+export interface CurveSmoothingOptions {
+  /** One weight per point, finite and >= 0 (default 1). */
+  w?: Numbers;
+  /** The roughness penalty's weight, >= 0; omitted or null: chosen by generalized cross-validation. */
+  lam?: number | null;
+  /** How the parameters follow the points (default "centripetal"), or the parameters (a track's times). */
+  param?: "centripetal" | "chordal" | "uniform" | Numbers;
+  /** One shape parameter for every leg (default 0.5). */
+  alpha?: Alpha;
+  /** One shape parameter per leg. */
+  alphas?: Numbers;
+}
+
 export class Curve {
   constructor(points: ArrayLike<Numbers>, options?: CurveOptions);
+  /**
+   * The smoothing curve of noisy points (open, one lam for every coordinate),
+   * on the parameters of the points; lam chosen by cross-validation when omitted.
+   */
+  static smoothing(points: ArrayLike<Numbers>, options?: CurveSmoothingOptions): Curve;
+  /** For a smoothing fit, the lam used; else undefined. */
+  readonly lam: number | undefined;
+  /** For a smoothing fit, its generalized cross-validation score; else undefined. */
+  readonly gcv: number | undefined;
+  /** For a smoothing fit, its effective degrees of freedom; else undefined. */
+  readonly dof: number | undefined;
   /** The point (or derivative nu) at parameter t, or an array of them. */
   at(t: number, nu?: number): Float64Array;
   at(t: Numbers, nu?: number): Float64Array[];

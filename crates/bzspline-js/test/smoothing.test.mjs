@@ -6,7 +6,7 @@ import { execFileSync } from "node:child_process";
 import { existsSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
-import { Spline } from "../js/index.js";
+import { Spline, Curve } from "../js/index.js";
 import { random, close } from "./record.mjs";
 
 const root = join(dirname(fileURLToPath(import.meta.url)), "../../..");
@@ -70,4 +70,26 @@ test("bad input throws naming the index", () => {
   for (const [f, kind, message] of cases) {
     assert.throws(f, (e) => e instanceof kind && message.test(e.message), String(f));
   }
+});
+
+test("a noisy track is smoothed on its times, each coordinate the function fit", () => {
+  const r = random(7);
+  const n = 300;
+  const t = Array.from({ length: n }, (_, i) => (6 * i) / (n - 1));
+  const track = t.map((s) => [10 * Math.cos(s) + 0.6 * (r() - 0.5), 10 * Math.sin(s) + 0.6 * (r() - 0.5)]);
+  const c = Curve.smoothing(track, { param: t });
+  assert.ok(c.lam > 0 && c.dof > 3 && c.dof < n);
+  assert.deepEqual(Array.from(c.knots), t);
+  const off = (p) => Math.abs(Math.hypot(p[0], p[1]) - 10);
+  const data = track.reduce((a, p) => a + off(p), 0) / n;
+  const fit = c.at(t).reduce((a, p) => a + off(p), 0) / n;
+  assert.ok(fit < 0.6 * data, `fit ${fit} against the data's ${data}`);
+  for (const d of [0, 1]) {
+    const s = Spline.smoothing(t, track.map((p) => p[d]), { lam: c.lam });
+    c.segments.forEach((seg, k) => {
+      seg.forEach((p, j) => close(p[d], s.segments[k][j][1], 1e-11, `segment ${k} point ${j}`));
+    });
+  }
+  assert.throws(() => Curve.smoothing(track.slice(0, 2)), RangeError);
+  assert.equal(new Curve(track).lam, undefined);
 });

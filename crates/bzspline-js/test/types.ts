@@ -15,6 +15,7 @@ const lam: number | undefined = sm.lam;
 Spline.smoothing([0, 1, 2], [0, 1, 0], { lam: 0.5, alpha: "1/3" });
 // @ts-expect-error: lam is a number (or omitted for cross-validation)
 Spline.smoothing([0, 1, 2], [0, 1, 0], { lam: "auto" });
+const sc: number | undefined = Curve.smoothing([[0, 0], [1, 1], [2, 0]], { param: [0, 1, 2], lam: 1 }).dof;
 const c = new Curve([[0, 0], [1, 0], [1, 1]], { closed: true, param: "chordal" });
 const p: Float64Array = c.at(0.25);
 const near: number = c.nearest([2, 2]).distance;
@@ -31,4 +32,4 @@ curveBzsplineX.param("uniform");
 curveBzspline.param("spiral");
 s.free();
 c.free();
-export { lam, v, vs, e, d1, segs, p, near, path, outline, out, obj };
+export { lam, sc, v, vs, e, d1, segs, p, near, path, outline, out, obj };
