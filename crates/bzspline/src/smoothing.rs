@@ -110,20 +110,7 @@ pub(crate) fn fit(
     if n < 3 {
         return Err(Error::TooFewPoints { found: n, min: 3 });
     }
-    if let Smoothing::Lambda(l) = smoothing {
-        if !(l.is_finite() && l >= 0.0) {
-            return Err(Error::InvalidArgument {
-                what: "lambda must be a finite number >= 0",
-                value: l,
-            });
-        }
-        if l == 0.0 && weights.contains(&0.0) {
-            return Err(Error::InvalidArgument {
-                what: "lambda = 0 passes through every point and needs every weight positive",
-                value: l,
-            });
-        }
-    }
+    check_lambda(smoothing, weights)?;
     // §12: knots spanning 1, weights of mean 1, each coordinate scaled by a
     // power of two; lambda scales by (mean weight) span^3.
     let span = knots[n - 1] - knots[0];
@@ -159,10 +146,60 @@ pub(crate) fn fit(
         phi: Vec::new(),
         d: Vec::new(),
     };
-    // The lambda of the data's units, given or chosen; the fit is made from
-    // it as Smoothing::Lambda(lambda) makes it, so the reported lambda
-    // reproduces the fit bit for bit.
-    let lambda = match smoothing {
+    let lambda = choose(&mut eval, smoothing, unit, span)?;
+    let lam = lambda / unit;
+    let lam = if lam.is_finite() { lam } else { f64::MAX };
+    let mut f = Factored::new(&grid);
+    if !f.factor(lam) {
+        return Err(Error::InvalidArgument {
+            what: "the smoothing system is singular for these weights",
+            value: lambda,
+        });
+    }
+    let (controls, rss) = controls(&mut f, &coords, knots, alphas, weights)?;
+    let dof = f.trace();
+    if !(dof > 1.0 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
+        return Err(ill_conditioned());
+    }
+    Ok(Fit {
+        controls,
+        lambda,
+        gcv: gcv_score(rss / dim as f64, dof, positive),
+        dof,
+    })
+}
+
+/// The checks of a given `lambda`: finite, `>= 0`, and 0 only with every
+/// weight positive.
+fn check_lambda(smoothing: Smoothing, weights: &[f64]) -> Result<(), Error> {
+    let Smoothing::Lambda(l) = smoothing else {
+        return Ok(());
+    };
+    if !(l.is_finite() && l >= 0.0) {
+        return Err(Error::InvalidArgument {
+            what: "lambda must be a finite number >= 0",
+            value: l,
+        });
+    }
+    if l == 0.0 && weights.contains(&0.0) {
+        return Err(Error::InvalidArgument {
+            what: "lambda = 0 passes through every point and needs every weight positive",
+            value: l,
+        });
+    }
+    Ok(())
+}
+
+/// The `lambda` in the data's units, given or chosen. The fit is then made
+/// from it as `Smoothing::Lambda(lambda)` makes it, so the reported lambda
+/// reproduces the fit bit for bit.
+fn choose(
+    eval: &mut Evaluator<'_>,
+    smoothing: Smoothing,
+    unit: f64,
+    span: f64,
+) -> Result<f64, Error> {
+    match smoothing {
         Smoothing::Lambda(l) => {
             if eval.floor > 0.0 && l / unit < eval.floor {
                 return Err(Error::InvalidArgument {
@@ -171,7 +208,7 @@ pub(crate) fn fit(
                     value: l,
                 });
             }
-            l
+            Ok(l)
         }
         Smoothing::Gcv => {
             let chosen = eval.search()? * unit;
@@ -182,29 +219,28 @@ pub(crate) fn fit(
                     value: span,
                 });
             }
-            chosen
+            Ok(chosen)
         }
-    };
-    let lam = {
-        let t = lambda / unit;
-        if t.is_finite() {
-            t
-        } else {
-            f64::MAX
-        }
-    };
-    let mut f = Factored::new(&grid);
-    if !f.factor(lam) {
-        return Err(Error::InvalidArgument {
-            what: "the smoothing system is singular for these weights",
-            value: lam * unit,
-        });
     }
-    let mut controls = vec![0.0; n * dim];
-    let mut phi = vec![0.0; n];
-    let mut d = vec![0.0; n];
+}
+
+/// Solves every coordinate with the factored system: the control values
+/// (flat, in the data's units) and the weighted residual sum of squares.
+/// Each solution must be the method's spline of its control values (its knot
+/// values, solved again by the method, are the fitted ones): intervals of
+/// widths many decades apart under a large lambda can defeat the
+/// elimination, which is refused rather than returned.
+fn controls(
+    f: &mut Factored<'_>,
+    coords: &[(f64, Vec<f64>)],
+    knots: &[f64],
+    alphas: &[f64],
+    weights: &[f64],
+) -> Result<(Vec<f64>, f64), Error> {
+    let (n, dim) = (knots.len(), coords.len());
+    let mut out = vec![0.0; n * dim];
+    let (mut phi, mut d, mut g) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut rss = 0.0;
-    let mut g = vec![0.0; n];
     for (c, (scale, y)) in coords.iter().enumerate() {
         f.solve(y, &mut phi, &mut d);
         for i in 0..n {
@@ -214,29 +250,15 @@ pub(crate) fn fit(
                     what: "a solved control value",
                 });
             }
-            controls[i * dim + c] = g[i] * scale;
+            out[i * dim + c] = g[i] * scale;
             let r = (y[i] - phi[i]) * scale;
             rss += weights[i] * r * r;
         }
-        // The solution must be the method's spline of its control values: its
-        // knot values, solved again by the method, are phi. Intervals of
-        // widths many decades apart under a large lambda can defeat the
-        // elimination; that is refused rather than returned.
         if !consistent(knots, &g, alphas, &phi) {
             return Err(ill_conditioned());
         }
     }
-    let dof = f.trace();
-    if !(dof > 1.0 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
-        return Err(ill_conditioned());
-    }
-    let gcv = gcv_score(rss / dim as f64, dof, positive);
-    Ok(Fit {
-        controls,
-        lambda,
-        gcv,
-        dof,
-    })
+    Ok((out, rss))
 }
 
 /// `10^t` from additions and multiplications only, so that the search
