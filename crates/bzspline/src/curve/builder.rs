@@ -1,0 +1,443 @@
+//! Building a curve: [`CurveBuilder`] collects the points and every choice
+//! (closed or open, parameters, alphas, repeats, through, smoothing),
+//! validates them and solves: the method, its interpolating variant
+//! (`docs/method.md` §11) or a smoothing fit (§12).
+
+use std::borrow::Cow;
+
+use super::{survey, Curve, Param, ParamKind, Repeats};
+use crate::error::{Error, Field};
+use crate::method;
+use crate::smoothing::{self, check_weights, Smoothed, Smoothing};
+use crate::validate::{check_alphas, check_finite, resolve_alphas, Alphas, DEFAULT_ALPHA};
+
+/// Collects the inputs of a [`Curve`] and builds it.
+///
+/// # Examples
+///
+/// ```
+/// use bzspline::{Curve, Param};
+/// let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+/// let c = Curve::builder_from(&square)
+///     .closed(true)
+///     .param(Param::Chordal)
+///     .alpha(0.5)
+///     .build()?;
+/// assert_eq!(c.len(), 4); // four segments, one per leg
+/// # Ok::<(), bzspline::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurveBuilder<'a> {
+    dim: usize,
+    /// Borrowed from the caller until the curve copies them.
+    points: Cow<'a, [f64]>,
+    closed: bool,
+    param: Param,
+    alpha: f64,
+    alphas: Option<Vec<f64>>,
+    repeats: Repeats,
+    through: bool,
+    smoothing: Option<Smoothing>,
+    weights: Option<Vec<f64>>,
+}
+
+impl<'a> CurveBuilder<'a> {
+    /// A builder for the points stored flat, `dim` coordinates per point.
+    #[must_use]
+    pub fn new(points: &'a [f64], dim: usize) -> Self {
+        CurveBuilder {
+            dim,
+            points: Cow::Borrowed(points),
+            closed: false,
+            param: Param::default(),
+            alpha: DEFAULT_ALPHA,
+            alphas: None,
+            repeats: Repeats::Reject,
+            through: false,
+            smoothing: None,
+            weights: None,
+        }
+    }
+
+    /// Open (`false`, the default) or closed.
+    #[must_use]
+    pub fn closed(mut self, closed: bool) -> Self {
+        self.closed = closed;
+        self
+    }
+
+    /// The parameter choice (default [`Param::Centripetal`]).
+    #[must_use]
+    pub fn param(mut self, param: Param) -> Self {
+        self.param = param;
+        self
+    }
+
+    /// The same alpha on every leg (default [`DEFAULT_ALPHA`]).
+    #[must_use]
+    pub fn alpha(mut self, alpha: f64) -> Self {
+        self.alpha = alpha;
+        self.alphas = None;
+        self
+    }
+
+    /// One alpha per leg: `n - 1` for an open curve, `n` for a closed one (the
+    /// last is the closing leg's).
+    #[must_use]
+    pub fn alphas(mut self, alphas: &[f64]) -> Self {
+        self.alphas = Some(alphas.to_vec());
+        self
+    }
+
+    /// The alphas as an [`Alphas`] choice, as [`crate::Spline::build`] takes
+    /// them (per-interval alphas are per leg here).
+    #[must_use]
+    pub fn alpha_choice(self, alphas: Alphas<'_>) -> Self {
+        match alphas {
+            Alphas::Uniform(a) => self.alpha(a),
+            Alphas::PerInterval(a) => self.alphas(a),
+        }
+    }
+
+    /// What to do with repeated consecutive points (default [`Repeats::Reject`]).
+    #[must_use]
+    pub fn repeats(mut self, repeats: Repeats) -> Self {
+        self.repeats = repeats;
+        self
+    }
+
+    /// Through the points (`true`) instead of touching the legs of their
+    /// polygon (`false`, the default): the interpolating variant
+    /// (`docs/method.md` §11). The curve passes through every point at its
+    /// parameter, is C1, and touches every leg of the solved control polygon,
+    /// which [`Curve::points`] returns; the parameters are chosen from the
+    /// points given. Everything the default refuses is refused the same way.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, Param};
+    /// let pts = [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0]];
+    /// let c = Curve::builder_from(&pts).param(Param::Chordal).through(true).build()?;
+    /// for (k, p) in c.knot_points().iter().enumerate() {
+    ///     assert!((p[0] - pts[k][0]).abs() < 1e-14 && (p[1] - pts[k][1]).abs() < 1e-14);
+    /// }
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    #[must_use]
+    pub fn through(mut self, through: bool) -> Self {
+        self.through = through;
+        self
+    }
+
+    /// A smoothing curve of noisy points (`docs/method.md` §12): the
+    /// parameters are chosen from the points as without it, and the control
+    /// points minimise `sum_j w_j |C(t_j) - P_j|^2 + lambda int |C''|^2` with
+    /// one `lambda` for every coordinate (under [`Smoothing::Gcv`] the one of
+    /// least cross-validation score summed over the coordinates). Open curves
+    /// only; [`CurveBuilder::build_smoothed`] also returns `lambda` and the
+    /// score. Each coordinate is then the function fit
+    /// [`crate::Spline::smoothing`] on the curve's parameters.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, Smoothing};
+    /// let pts: Vec<[f64; 2]> = (0..40)
+    ///     .map(|i| [i as f64, if i % 2 == 0 { 0.2 } else { -0.2 }])
+    ///     .collect();
+    /// let s = Curve::builder_from(&pts).smoothing(Smoothing::Lambda(1e9)).build_smoothed()?;
+    /// // Smoothed hard, the zigzag of height 0.4 flattens to its
+    /// // least-squares line, within 0.02 of y = 0.
+    /// let worst = s.fit.knot_points().iter().fold(0.0f64, |m, p| m.max(p[1].abs()));
+    /// assert!(worst < 0.02);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    #[must_use]
+    pub fn smoothing(mut self, smoothing: Smoothing) -> Self {
+        self.smoothing = Some(smoothing);
+        self
+    }
+
+    /// One weight per point for [`CurveBuilder::smoothing`] (default all 1;
+    /// finite, `>= 0`); a dropped repeat adds its weight to the point it
+    /// repeats.
+    #[must_use]
+    pub fn weights(mut self, weights: &[f64]) -> Self {
+        self.weights = Some(weights.to_vec());
+        self
+    }
+
+    /// Builds a smoothing curve ([`CurveBuilder::smoothing`], by default
+    /// [`Smoothing::Gcv`]) and returns it with its `lambda`, score and
+    /// degrees of freedom.
+    ///
+    /// # Errors
+    ///
+    /// As [`CurveBuilder::build`], and as [`crate::Spline::smoothing`] for
+    /// the weights and `lambda`; [`Error::InvalidArgument`] for a closed curve
+    /// or with [`CurveBuilder::through`].
+    pub fn build_smoothed(mut self) -> Result<Smoothed<Curve>, Error> {
+        let smoothing = self.smoothing.take().unwrap_or_default();
+        let weights = self.weights.take();
+        if self.closed || self.through {
+            return Err(Error::InvalidArgument {
+                what: "smoothing is for open curves, without through",
+                value: 0.0,
+            });
+        }
+        let dim = self.dim;
+        let data = self.build()?;
+        let n_in = data.point_count() + data.dropped.len();
+        let w = match weights {
+            None => vec![1.0; data.point_count()],
+            Some(w) => {
+                check_weights(Some(&w), n_in).or_else(|e| match e {
+                    // Fewer than two positive is judged after merging.
+                    Error::InvalidArgument { .. } => Ok(w.clone()),
+                    e => Err(e),
+                })?;
+                // Each dropped repeat's weight goes to the kept point before it.
+                let mut kept = Vec::with_capacity(data.point_count());
+                let mut drops = data.dropped.iter().peekable();
+                for (i, &v) in w.iter().enumerate() {
+                    if drops.peek() == Some(&&i) {
+                        drops.next();
+                        if let Some(last) = kept.last_mut() {
+                            *last += v;
+                        }
+                    } else {
+                        kept.push(v);
+                    }
+                }
+                kept
+            }
+        };
+        let w = check_weights(Some(&w), data.point_count())?;
+        let fit = smoothing::fit(data.knots(), &data.points, dim, &w, &data.alphas, smoothing)?;
+        let mut c = CurveBuilder::new(&fit.controls, dim)
+            .param(Param::Given(data.knots().to_vec()))
+            .alphas(&data.alphas)
+            .build()?;
+        c.dropped = data.dropped;
+        Ok(Smoothed {
+            fit: c,
+            lambda: fit.lambda,
+            gcv: fit.gcv,
+            dof: fit.dof,
+        })
+    }
+
+    /// Validates the inputs and solves.
+    ///
+    /// # Errors
+    ///
+    /// - [`Error::InvalidArgument`] for dimension 0;
+    /// - [`Error::LengthMismatch`] (field [`Field::Coordinate`]) when the number
+    ///   of coordinates is not a multiple of the dimension; with
+    ///   [`Field::Alpha`] or [`Field::Knot`] for a wrong number of alphas or
+    ///   given parameters;
+    /// - [`Error::NonFinite`] with [`Field::Coordinate`] and the point's index for
+    ///   a NaN or infinite coordinate (or with the field of a bad alpha or
+    ///   parameter);
+    /// - [`Error::TooFewPoints`] for fewer than 2 points (3 for a closed curve),
+    ///   also after dropping repeats;
+    /// - [`Error::RepeatedPoint`] / [`Error::RepeatedClosingPoint`] for repeated
+    ///   consecutive points under [`Repeats::Reject`];
+    /// - [`Error::AlphaOutOfRange`] for an alpha outside `[1/3, 2/3]`;
+    /// - the knot errors of [`crate::Spline::with_alphas`] for the parameters
+    ///   (not increasing, an interval too small relative to the span).
+    pub fn build(self) -> Result<Curve, Error> {
+        let mut c = Curve::empty();
+        Curve::build_from(self, &mut c)?;
+        Ok(c)
+    }
+
+    /// Validates the inputs and solves into `curve`, reusing its allocations:
+    /// rebuilding a curve of the same size allocates nothing (with uniform
+    /// parameters and no repeated points), which saves the page faults of fresh
+    /// memory on long curves. The result is the curve [`CurveBuilder::build`]
+    /// returns.
+    ///
+    /// # Errors
+    ///
+    /// As [`CurveBuilder::build`]; on error `curve` is left unchanged.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, CurveBuilder};
+    /// let mut c = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])?;
+    /// CurveBuilder::new(&[0.0, 0.0, 1.0, 2.0, 2.0, 0.0], 2).build_into(&mut c)?;
+    /// assert_eq!(c.point(1), Some(&[1.0, 2.0][..]));
+    /// assert!(CurveBuilder::new(&[0.0, 0.0, 0.0, 0.0], 2).build_into(&mut c).is_err());
+    /// assert_eq!(c.point(1), Some(&[1.0, 2.0][..]));
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn build_into(self, curve: &mut Curve) -> Result<(), Error> {
+        Curve::build_from(self, curve)
+    }
+}
+
+impl Curve {
+    /// Validates the builder's inputs and solves into `target`, which changes
+    /// only on success.
+    /// The interpolating variant (§11): the curve of the data validates them
+    /// and gives the parameters, alphas and points after dropping repeats; the
+    /// control points come from the variant's system; the curve is built on
+    /// them with the data's parameters.
+    fn build_through(mut b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
+        b.through = false;
+        let (dim, closed) = (b.dim, b.closed);
+        let data = b.build()?;
+        let widths: Vec<f64> = data.knots().windows(2).map(|w| w[1] - w[0]).collect();
+        let controls = method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
+            .ok_or(Error::Overflow {
+            what: "a solved control point",
+        })?;
+        let mut c = CurveBuilder::new(&controls, dim)
+            .closed(closed)
+            .param(Param::Given(data.knots().to_vec()))
+            .alphas(&data.alphas)
+            .build()?;
+        c.dropped = data.dropped;
+        *target = c;
+        Ok(())
+    }
+
+    fn build_from(b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
+        if b.smoothing.is_some() {
+            *target = b.build_smoothed()?.fit;
+            return Ok(());
+        }
+        if b.through {
+            return Self::build_through(b, target);
+        }
+        let dim = b.dim;
+        if dim == 0 {
+            return Err(Error::InvalidArgument {
+                what: "the dimension must be at least 1",
+                value: 0.0,
+            });
+        }
+        if !b.points.len().is_multiple_of(dim) {
+            return Err(Error::LengthMismatch {
+                field: Field::Coordinate,
+                expected: b.points.len() / dim * dim + dim,
+                found: b.points.len(),
+            });
+        }
+        // One pass: finite coordinates, repeated neighbours, largest magnitudes.
+        let mut maxes = Vec::new();
+        let Some(repeats) = survey(&b.points, dim, &mut maxes) else {
+            let i = b.points.iter().position(|v| !v.is_finite()).unwrap_or(0);
+            return Err(Error::NonFinite {
+                field: Field::Coordinate,
+                index: i / dim,
+                value: b.points[i],
+            });
+        };
+        let n = b.points.len() / dim;
+        let min = if b.closed { 3 } else { 2 };
+        if n < min {
+            return Err(Error::TooFewPoints { found: n, min });
+        }
+        let legs = if b.closed { n } else { n - 1 };
+        let choice = match &b.alphas {
+            Some(a) => Alphas::PerInterval(a),
+            None => Alphas::Uniform(b.alpha),
+        };
+        check_alphas(choice, legs)?;
+        let (kind, given) = match b.param {
+            Param::Uniform => (ParamKind::Uniform, None),
+            Param::Chordal => (ParamKind::Chordal, None),
+            Param::Centripetal => (ParamKind::Centripetal, None),
+            Param::Given(g) => {
+                let want = if b.closed { n + 1 } else { n };
+                if g.len() != want {
+                    return Err(Error::LengthMismatch {
+                        field: Field::Knot,
+                        expected: want,
+                        found: g.len(),
+                    });
+                }
+                check_finite(Field::Knot, &g)?;
+                (ParamKind::Given, Some(g))
+            }
+        };
+        let pt = |i: usize| &b.points[i * dim..(i + 1) * dim];
+        let repeats = repeats || (b.closed && pt(n - 1) == pt(0));
+        if !repeats {
+            // Nothing to drop: the builder's points and alphas are the curve's.
+            let given = given.as_deref();
+            let pts = (&b.points[..], &maxes[..]);
+            return Self::solve_into(target, dim, b.closed, kind, pts, Vec::new(), given, choice);
+        }
+        // Keep-list: drop or refuse repeats.
+        let mut keep: Vec<usize> = Vec::with_capacity(n);
+        let mut dropped = Vec::new();
+        for i in 0..n {
+            if let Some(&last) = keep.last() {
+                if pt(i) == pt(last) {
+                    match b.repeats {
+                        Repeats::Reject => return Err(Error::RepeatedPoint { index: i }),
+                        Repeats::Drop => {
+                            dropped.push(i);
+                            continue;
+                        }
+                    }
+                }
+            }
+            keep.push(i);
+        }
+        if b.closed {
+            while keep.len() > 1 {
+                let last = keep[keep.len() - 1];
+                if pt(last) != pt(keep[0]) {
+                    break;
+                }
+                match b.repeats {
+                    Repeats::Reject => return Err(Error::RepeatedClosingPoint { last }),
+                    Repeats::Drop => {
+                        dropped.push(last);
+                        keep.pop();
+                    }
+                }
+            }
+            dropped.sort_unstable();
+        }
+        if keep.len() < min {
+            return Err(Error::TooFewPoints {
+                found: keep.len(),
+                min,
+            });
+        }
+        let nk = keep.len();
+        let points: Vec<f64> = keep.iter().flat_map(|&i| pt(i).iter().copied()).collect();
+        // Each kept leg keeps the alpha of the one original leg of nonzero length
+        // it stands for: the leg that leaves the run of copies of its start.
+        let legs_kept = if b.closed { nk } else { nk - 1 };
+        let alphas = resolve_alphas(choice, legs)?;
+        let alphas: Vec<f64> = keep[..legs_kept]
+            .iter()
+            .map(|&a| {
+                let mut e = a + 1;
+                while e < n && pt(e) == pt(a) {
+                    e += 1;
+                }
+                alphas[e - 1]
+            })
+            .collect();
+        let given = given.map(|g| {
+            let mut v: Vec<f64> = keep.iter().map(|&i| g[i]).collect();
+            if b.closed {
+                v.push(g[n]);
+            }
+            v
+        });
+        let (given, alphas) = (given.as_deref(), Alphas::PerInterval(&alphas));
+        // Dropped points repeat kept ones: the largest magnitudes stay.
+        let pts = (&points[..], &maxes[..]);
+        Self::solve_into(target, dim, b.closed, kind, pts, dropped, given, alphas)
+    }
+}
