@@ -373,39 +373,7 @@ impl Curve {
             let pts = (&b.points[..], &maxes[..]);
             return Self::solve_into(target, dim, b.closed, kind, pts, Vec::new(), given, choice);
         }
-        // Keep-list: drop or refuse repeats.
-        let mut keep: Vec<usize> = Vec::with_capacity(n);
-        let mut dropped = Vec::new();
-        for i in 0..n {
-            if let Some(&last) = keep.last() {
-                if pt(i) == pt(last) {
-                    match b.repeats {
-                        Repeats::Reject => return Err(Error::RepeatedPoint { index: i }),
-                        Repeats::Drop => {
-                            dropped.push(i);
-                            continue;
-                        }
-                    }
-                }
-            }
-            keep.push(i);
-        }
-        if b.closed {
-            while keep.len() > 1 {
-                let last = keep[keep.len() - 1];
-                if pt(last) != pt(keep[0]) {
-                    break;
-                }
-                match b.repeats {
-                    Repeats::Reject => return Err(Error::RepeatedClosingPoint { last }),
-                    Repeats::Drop => {
-                        dropped.push(last);
-                        keep.pop();
-                    }
-                }
-            }
-            dropped.sort_unstable();
-        }
+        let (keep, dropped) = keep_list(&b.points, dim, b.closed, b.repeats)?;
         if keep.len() < min {
             return Err(Error::TooFewPoints {
                 found: keep.len(),
@@ -440,4 +408,50 @@ impl Curve {
         let pts = (&points[..], &maxes[..]);
         Self::solve_into(target, dim, b.closed, kind, pts, dropped, given, alphas)
     }
+}
+
+/// The points a builder keeps and those it drops as repeats of the point
+/// before them (and, closed, of the first), or the refusal of a repeat under
+/// [`Repeats::Reject`].
+fn keep_list(
+    points: &[f64],
+    dim: usize,
+    closed: bool,
+    repeats: Repeats,
+) -> Result<(Vec<usize>, Vec<usize>), Error> {
+    let n = points.len() / dim;
+    let pt = |i: usize| &points[i * dim..(i + 1) * dim];
+    let mut keep: Vec<usize> = Vec::with_capacity(n);
+    let mut dropped = Vec::new();
+    for i in 0..n {
+        if let Some(&last) = keep.last() {
+            if pt(i) == pt(last) {
+                match repeats {
+                    Repeats::Reject => return Err(Error::RepeatedPoint { index: i }),
+                    Repeats::Drop => {
+                        dropped.push(i);
+                        continue;
+                    }
+                }
+            }
+        }
+        keep.push(i);
+    }
+    if closed {
+        while keep.len() > 1 {
+            let last = keep[keep.len() - 1];
+            if pt(last) != pt(keep[0]) {
+                break;
+            }
+            match repeats {
+                Repeats::Reject => return Err(Error::RepeatedClosingPoint { last }),
+                Repeats::Drop => {
+                    dropped.push(last);
+                    keep.pop();
+                }
+            }
+        }
+        dropped.sort_unstable();
+    }
+    Ok((keep, dropped))
 }
