@@ -114,7 +114,22 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         .iter()
         .flat_map(|(c, _)| c.iter().copied())
         .collect();
+    let (xa, ya, ticks) = axes(data, opts, width, height);
+    let (keys, range) = legend(data, opts, &all_control);
+    let legend = Legend::lay_out(keys, width);
+    let f = frame(xa, ya, ticks, opts, (width, height), legend.height);
+    draw(data, opts, &controls, &f, &legend, range, (width, height))
+}
 
+/// The axes of everything drawn, with as many ticks as fit (their labels side
+/// by side with a gap); also the tick counts asked for, which an equal
+/// aspect ratio uses again.
+fn axes(
+    data: &[PlotData],
+    opts: &PlotOptions,
+    width: f64,
+    height: f64,
+) -> (Axis, Axis, (usize, usize)) {
     // Data ranges over everything drawn.
     let mut xs = (f64::INFINITY, f64::NEG_INFINITY);
     let mut ys = (f64::INFINITY, f64::NEG_INFINITY);
@@ -150,9 +165,18 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         }
         xa = x_axis(fewer);
     }
-    let mut ya = Axis::new(ys.0, ys.1, 0.05, y_ticks);
+    let ya = Axis::new(ys.0, ys.1, 0.05, y_ticks);
+    (xa, ya, (x_ticks, y_ticks))
+}
 
-    // Legend entries, then the layout (margins from the text they hold).
+/// The legend's entries, and the data range (its lines' ordinates) when
+/// shown.
+#[allow(clippy::type_complexity)] // entries and an optional pair
+fn legend(
+    data: &[PlotData],
+    opts: &PlotOptions,
+    all_control: &[[f64; 2]],
+) -> (Vec<(Key, String)>, Option<(f64, f64)>) {
     let mut keys: Vec<(Key, String)> = Vec::new();
     let solved = if opts.through {
         "solved "
@@ -216,7 +240,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             .flat_map(|d| d.knot_points.iter().copied())
             .collect()
     } else {
-        all_control.clone()
+        all_control.to_vec()
     };
     let range = if opts.show_range && !data_points.is_empty() {
         let lo = data_points
@@ -240,29 +264,65 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         None
     };
 
-    let sym = 26.0;
-    let key_widths: Vec<f64> = keys
-        .iter()
-        .map(|(_, t)| sym + 6.0 + text_width(t, TICK_FONT) + 18.0)
-        .collect();
-    let mut rows: Vec<Vec<usize>> = vec![Vec::new()];
-    let mut row_w = 0.0;
-    for (i, w) in key_widths.iter().enumerate() {
-        if row_w + w > width - 40.0 && !rows.last().is_some_and(Vec::is_empty) {
-            rows.push(Vec::new());
-            row_w = 0.0;
+    (keys, range)
+}
+
+/// The legend's entries in rows that fit the figure's width.
+struct Legend {
+    keys: Vec<(Key, String)>,
+    widths: Vec<f64>,
+    rows: Vec<Vec<usize>>,
+    height: f64,
+    sym: f64,
+}
+
+impl Legend {
+    fn lay_out(keys: Vec<(Key, String)>, width: f64) -> Legend {
+        let sym = 26.0;
+        let key_widths: Vec<f64> = keys
+            .iter()
+            .map(|(_, t)| sym + 6.0 + text_width(t, TICK_FONT) + 18.0)
+            .collect();
+        let mut rows: Vec<Vec<usize>> = vec![Vec::new()];
+        let mut row_w = 0.0;
+        for (i, w) in key_widths.iter().enumerate() {
+            if row_w + w > width - 40.0 && !rows.last().is_some_and(Vec::is_empty) {
+                rows.push(Vec::new());
+                row_w = 0.0;
+            }
+            row_w += w;
+            if let Some(r) = rows.last_mut() {
+                r.push(i);
+            }
         }
-        row_w += w;
-        if let Some(r) = rows.last_mut() {
-            r.push(i);
+        let height = if keys.is_empty() {
+            0.0
+        } else {
+            20.0 * rows.len() as f64 + 8.0
+        };
+
+        Legend {
+            keys,
+            widths: key_widths,
+            rows,
+            height,
+            sym,
         }
     }
-    let legend_h = if keys.is_empty() {
-        0.0
-    } else {
-        20.0 * rows.len() as f64 + 8.0
-    };
+}
 
+/// The plot area inside its margins (from the text they hold: tick labels,
+/// axis labels, the title and the legend), with equal units on both axes
+/// when asked.
+fn frame(
+    xa: Axis,
+    ya: Axis,
+    (x_ticks, y_ticks): (usize, usize),
+    opts: &PlotOptions,
+    (width, height): (f64, f64),
+    legend_h: f64,
+) -> Frame {
+    let (mut xa, mut ya) = (xa, ya);
     let y_label_w = ya
         .ticks
         .iter()
@@ -298,15 +358,26 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
     }
     left = left.max(0.0);
     top = top.max(0.0);
-    let f = Frame {
+    Frame {
         x: xa,
         y: ya,
         left,
         top,
         w,
         h,
-    };
+    }
+}
 
+/// Draws the figure on its frame.
+fn draw(
+    data: &[PlotData],
+    opts: &PlotOptions,
+    controls: &[(Vec<[f64; 2]>, bool)],
+    f: &Frame,
+    legend: &Legend,
+    range: Option<(f64, f64)>,
+    (width, height): (f64, f64),
+) -> String {
     let mut s = String::with_capacity(16 * 1024);
     let _ = writeln!(
         s,
@@ -327,7 +398,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             xml_escape(t)
         );
     }
-    write_axes(&mut s, &f);
+    write_axes(&mut s, f);
     // Everything drawn from the data stays inside the plot area (markers may
     // reach a little past it).
     let _ = writeln!(
@@ -338,6 +409,50 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         Num(f.w + 12.0),
         Num(f.h + 12.0)
     );
+    draw_data(&mut s, data, opts, controls, f, range);
+    // Axis labels and legend.
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="{}" font-size="{LABEL_FONT}" fill="{INK}" text-anchor="middle">{}</text>"#,
+        Num(f.left + f.w / 2.0),
+        Num(f.top + f.h + 8.0 + TICK_FONT + 8.0 + LABEL_FONT),
+        xml_escape(&opts.x_label)
+    );
+    let (ylx, yly) = (Num(14.0 + LABEL_FONT * 0.8), Num(f.top + f.h / 2.0));
+    let _ = writeln!(
+        s,
+        r#"<text x="{ylx}" y="{yly}" font-size="{LABEL_FONT}" fill="{INK}" text-anchor="middle" transform="rotate(-90 {ylx} {yly})">{}</text>"#,
+        xml_escape(&opts.y_label)
+    );
+    let legend_top = height - legend.height;
+    for (r, row) in legend.rows.iter().enumerate() {
+        let total: f64 = row.iter().map(|i| legend.widths[*i]).sum::<f64>() - 18.0;
+        let mut x = (width - total) / 2.0;
+        let y = legend_top + 10.0 * 0.0 + 20.0 * r as f64 + 10.0;
+        for &i in row {
+            write_key(&mut s, &legend.keys[i], x, y, legend.sym);
+            x += legend.widths[i];
+        }
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// Draws what comes from the data, clipped to the plot area: the hull, the
+/// data range, the observations, the control polygons, the curves and their
+/// marked points.
+fn draw_data(
+    s: &mut String,
+    data: &[PlotData],
+    opts: &PlotOptions,
+    controls: &[(Vec<[f64; 2]>, bool)],
+    f: &Frame,
+    range: Option<(f64, f64)>,
+) {
+    let all_control: Vec<[f64; 2]> = controls
+        .iter()
+        .flat_map(|(c, _)| c.iter().copied())
+        .collect();
     let _ = writeln!(s, r#"<g clip-path="url(#plot-area)">"#);
     if opts.show_hull && all_control.len() >= 3 {
         let hull = convex_hull(&all_control);
@@ -345,7 +460,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
             s,
             r#"<polygon fill="{HULL}" fill-opacity="0.07" stroke="{HULL}" stroke-opacity="0.35" stroke-width="1" points=""#
         );
-        write_points(&mut s, &f, &hull);
+        write_points(s, f, &hull);
         let _ = writeln!(s, r#""/>"#);
     }
     if let Some((lo, hi)) = range {
@@ -369,19 +484,19 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
     }
     if opts.show_polygon {
         let faint = if opts.smoothing { 0.35 } else { 1.0 };
-        for (c, closed) in &controls {
+        for (c, closed) in controls {
             let tag = if *closed { "polygon" } else { "polyline" };
             let _ = write!(
                 s,
                 r#"<{tag} fill="none" stroke="{POLYGON}" stroke-opacity="{faint}" stroke-width="1.3" stroke-dasharray="6 4" stroke-linejoin="round" points=""#
             );
-            write_points(&mut s, &f, c);
+            write_points(s, f, c);
             let _ = writeln!(s, r#""/>"#);
         }
     }
     // The first curve is the subject of the figure: draw it last, on top.
     for (i, d) in data.iter().enumerate().rev() {
-        write_curve(&mut s, &f, d, color(i));
+        write_curve(s, f, d, color(i));
     }
     for (i, d) in data.iter().enumerate() {
         let c = if data.len() == 1 { color(0) } else { color(i) };
@@ -407,7 +522,7 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         }
     }
     if opts.show_points {
-        for (c, _) in &controls {
+        for (c, _) in controls {
             for p in c.iter().filter(|p| finite(p)) {
                 let (x, y) = f.px(*p);
                 let _ = writeln!(s, r#"<circle cx="{x}" cy="{y}" r="4.2" fill="{INK}"/>"#);
@@ -415,32 +530,6 @@ pub fn render_svg(data: &[PlotData], opts: &PlotOptions) -> String {
         }
     }
     let _ = writeln!(s, "</g>");
-    // Axis labels and legend.
-    let _ = writeln!(
-        s,
-        r#"<text x="{}" y="{}" font-size="{LABEL_FONT}" fill="{INK}" text-anchor="middle">{}</text>"#,
-        Num(f.left + f.w / 2.0),
-        Num(f.top + f.h + 8.0 + TICK_FONT + 8.0 + LABEL_FONT),
-        xml_escape(&opts.x_label)
-    );
-    let (ylx, yly) = (Num(14.0 + LABEL_FONT * 0.8), Num(f.top + f.h / 2.0));
-    let _ = writeln!(
-        s,
-        r#"<text x="{ylx}" y="{yly}" font-size="{LABEL_FONT}" fill="{INK}" text-anchor="middle" transform="rotate(-90 {ylx} {yly})">{}</text>"#,
-        xml_escape(&opts.y_label)
-    );
-    let legend_top = height - legend_h;
-    for (r, row) in rows.iter().enumerate() {
-        let total: f64 = row.iter().map(|i| key_widths[*i]).sum::<f64>() - 18.0;
-        let mut x = (width - total) / 2.0;
-        let y = legend_top + 10.0 * 0.0 + 20.0 * r as f64 + 10.0;
-        for &i in row {
-            write_key(&mut s, &keys[i], x, y, sym);
-            x += key_widths[i];
-        }
-    }
-    s.push_str("</svg>\n");
-    s
 }
 
 fn color(i: usize) -> &'static str {
