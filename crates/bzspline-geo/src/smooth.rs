@@ -287,24 +287,7 @@ impl Topology {
         let tolerance = opts
             .tolerance
             .unwrap_or_else(|| default_tolerance(arcs, extent));
-        let uses = self.uses();
-        let mut stats = Stats {
-            lines: self
-                .chains()
-                .iter()
-                .filter(|c| c.kind == ChainKind::Line)
-                .count(),
-            rings: self
-                .chains()
-                .iter()
-                .filter(|c| c.kind == ChainKind::Ring)
-                .count(),
-            arcs: arcs.len(),
-            shared_arcs: uses.iter().filter(|&&u| u >= 2).count(),
-            tolerance,
-            positions_in: self.positions(arcs),
-            ..Stats::default()
-        };
+        let mut stats = self.input_stats(tolerance);
         let (plans, nodes) = self.plans(opts.keep_angle);
         stats.closed_arcs = plans.iter().filter(|p| p.closed_curve).count();
         let closed: Vec<bool> = arcs.iter().map(|a| is_closed(a)).collect();
@@ -315,29 +298,11 @@ impl Topology {
         let rings = RingFacts::of(self, &shoelace, &cross_in);
         stats.area_in = shoelace.polygons(self, &cross_in);
 
-        let mut levels: Vec<Vec<u8>> = arcs.iter().map(|a| vec![0; a.len() - 1]).collect();
-        if !start.is_empty() {
-            for (a, l) in arcs.iter().zip(levels.iter_mut()) {
-                if let Some(given) = start.get(arc_key(a)).filter(|g| g.len() == l.len()) {
-                    l.copy_from_slice(given);
-                }
-            }
-        }
+        let mut levels = start_levels(arcs, start);
         let mut out: Vec<Vec<Coord>> = vec![Vec::new(); arcs.len()];
         let mut segs: Vec<Vec<Seg>> = vec![Vec::new(); arcs.len()];
         let mut dirty = vec![true; arcs.len()];
-        // The arcs whose conflicts are judged here: those of exact chains.
-        let judged: Vec<bool> = if exact.is_empty() {
-            vec![true; arcs.len()]
-        } else {
-            let mut j = vec![false; arcs.len()];
-            for (c, _) in self.chains().iter().zip(exact).filter(|(_, &e)| e) {
-                for r in &c.arcs {
-                    j[r.arc] = true;
-                }
-            }
-            j
-        };
+        let judged = self.judged(exact);
         let mut input_conflicts: FxHashSet<(SegId, SegId)> = FxHashSet::default();
         loop {
             stats.rounds += 1;
@@ -379,26 +344,8 @@ impl Topology {
             if bump.is_empty() {
                 break;
             }
-            // Each leg named this round is raised once, however many
-            // conflicts name it.
             let last_resort = first - 1 + stats.rounds >= MAX_ROUNDS;
-            let mut raise: FxHashSet<(usize, u32)> = FxHashSet::default();
-            for (a, s) in bump {
-                raise.extend(
-                    leg_range(s, levels[a].len() as u32, closed[a])
-                        .into_iter()
-                        .map(|l| (a, l)),
-                );
-            }
-            for (a, leg) in raise {
-                let l = &mut levels[a][leg as usize];
-                *l = if last_resort {
-                    STRAIGHT
-                } else {
-                    (*l + 1).min(STRAIGHT)
-                };
-                dirty[a] = true;
-            }
+            raise(bump, &mut levels, &mut dirty, &closed, last_resort);
             if one {
                 break;
             }
@@ -422,6 +369,37 @@ impl Topology {
             stats,
             levels: ended,
         })
+    }
+
+    /// The counts of the input a smoothing reports, at `tolerance`.
+    fn input_stats(&self, tolerance: f64) -> Stats {
+        let arcs = self.arcs();
+        let count = |kind: ChainKind| self.chains().iter().filter(|c| c.kind == kind).count();
+        Stats {
+            lines: count(ChainKind::Line),
+            rings: count(ChainKind::Ring),
+            arcs: arcs.len(),
+            shared_arcs: self.uses().iter().filter(|&&u| u >= 2).count(),
+            tolerance,
+            positions_in: self.positions(arcs),
+            ..Stats::default()
+        }
+    }
+
+    /// The arcs whose conflicts are judged: those of the chains `exact`
+    /// marks (every arc when it is empty).
+    fn judged(&self, exact: &[bool]) -> Vec<bool> {
+        let n = self.arcs().len();
+        if exact.is_empty() {
+            return vec![true; n];
+        }
+        let mut j = vec![false; n];
+        for (c, _) in self.chains().iter().zip(exact).filter(|(_, &e)| e) {
+            for r in &c.arcs {
+                j[r.arc] = true;
+            }
+        }
+        j
     }
 
     /// Adds to `bump` every leg of the rings that turned over and of the
@@ -623,6 +601,49 @@ fn bump_chain(t: &Topology, ci: usize, segs: &[Vec<Seg>], bump: &mut Vec<(usize,
                 bump.push((r.arc, *s));
             }
         }
+    }
+}
+
+/// The refinement levels the rounds start from: `start`'s for the arcs it
+/// holds (of the right length), 0 for every leg of the others.
+fn start_levels(arcs: &[Vec<Coord>], start: &Levels) -> Vec<Vec<u8>> {
+    let mut levels: Vec<Vec<u8>> = arcs.iter().map(|a| vec![0; a.len() - 1]).collect();
+    if !start.is_empty() {
+        for (a, l) in arcs.iter().zip(levels.iter_mut()) {
+            if let Some(given) = start.get(arc_key(a)).filter(|g| g.len() == l.len()) {
+                l.copy_from_slice(given);
+            }
+        }
+    }
+    levels
+}
+
+/// Raises the level of every leg a conflict of this round named, once
+/// however many name it (straight at the last resort), and marks its arc
+/// for smoothing again.
+fn raise(
+    bump: Vec<(usize, Seg)>,
+    levels: &mut [Vec<u8>],
+    dirty: &mut [bool],
+    closed: &[bool],
+    last_resort: bool,
+) {
+    let mut legs: FxHashSet<(usize, u32)> = FxHashSet::default();
+    for (a, s) in bump {
+        legs.extend(
+            leg_range(s, levels[a].len() as u32, closed[a])
+                .into_iter()
+                .map(|l| (a, l)),
+        );
+    }
+    for (a, leg) in legs {
+        let l = &mut levels[a][leg as usize];
+        *l = if last_resort {
+            STRAIGHT
+        } else {
+            (*l + 1).min(STRAIGHT)
+        };
+        dirty[a] = true;
     }
 }
 
