@@ -18,3 +18,6 @@ done
 python3 docs/make_compare.py
 python3 docs/make_coverage.py   # coverage.png needs rsvg-convert (apt-get install librsvg2-bin)
 python3 docs/make_through.py    # through.* and step.*: curves through the points (docs/.venv)
+# smoothing.png: a noisy bump fitted by bzspline and scipy; needs the Python package
+# installed (pip install ./crates/bzspline-py scipy matplotlib).
+python3 -c "import sys; sys.path.insert(0, 'bench'); import smoothing; smoothing.figure('docs/smoothing.png', 0)"
