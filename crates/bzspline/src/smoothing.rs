@@ -538,8 +538,16 @@ impl crate::Spline {
     /// - [`Error::LengthMismatch`], [`Error::NonFinite`] (field
     ///   [`Field::Weight`]) or [`Error::NegativeWeight`] for bad weights, and
     ///   [`Error::InvalidArgument`] when fewer than 2 are positive;
-    /// - [`Error::InvalidArgument`] for a negative or non-finite `lambda`, or
-    ///   `lambda = 0` with a weight 0.
+    /// - [`Error::InvalidArgument`] for a negative or non-finite `lambda`,
+    ///   `lambda = 0` with a weight 0, a `lambda` so far below the scale that
+    ///   interpolates (`1e-12` of the narrowest interval's width cubed, in
+    ///   units where `x` spans 1) that the fit beside a point of weight 0
+    ///   would be left to rounding, a chosen `lambda` that a double cannot
+    ///   hold in the units of `x`, and a system too ill-conditioned to solve
+    ///   (intervals of widths many decades apart under a large `lambda`: the
+    ///   fit is checked to be the method's spline of its control values);
+    /// - [`Error::Overflow`] when a solved control value leaves the range of
+    ///   a double.
     ///
     /// # Examples
     ///
