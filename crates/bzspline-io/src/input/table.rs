@@ -319,45 +319,21 @@ pub fn parse_table_with(
             continue;
         }
         let width = record.len();
-        match first_width {
-            None => first_width = Some((width, line)),
-            Some((w, first)) if w != width => {
-                let hint = if delimiter == b',' && width > w {
-                    " (a comma used as the decimal separator?)"
-                } else {
-                    ""
-                };
-                return Err(anyhow!(
-                    "{name}:{line}: {width} fields, but line {first} has {w}{hint}"
-                ));
-            }
-            Some(_) => {}
-        }
+        check_width(&mut first_width, width, (name, line), delimiter)?;
         if chosen.is_none() {
             let cols = resolve(select, header.as_deref(), width, name)?
                 .unwrap_or_else(|| (0..width).collect());
             chosen = Some(cols);
         }
         let cols = chosen.as_deref().unwrap_or_default();
-        for (slot, &j) in cols.iter().enumerate() {
-            let field = record.get(j).unwrap_or("");
-            let read = if slot == 0 {
-                read_x(field, &mut kind)
-            } else {
-                parse_number(field)
-            };
-            match read {
-                Ok(v) => coords.push(v),
-                Err(msg) => {
-                    let hint = if numeric == 0 {
-                        " (a header line in the middle of the data?)"
-                    } else {
-                        ""
-                    };
-                    return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", j + 1));
-                }
-            }
-        }
+        read_row(
+            &record,
+            cols,
+            &mut kind,
+            numeric == 0,
+            (name, line),
+            &mut coords,
+        )?;
         if lines.len() >= max_points {
             return Err(too_many(&format!("{name}:{line}"), max_points));
         }
@@ -381,4 +357,61 @@ pub fn parse_table_with(
     }
     points.time = kind.flatten();
     Ok(points)
+}
+
+/// Checks a row's number of fields against the first row's (kept in
+/// `first` with its line).
+fn check_width(
+    first: &mut Option<(usize, usize)>,
+    width: usize,
+    (name, line): (&str, usize),
+    delimiter: u8,
+) -> Result<()> {
+    match *first {
+        None => *first = Some((width, line)),
+        Some((w, at)) if w != width => {
+            let hint = if delimiter == b',' && width > w {
+                " (a comma used as the decimal separator?)"
+            } else {
+                ""
+            };
+            return Err(anyhow!(
+                "{name}:{line}: {width} fields, but line {at} has {w}{hint}"
+            ));
+        }
+        Some(_) => {}
+    }
+    Ok(())
+}
+
+/// Reads the chosen columns of a row onto `coords`: the first as x (a
+/// number or a date, of one kind throughout), the others as numbers.
+fn read_row(
+    record: &csv::StringRecord,
+    cols: &[usize],
+    kind: &mut Option<Option<TimeKind>>,
+    no_numbers: bool,
+    (name, line): (&str, usize),
+    coords: &mut Vec<f64>,
+) -> Result<()> {
+    for (slot, &j) in cols.iter().enumerate() {
+        let field = record.get(j).unwrap_or("");
+        let read = if slot == 0 {
+            read_x(field, kind)
+        } else {
+            parse_number(field)
+        };
+        match read {
+            Ok(v) => coords.push(v),
+            Err(msg) => {
+                let hint = if no_numbers {
+                    " (a header line in the middle of the data?)"
+                } else {
+                    ""
+                };
+                return Err(anyhow!("{name}:{line}: field {}: {msg}{hint}", j + 1));
+            }
+        }
+    }
+    Ok(())
 }
