@@ -128,6 +128,21 @@ impl Options {
         }
     }
 
+    /// The smoothing options `w` (one weight per point, `null` or absent for
+    /// all 1) and `lam` (absent or `null`: chosen by cross-validation).
+    pub fn smoothing(&self) -> Result<(Option<Vec<f64>>, bzspline::Smoothing), JsValue> {
+        let w = self
+            .get("w")
+            .filter(|v| !v.is_null())
+            .map(|v| numbers(&v, "w"))
+            .transpose()?;
+        let how = match self.number("lam")? {
+            None => bzspline::Smoothing::Gcv,
+            Some(l) => bzspline::Smoothing::Lambda(l),
+        };
+        Ok((w, how))
+    }
+
     /// A number option (`null` is none).
     pub fn number(&self, name: &str) -> Result<Option<f64>, JsValue> {
         self.typed(name, "a number", JsValue::as_f64)

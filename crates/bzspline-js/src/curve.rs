@@ -74,15 +74,7 @@ impl Curve {
         let o = Options::new(options)?;
         let param = param_of(&o)?;
         let alphas = o.alphas()?;
-        let w = o
-            .get("w")
-            .filter(|v| !v.is_null())
-            .map(|v| numbers(&v, "w"))
-            .transpose()?;
-        let how = match o.number("lam")? {
-            None => bzspline::Smoothing::Gcv,
-            Some(l) => bzspline::Smoothing::Lambda(l),
-        };
+        let (w, how) = o.smoothing()?;
         let mut b = bzspline::CurveBuilder::new(&flat, dim.max(1))
             .param(param)
             .alpha_choice(alphas.choice())

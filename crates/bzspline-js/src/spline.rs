@@ -101,15 +101,7 @@ impl Spline {
         let o = Options::new(options)?;
         let alphas = o.alphas()?;
         let outside = outside_of(&o)?;
-        let w = o
-            .get("w")
-            .filter(|v| !v.is_null())
-            .map(|v| numbers(&v, "w"))
-            .transpose()?;
-        let how = match o.number("lam")? {
-            None => bzspline::Smoothing::Gcv,
-            Some(l) => bzspline::Smoothing::Lambda(l),
-        };
+        let (w, how) = o.smoothing()?;
         let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.choice(), how)
             .map_err(lib_error)?;
         Ok(Spline {

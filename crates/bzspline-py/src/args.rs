@@ -79,6 +79,17 @@ pub(crate) enum AlphaArg {
     Each(Vec<f64>),
 }
 
+/// Points as an `(n, d)` array: the numbers flat and `d`.
+pub(crate) fn rows_arg(points: &Bound<'_, PyAny>) -> PyResult<(Vec<f64>, usize)> {
+    let (pts, shape) = floats(points, "points")?;
+    if shape.len() != 2 || shape[1] == 0 {
+        return Err(PyValueError::new_err(
+            "points must be an (n, d) array: one row per point",
+        ));
+    }
+    Ok((pts, shape[1]))
+}
+
 /// `alpha=`: one alpha or one per interval; absent, the default 1/2.
 pub(crate) fn alpha_arg(alpha: Option<&Bound<'_, PyAny>>) -> PyResult<AlphaArg> {
     let Some(alpha) = alpha else {

@@ -79,13 +79,7 @@ impl Curve {
         through: bool,
     ) -> PyResult<Self> {
         guard(|| {
-            let (pts, shape) = floats(points, "points")?;
-            if shape.len() != 2 || shape[1] == 0 {
-                return Err(PyValueError::new_err(
-                    "points must be an (n, d) array: one row per point",
-                ));
-            }
-            let dim = shape[1];
+            let (pts, dim) = rows_arg(points)?;
             let (param, name) = match param {
                 Some(p) => param_arg(p)?,
                 None => (Param::default(), Param::default().to_string()),
@@ -463,13 +457,7 @@ pub(crate) fn smoothing_curve(
     alpha: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Curve> {
     guard(|| {
-        let (pts, shape) = floats(points, "points")?;
-        if shape.len() != 2 || shape[1] == 0 {
-            return Err(PyValueError::new_err(
-                "points must be an (n, d) array: one row per point",
-            ));
-        }
-        let dim = shape[1];
+        let (pts, dim) = rows_arg(points)?;
         let w = w.map(|w| floats(w, "w").map(|f| f.0)).transpose()?;
         let param = match param {
             Some(p) => param_arg(p)?.0,
