@@ -66,6 +66,13 @@ pub(crate) fn check_weights(weights: Option<&[f64]>, n: usize) -> Result<Vec<f64
     let Some(w) = weights else {
         return Ok(vec![1.0; n]);
     };
+    check_weight_values(w, n)?;
+    check_positive_weights(w)?;
+    Ok(w.to_vec())
+}
+
+/// One weight per point, each finite and `>= 0`; the index of a bad one named.
+pub(crate) fn check_weight_values(w: &[f64], n: usize) -> Result<(), Error> {
     if w.len() != n {
         return Err(Error::LengthMismatch {
             field: Field::Weight,
@@ -85,6 +92,12 @@ pub(crate) fn check_weights(weights: Option<&[f64]>, n: usize) -> Result<Vec<f64
             return Err(Error::NegativeWeight { index, value });
         }
     }
+    Ok(())
+}
+
+/// At least two positive weights: a line through them is what the penalty
+/// cannot hold.
+pub(crate) fn check_positive_weights(w: &[f64]) -> Result<(), Error> {
     let positive = w.iter().filter(|&&v| v > 0.0).count();
     if positive < 2 {
         return Err(Error::InvalidArgument {
@@ -92,7 +105,7 @@ pub(crate) fn check_weights(weights: Option<&[f64]>, n: usize) -> Result<Vec<f64
             value: positive as f64,
         });
     }
-    Ok(w.to_vec())
+    Ok(())
 }
 
 /// The smoothing fit of `values` (flat, `dim` per knot) on `knots`, already

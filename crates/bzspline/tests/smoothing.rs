@@ -567,3 +567,44 @@ fn hostile_input_gives_an_error_or_a_finite_fit_never_a_panic() {
         }
     }
 }
+
+#[test]
+fn a_dropped_repeat_adds_its_weight_to_the_point_it_repeats() {
+    let pts = [
+        [0.0, 0.0],
+        [1.0, 0.5],
+        [1.0, 0.5],
+        [2.0, -0.2],
+        [3.0, 0.4],
+        [4.0, 0.0],
+    ];
+    let w = [1.0, 2.0, 3.0, 1.0, 0.5, 1.0];
+    let with = Curve::builder_from(&pts)
+        .repeats(bzspline::Repeats::Drop)
+        .weights(&w)
+        .smoothing(Smoothing::Lambda(0.1))
+        .build_smoothed()
+        .unwrap();
+    let kept = [pts[0], pts[1], pts[3], pts[4], pts[5]];
+    let without = Curve::builder_from(&kept)
+        .weights(&[1.0, 5.0, 1.0, 0.5, 1.0])
+        .smoothing(Smoothing::Lambda(0.1))
+        .build_smoothed()
+        .unwrap();
+    assert_eq!(with.fit.points(), without.fit.points());
+    assert_eq!(with.fit.dropped(), &[2]);
+    // A bad weight is named where the caller put it, before any merge.
+    let bad = [1.0, 2.0, 3.0, -1.0, 0.5, 1.0];
+    let e = Curve::builder_from(&pts)
+        .repeats(bzspline::Repeats::Drop)
+        .weights(&bad)
+        .build_smoothed()
+        .unwrap_err();
+    assert_eq!(
+        e,
+        Error::NegativeWeight {
+            index: 3,
+            value: -1.0
+        }
+    );
+}

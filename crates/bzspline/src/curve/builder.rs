@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use super::{survey, Curve, Param, ParamKind, Repeats};
 use crate::error::{Error, Field};
 use crate::method;
-use crate::smoothing::{self, check_weights, Smoothed, Smoothing};
+use crate::smoothing::{self, check_positive_weights, check_weight_values, Smoothed, Smoothing};
 use crate::validate::{check_alphas, check_finite, resolve_alphas, Alphas, DEFAULT_ALPHA};
 
 /// Collects the inputs of a [`Curve`] and builds it.
@@ -192,11 +192,9 @@ impl<'a> CurveBuilder<'a> {
         let w = match weights {
             None => vec![1.0; data.point_count()],
             Some(w) => {
-                check_weights(Some(&w), n_in).or_else(|e| match e {
-                    // Fewer than two positive is judged after merging.
-                    Error::InvalidArgument { .. } => Ok(w.clone()),
-                    e => Err(e),
-                })?;
+                // Each weight is judged where the caller put it; how many are
+                // positive, after the merge.
+                check_weight_values(&w, n_in)?;
                 // Each dropped repeat's weight goes to the kept point before it.
                 let mut kept = Vec::with_capacity(data.point_count());
                 let mut drops = data.dropped.iter().peekable();
@@ -213,7 +211,7 @@ impl<'a> CurveBuilder<'a> {
                 kept
             }
         };
-        let w = check_weights(Some(&w), data.point_count())?;
+        check_positive_weights(&w)?;
         let fit = smoothing::fit(data.knots(), &data.points, dim, &w, &data.alphas, smoothing)?;
         let mut c = CurveBuilder::new(&fit.controls, dim)
             .param(Param::Given(data.knots().to_vec()))
