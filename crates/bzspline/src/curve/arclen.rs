@@ -18,6 +18,8 @@ use super::{check_tolerance, dot, norm, Curve};
 use crate::error::{Error, Field};
 use crate::poly::quadratic_roots;
 use crate::polyline::Polyline;
+use crate::traits::Arclen;
+use crate::traits::ParamCurve;
 use std::sync::OnceLock;
 
 /// Gauss-Legendre nodes and weights on `[-1, 1]`.
@@ -231,29 +233,6 @@ impl Curve {
             .collect()
     }
 
-    /// The length of the whole curve, with absolute error at most about
-    /// `accuracy` (adaptive 8-point Gauss-Legendre per segment).
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for an accuracy that is
-    /// not a finite positive number; [`Error::Overflow`] when the length exceeds
-    /// the range of a double.
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use bzspline::{Curve, DEFAULT_ACCURACY};
-    /// // A straight polygon is reproduced exactly.
-    /// let c = Curve::open(&[[0.0, 0.0], [3.0, 4.0], [6.0, 8.0]])?;
-    /// assert!((c.arclen(DEFAULT_ACCURACY)? - 10.0).abs() < 1e-9);
-    /// # Ok::<(), bzspline::Error>(())
-    /// ```
-    pub fn arclen(&self, accuracy: f64) -> Result<f64, Error> {
-        let (lo, hi) = self.domain();
-        self.arclen_range(lo, hi, accuracy)
-    }
-
     fn check_accuracy(accuracy: f64) -> Result<(), Error> {
         check_tolerance("the accuracy must be positive", accuracy)?;
         if accuracy == 0.0 {
@@ -359,26 +338,6 @@ impl Curve {
         Ok(v.pop().unwrap_or(self.pieces.knots()[0]))
     }
 
-    /// The parameters at the lengths `lengths` from the start (each as
-    /// [`Curve::param_at_length`]), measuring the segments once for all.
-    ///
-    /// # Errors
-    ///
-    /// As [`Curve::param_at_length`], with the index of the failing length.
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use bzspline::{Curve, DEFAULT_ACCURACY};
-    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])?;
-    /// let t = c.params_at_lengths(&[0.0, 1.0, 2.0], DEFAULT_ACCURACY)?;
-    /// assert!((t[1] - 1.0).abs() < 1e-9 && (t[2] - 2.0).abs() < 1e-9);
-    /// # Ok::<(), bzspline::Error>(())
-    /// ```
-    pub fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
-        self.params_for_lengths(|_| lengths.to_vec(), accuracy)
-    }
-
     /// Parameters at the lengths that `lengths` returns for the total length.
     fn params_for_lengths(
         &self,
@@ -473,6 +432,50 @@ impl Curve {
             coords.extend(self.eval(s)?);
         }
         Ok(Polyline::new(self.dim(), coords, params))
+    }
+}
+
+impl Arclen for Curve {
+    /// The length of the whole curve, with absolute error at most about
+    /// `accuracy` (adaptive 8-point Gauss-Legendre per segment).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for an accuracy that is
+    /// not a finite positive number; [`Error::Overflow`] when the length exceeds
+    /// the range of a double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Arclen, Curve, DEFAULT_ACCURACY};
+    /// // A straight polygon is reproduced exactly.
+    /// let c = Curve::open(&[[0.0, 0.0], [3.0, 4.0], [6.0, 8.0]])?;
+    /// assert!((c.arclen(DEFAULT_ACCURACY)? - 10.0).abs() < 1e-9);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    fn arclen(&self, accuracy: f64) -> Result<f64, Error> {
+        let (lo, hi) = self.domain();
+        self.arclen_range(lo, hi, accuracy)
+    }
+    /// The parameters at the lengths `lengths` from the start (each as
+    /// [`Curve::param_at_length`]), measuring the segments once for all.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::param_at_length`], with the index of the failing length.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Arclen, Curve, DEFAULT_ACCURACY};
+    /// let c = Curve::open(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])?;
+    /// let t = c.params_at_lengths(&[0.0, 1.0, 2.0], DEFAULT_ACCURACY)?;
+    /// assert!((t[1] - 1.0).abs() < 1e-9 && (t[2] - 2.0).abs() < 1e-9);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    fn params_at_lengths(&self, lengths: &[f64], accuracy: f64) -> Result<Vec<f64>, Error> {
+        self.params_for_lengths(|_| lengths.to_vec(), accuracy)
     }
 }
 
@@ -620,7 +623,7 @@ mod tests {
 
 #[cfg(test)]
 mod overflow_tests {
-    use crate::{Curve, Error, DEFAULT_ACCURACY};
+    use crate::{Arclen, Curve, Error, DEFAULT_ACCURACY};
 
     #[test]
     fn a_length_beyond_f64_max_is_an_error_not_a_hang() {

@@ -5,7 +5,8 @@
 
 use std::borrow::Cow;
 
-use super::{survey, Curve, Param, ParamKind, Repeats};
+use super::solve::survey;
+use super::{Curve, Param, ParamKind, Repeats};
 use crate::error::{Error, Field};
 use crate::method;
 use crate::smoothing::{self, check_positive_weights, check_weight_values, Smoothed, Smoothing};

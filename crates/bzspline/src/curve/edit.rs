@@ -11,9 +11,11 @@
 //! until the correction at its edges is below the tolerance, or covers the
 //! whole curve.
 
-use super::{check_query, check_tolerance, chord_step, Curve, ParamKind};
+use super::solve::chord_step;
+use super::{check_query, check_tolerance, Curve, ParamKind};
 use crate::error::Error;
 use crate::method::row;
+use crate::traits::ParamCurve;
 use crate::tridiag::{CyclicThomas, Thomas};
 use crate::validate::validate_knots;
 

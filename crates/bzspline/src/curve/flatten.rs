@@ -19,6 +19,8 @@ use crate::error::Error;
 use crate::fast::Piece;
 use crate::flatten::{check_tol, steps, MAX_FLATTEN_VERTICES};
 use crate::polyline::Polyline;
+use crate::traits::Flatten;
+use crate::traits::ParamCurve;
 
 /// Knots past the last good end of a chord that the chord search tries
 /// before it settles for that end.
@@ -38,7 +40,7 @@ impl Curve {
     /// # Examples
     ///
     /// ```
-    /// use bzspline::Curve;
+    /// use bzspline::{Curve, Flatten};
     /// let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])?;
     /// assert_eq!(line.flatten(1e-9)?.len(), 2);
     /// assert_eq!(line.flatten_with_knots(1e-9)?.params(), line.knots());
@@ -66,78 +68,6 @@ impl Curve {
             }
             coords.extend_from_slice(&p.coords()[i * dim..(i + 1) * dim]);
             params.push(t);
-        }
-        Ok(Polyline::new(dim, coords, params))
-    }
-
-    /// A polyline whose distance from the curve is at most `tol` everywhere,
-    /// with few vertices (see [`crate::flatten`]): each segment gets the fewest
-    /// equal parameter steps that the bound on its second derivative allows,
-    /// and in the plane a run of segments that stays within `tol` of one chord
-    /// becomes that one chord (so vertices need not fall on the knots). The
-    /// first vertex is the start of the curve and the last its end (the start
-    /// again for a closed curve), exactly.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for a tolerance that is
-    /// not a finite positive number, or one so small that more than
-    /// [`MAX_FLATTEN_VERTICES`] vertices would be needed.
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use bzspline::Curve;
-    /// let c = Curve::closed(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])?;
-    /// let p = c.flatten(1e-3)?;
-    /// assert_eq!(p.point(0), p.point(p.len() - 1)); // closed
-    /// assert!(p.len() > 8);
-    /// // Points on a straight line: one chord.
-    /// let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])?;
-    /// assert_eq!(line.flatten(1e-9)?.len(), 2);
-    /// # Ok::<(), bzspline::Error>(())
-    /// ```
-    pub fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
-        check_tol(tol)?;
-        let scaled_tol = tol / self.unit();
-        let too_many = || Error::TooManyVertices { tolerance: tol };
-        let dim = self.dim();
-        let knots = self.knots();
-        let mut coords = Vec::with_capacity((self.len() + 1) * dim);
-        let mut params = Vec::with_capacity(self.len() + 1);
-        self.push_segment_point(0, 0.0, &mut coords);
-        params.push(knots[0]);
-        // Read only by the chord search, which runs on planar curves.
-        let rel = [self.unit_rel(0), self.unit_rel(dim.min(2) - 1)];
-        let mut window = Window::new(0.999 * scaled_tol, rel);
-        let mut k = 0;
-        while k < self.len() {
-            let m = steps(self.accel_bound(k), scaled_tol).map_err(|_| too_many())?;
-            if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
-                return Err(too_many());
-            }
-            if m == 1 && dim == 2 {
-                // One chord from knot k to the farthest knot it can reach.
-                let end = self.chord_run(k, &mut window);
-                // The point of segment end - 1 at t = 1 (`push_segment_point`),
-                // without its general evaluation.
-                let p = self.unit_knot_2d(end, rel);
-                coords.extend(p.map(|v| (v * self.unit()).clamp(-f64::MAX, f64::MAX)));
-                params.push(knots[end]);
-                k = end;
-                continue;
-            }
-            let h = knots[k + 1] - knots[k];
-            for j in 1..=m {
-                let t = j as f64 / m as f64;
-                self.push_segment_point(k, t, &mut coords);
-                params.push(if j == m {
-                    knots[k + 1]
-                } else {
-                    knots[k] + t * h
-                });
-            }
-            k += 1;
         }
         Ok(Polyline::new(dim, coords, params))
     }
@@ -626,10 +556,85 @@ impl Curve {
     }
 }
 
+impl Flatten for Curve {
+    /// A polyline whose distance from the curve is at most `tol` everywhere,
+    /// with few vertices (see [`Flatten`](crate::Flatten)): each segment gets the fewest
+    /// equal parameter steps that the bound on its second derivative allows,
+    /// and in the plane a run of segments that stays within `tol` of one chord
+    /// becomes that one chord (so vertices need not fall on the knots). The
+    /// first vertex is the start of the curve and the last its end (the start
+    /// again for a closed curve), exactly.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] / [`Error::InvalidArgument`] for a tolerance that is
+    /// not a finite positive number, or one so small that more than
+    /// [`MAX_FLATTEN_VERTICES`] vertices would be needed.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Curve, Flatten};
+    /// let c = Curve::closed(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])?;
+    /// let p = c.flatten(1e-3)?;
+    /// assert_eq!(p.point(0), p.point(p.len() - 1)); // closed
+    /// assert!(p.len() > 8);
+    /// // Points on a straight line: one chord.
+    /// let line = Curve::open(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]])?;
+    /// assert_eq!(line.flatten(1e-9)?.len(), 2);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
+        check_tol(tol)?;
+        let scaled_tol = tol / self.unit();
+        let too_many = || Error::TooManyVertices { tolerance: tol };
+        let dim = self.dim();
+        let knots = self.knots();
+        let mut coords = Vec::with_capacity((self.len() + 1) * dim);
+        let mut params = Vec::with_capacity(self.len() + 1);
+        self.push_segment_point(0, 0.0, &mut coords);
+        params.push(knots[0]);
+        // Read only by the chord search, which runs on planar curves.
+        let rel = [self.unit_rel(0), self.unit_rel(dim.min(2) - 1)];
+        let mut window = Window::new(0.999 * scaled_tol, rel);
+        let mut k = 0;
+        while k < self.len() {
+            let m = steps(self.accel_bound(k), scaled_tol).map_err(|_| too_many())?;
+            if params.len().saturating_add(m) > MAX_FLATTEN_VERTICES {
+                return Err(too_many());
+            }
+            if m == 1 && dim == 2 {
+                // One chord from knot k to the farthest knot it can reach.
+                let end = self.chord_run(k, &mut window);
+                // The point of segment end - 1 at t = 1 (`push_segment_point`),
+                // without its general evaluation.
+                let p = self.unit_knot_2d(end, rel);
+                coords.extend(p.map(|v| (v * self.unit()).clamp(-f64::MAX, f64::MAX)));
+                params.push(knots[end]);
+                k = end;
+                continue;
+            }
+            let h = knots[k + 1] - knots[k];
+            for j in 1..=m {
+                let t = j as f64 / m as f64;
+                self.push_segment_point(k, t, &mut coords);
+                params.push(if j == m {
+                    knots[k + 1]
+                } else {
+                    knots[k] + t * h
+                });
+            }
+            k += 1;
+        }
+        Ok(Polyline::new(dim, coords, params))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::flatten::tests::seg_dist;
+    use crate::traits::Bounds;
 
     fn segment(c: &Curve, k: usize, rel: [f64; 2]) -> Segment {
         let q = c.coefficients();

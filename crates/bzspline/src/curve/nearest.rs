@@ -10,6 +10,7 @@ use super::{check_query, norm, Curve, Nearest};
 use crate::error::Error;
 use crate::method::power_of_two_scale;
 use crate::poly::quadratic_roots;
+use crate::traits::ParamCurve;
 
 /// Real roots in `[lo, hi]` of the polynomial with power coefficients `c`
 /// (lowest first), by isolating them between the roots of its derivative:

@@ -1,10 +1,12 @@
-//! The antiderivative of a spline, `F(x) = ∫ S` from the first knot to `x`:
-//! on every interval the integral of the piece's cubic (a quartic), added to
-//! the integrals of the pieces before it, summed once at construction.
+//! Integrals of a spline: `∫ S` over any interval, and the antiderivative
+//! `F(x) = ∫ S` from the first knot to `x`: on every interval the integral of
+//! the piece's cubic (a quartic), added to the integrals of the pieces before
+//! it, summed once at construction.
 
-use super::Spline;
+use super::{Extrapolate, Spline};
 use crate::curve::check_query;
 use crate::error::{Error, Field};
+use crate::traits::ParamCurve;
 
 /// `F(x)`, the integral of a [`Spline`] from its first knot `tau_0` to `x`:
 /// `F(tau_0) = 0`, `F' = S`, and `F(b) - F(a)` is [`Spline::integral`]`(a, b)`
@@ -33,6 +35,88 @@ pub struct Antiderivative {
 }
 
 impl Spline {
+    /// Integral of `S` over `[a, b]` (negative when `b < a`), exact up to rounding.
+    /// Parts outside the domain follow the extrapolation policy.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a non-finite bound; [`Error::OutOfDomain`] for a
+    /// bound outside the domain under [`Extrapolate::Error`]; [`Error::Overflow`]
+    /// when the result exceeds the range of a double.
+    pub fn integral(&self, a: f64, b: f64) -> Result<f64, Error> {
+        let (lo, hi) = self.domain();
+        if self.extrapolate == Extrapolate::Nan
+            && !((lo..=hi).contains(&a) && (lo..=hi).contains(&b))
+        {
+            return Ok(f64::NAN);
+        }
+        for (i, &v) in [a, b].iter().enumerate() {
+            if !v.is_finite() {
+                return Err(Error::NonFinite {
+                    field: Field::Query,
+                    index: i,
+                    value: v,
+                });
+            }
+        }
+        if b < a {
+            return self.integral(b, a).map(|v| -v);
+        }
+        if self.extrapolate == Extrapolate::Error && (a < lo || b > hi) {
+            let x = if a < lo { a } else { b };
+            return Err(Error::OutOfDomain {
+                x,
+                min: lo,
+                max: hi,
+            });
+        }
+        let mut total = 0.0;
+        // Parts outside the domain.
+        if a < lo {
+            let end = b.min(lo);
+            total += match self.extrapolate {
+                Extrapolate::Clamp => (end - a) * (self.values[0] / self.scale()),
+                _ => self.piece_integral(0, a, end),
+            };
+        }
+        if b > hi {
+            let start = a.max(hi);
+            total += match self.extrapolate {
+                Extrapolate::Clamp => (b - start) * (self.values[self.len()] / self.scale()),
+                _ => self.piece_integral(self.len() - 1, start, b),
+            };
+        }
+        let (ca, cb) = (a.max(lo), b.min(hi));
+        if ca < cb {
+            let (ka, kb) = (self.piece_index(ca), self.piece_index(cb));
+            for k in ka..=kb {
+                let x0 = ca.max(self.pieces.knots()[k]);
+                let x1 = cb.min(self.pieces.knots()[k + 1]);
+                if x0 < x1 {
+                    total += self.piece_integral(k, x0, x1);
+                }
+            }
+        }
+        let v = total * self.scale();
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(Error::Overflow {
+                what: "the integral",
+            })
+        }
+    }
+
+    /// Integral of piece `k`'s cubic (scaled) from `x0` to `x1`.
+    pub(crate) fn piece_integral(&self, k: usize, x0: f64, x1: f64) -> f64 {
+        let c = &self.pieces.coefs()[k].0;
+        let h = self.pieces.width(k);
+        let prim = |t: f64| t * (c[0] + t * (c[1] / 2.0 + t * (c[2] / 3.0 + t * c[3] / 4.0)));
+        let t0 = (x0 - self.pieces.knots()[k]) / h;
+        let t1 = (x1 - self.pieces.knots()[k]) / h;
+        (prim(t1) - prim(t0)) * h
+    }
+
     /// The antiderivative `F(x) = ∫ S` from the first knot to `x` (a copy of
     /// the spline and one sum per knot).
     #[must_use]
@@ -93,6 +177,11 @@ impl Antiderivative {
     }
 
     fn at(&self, x: f64, index: usize) -> Result<f64, Error> {
+        let s = &self.spline;
+        let (lo, hi) = s.domain();
+        if s.extrapolate == Extrapolate::Nan && !(lo..=hi).contains(&x) {
+            return Ok(f64::NAN);
+        }
         if !x.is_finite() {
             return Err(Error::NonFinite {
                 field: Field::Query,
@@ -100,8 +189,6 @@ impl Antiderivative {
                 value: x,
             });
         }
-        let s = &self.spline;
-        let (lo, hi) = s.domain();
         let v = if x < lo {
             s.integral(lo, x)?
         } else if x > hi {

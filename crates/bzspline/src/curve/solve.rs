@@ -1,0 +1,355 @@
+//! Solving a curve: surveying its points, the parameter steps, the open and
+//! closed systems (factored once, solved once a coordinate) and the pieces.
+
+use super::{norm, Curve, ParamKind};
+use crate::error::Error;
+use crate::fast::{self, Piece};
+use crate::method::{alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::method::{power_of_two_scale, scale_for_max};
+use crate::pieces::Pieces;
+use crate::traits::ParamCurve;
+use crate::validate::{check_knots, Alphas};
+
+/// One pass over points of `dim` coordinates: `None` if a coordinate is not
+/// finite, else whether two consecutive points are equal; `maxes` gets the
+/// largest magnitude of each coordinate.
+pub(super) fn survey(points: &[f64], dim: usize, maxes: &mut Vec<f64>) -> Option<bool> {
+    pub(super) fn fixed<const D: usize>(points: &[f64], maxes: &mut Vec<f64>) -> Option<bool> {
+        let (pts, _) = points.as_chunks::<D>();
+        let mut mx = [0.0f64; D];
+        let mut finite = true;
+        let mut repeat = false;
+        let mut prev = [f64::NAN; D];
+        for p in pts {
+            for c in 0..D {
+                let a = p[c].abs();
+                // Branch-free: NaN fails `a <= MAX`, infinities too.
+                finite &= a <= f64::MAX;
+                mx[c] = if a > mx[c] { a } else { mx[c] };
+            }
+            repeat |= *p == prev;
+            prev = *p;
+        }
+        maxes.clear();
+        maxes.extend_from_slice(&mx);
+        finite.then_some(repeat)
+    }
+    match dim {
+        1 => fixed::<1>(points, maxes),
+        2 => fixed::<2>(points, maxes),
+        3 => fixed::<3>(points, maxes),
+        _ => {
+            maxes.clear();
+            maxes.resize(dim, 0.0);
+            if points.iter().any(|v| !v.is_finite()) {
+                return None;
+            }
+            let mut repeat = false;
+            let mut prev: Option<&[f64]> = None;
+            for p in points.chunks_exact(dim.max(1)) {
+                for (m, v) in maxes.iter_mut().zip(p) {
+                    *m = m.max(v.abs());
+                }
+                repeat |= prev == Some(p);
+                prev = Some(p);
+            }
+            Some(repeat)
+        }
+    }
+}
+
+/// The parameter step of the leg from `a` to `b` in units of `chord_scale`
+/// (before multiplying by the curve's `knot_unit`): the chord length, or its
+/// square root for centripetal parameters.
+pub(super) fn chord_step(
+    kind: &ParamKind,
+    a: &[f64],
+    b: &[f64],
+    chord_scale: f64,
+    buf: &mut [f64],
+) -> f64 {
+    let inv = 1.0 / chord_scale;
+    for ((d, x), y) in buf.iter_mut().zip(a).zip(b) {
+        *d = y * inv - x * inv;
+    }
+    let len = norm(buf);
+    if *kind == ParamKind::Centripetal {
+        len.sqrt()
+    } else {
+        len
+    }
+}
+
+impl Curve {
+    /// A curve with no points, to be built into.
+    pub(super) fn empty() -> Self {
+        Curve {
+            closed: false,
+            kind: ParamKind::Uniform,
+            points: Vec::new(),
+            dropped: Vec::new(),
+            pieces: Pieces::default(),
+            alphas: Vec::new(),
+            chord_scale: 1.0,
+            knot_unit: 1.0,
+            inv_scales: Vec::new(),
+            d: Vec::new(),
+        }
+    }
+
+    /// Parameters for the kind, validates them, and solves into `c`, reusing
+    /// its allocations; `c` changes only on success. `alphas` are checked;
+    /// `points` come with the largest magnitude of each coordinate.
+    #[allow(clippy::too_many_arguments)] // the parts of a builder, validated
+    pub(super) fn solve_into(
+        c: &mut Curve,
+        dim: usize,
+        closed: bool,
+        kind: ParamKind,
+        (points, maxes): (&[f64], &[f64]),
+        dropped: Vec<usize>,
+        given: Option<&[f64]>,
+        alphas: Alphas<'_>,
+    ) -> Result<(), Error> {
+        let n = points.len() / dim;
+        let legs = if closed { n } else { n - 1 };
+        let mut chord_scale = 1.0;
+        let mut knot_unit = 1.0;
+        // Parameters other than uniform ones are formed aside and validated
+        // before anything in `c` changes.
+        let aside: Option<Vec<f64>> = match (&kind, given) {
+            (ParamKind::Given, Some(g)) => Some(g.to_vec()),
+            (ParamKind::Uniform, _) | (ParamKind::Given, None) => None,
+            (ParamKind::Chordal | ParamKind::Centripetal, _) => {
+                chord_scale = power_of_two_scale(points);
+                let mut chord = vec![0.0; dim];
+                let mut knots = Vec::with_capacity(legs + 1);
+                let mut acc = 0.0;
+                knots.push(0.0);
+                for k in 0..legs {
+                    let j = (k + 1) % n;
+                    acc += chord_step(
+                        &kind,
+                        &points[k * dim..(k + 1) * dim],
+                        &points[j * dim..(j + 1) * dim],
+                        chord_scale,
+                        &mut chord,
+                    );
+                    knots.push(acc);
+                }
+                let unit = if kind == ParamKind::Chordal {
+                    chord_scale
+                } else {
+                    chord_scale.sqrt()
+                };
+                // Back to the points' units unless the total would overflow.
+                if (acc * unit).is_finite() {
+                    knot_unit = unit;
+                    for k in &mut knots {
+                        *k *= unit;
+                    }
+                }
+                Some(knots)
+            }
+        };
+        if let Some(k) = &aside {
+            check_knots(k)?;
+        }
+        // From here on nothing fails.
+        let parts = c.pieces.parts_mut();
+        match aside {
+            Some(k) => *parts.knots = k,
+            None => {
+                parts.knots.clear();
+                parts.knots.extend((0..=legs).map(|i| i as f64));
+            }
+        }
+        c.pieces.knots_changed();
+        c.pieces.set_scales(maxes.iter().map(|&m| scale_for_max(m)));
+        c.alphas.clear();
+        match alphas {
+            Alphas::Uniform(a) => c.alphas.resize(legs, a),
+            Alphas::PerInterval(a) => c.alphas.extend_from_slice(a),
+        }
+        c.inv_scales.clear();
+        c.inv_scales
+            .extend(c.pieces.scales().iter().map(|s| 1.0 / s));
+        c.closed = closed;
+        c.kind = kind;
+        c.dropped = dropped;
+        c.chord_scale = chord_scale;
+        c.knot_unit = knot_unit;
+        // One alpha for every leg: known here, no pass over them to find it.
+        let uniform = match alphas {
+            Alphas::Uniform(a) => Some(a),
+            Alphas::PerInterval(_) => None,
+        };
+        c.solve_all(points, uniform);
+        Ok(())
+    }
+
+    /// [`Self::solve_into`] for a new curve.
+    #[allow(clippy::too_many_arguments)] // the parts of a curve, validated
+    pub(super) fn solve_new(
+        dim: usize,
+        closed: bool,
+        kind: ParamKind,
+        points: &[f64],
+        dropped: Vec<usize>,
+        given: Option<&[f64]>,
+        alphas: &[f64],
+    ) -> Result<Self, Error> {
+        let mut c = Curve::empty();
+        let alphas = Alphas::PerInterval(alphas);
+        let mut maxes = Vec::new();
+        survey(points, dim, &mut maxes);
+        let pts = (points, &maxes[..]);
+        Self::solve_into(&mut c, dim, closed, kind, pts, dropped, given, alphas)?;
+        Ok(c)
+    }
+
+    /// Makes `points` the curve's points, solves every coordinate and
+    /// rebuilds every segment; `uniform` is the one alpha of every leg when
+    /// the caller knows it.
+    pub(super) fn solve_all(&mut self, points: &[f64], uniform: Option<f64>) {
+        let dim = self.dim();
+        if !self.closed && (1..=3).contains(&dim) {
+            // One fused sweep for all coordinates (the arithmetic of
+            // `Spline`'s construction).
+            let uniform = uniform.or_else(|| {
+                self.alphas
+                    .first()
+                    .copied()
+                    .filter(|&a| self.alphas.iter().all(|&b| b == a))
+            });
+            match dim {
+                1 => self.solve_fused::<1>(points, uniform),
+                2 => self.solve_fused::<2>(points, uniform),
+                _ => self.solve_fused::<3>(points, uniform),
+            }
+            return;
+        }
+        self.points.clear();
+        self.points.extend_from_slice(points);
+        let widths: Vec<f64> = self
+            .pieces
+            .knots()
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .collect();
+        self.solve_general(&widths);
+    }
+
+    /// [`Self::solve_all`] one coordinate at a time through the factored
+    /// system: closed curves, more than three dimensions, and the reference
+    /// the fused sweep is tested against.
+    pub(super) fn solve_general(&mut self, widths: &[f64]) {
+        let (n, dim) = (self.points.len() / self.dim(), self.dim());
+        self.d = vec![0.0; n * dim];
+        let mut col = vec![0.0; n];
+        let mut dev = Vec::with_capacity(n);
+        if self.closed {
+            let sys = ClosedSystem::new(widths, &self.alphas);
+            dev.resize(n, 0.0);
+            for c in 0..dim {
+                for (i, v) in col.iter_mut().enumerate() {
+                    *v = self.fv(i, c);
+                }
+                sys.solve(&col, &mut dev);
+                for (i, v) in dev.iter().enumerate() {
+                    self.d[i * dim + c] = *v;
+                }
+            }
+        } else {
+            let sys = OpenSystem::new(widths, &self.alphas);
+            for c in 0..dim {
+                for (i, v) in col.iter_mut().enumerate() {
+                    *v = self.fv(i, c);
+                }
+                sys.solve(&col, &mut dev);
+                for (i, v) in dev.iter().enumerate() {
+                    self.d[i * dim + c] = *v;
+                }
+            }
+        }
+        // Every segment: the alpha terms formed once per leg (once in all for
+        // one alpha), the closing leg of a closed curve last.
+        let legs = self.len();
+        let mut coefs = Vec::with_capacity(legs * dim);
+        let uniform = self
+            .alphas
+            .first()
+            .filter(|&&a| self.alphas.iter().all(|&b| b == a))
+            .map(|&a| alpha_terms(a));
+        for k in 0..legs {
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            let terms = uniform.unwrap_or_else(|| alpha_terms(self.alphas[k]));
+            let (d0, d1) = (&self.d[k * dim..][..dim], &self.d[j * dim..][..dim]);
+            for c in 0..dim {
+                let (f0, f1) = (self.fv(k, c), self.fv(j, c));
+                coefs.push(Piece(piece_coefs_with(f0, f1, d0[c], d1[c], terms)));
+            }
+        }
+        *self.pieces.parts_mut().coefs = coefs;
+    }
+
+    pub(super) fn update_segment(&mut self, k: usize) {
+        let (n, dim) = (self.n_points(), self.dim());
+        let j = (k + 1) % n;
+        let terms = alpha_terms(self.alphas[k]);
+        for c in 0..dim {
+            let piece = piece_coefs_with(
+                self.fv(k, c),
+                self.fv(j, c),
+                self.d[k * dim + c],
+                self.d[j * dim + c],
+                terms,
+            );
+            self.pieces.parts_mut().coefs[k * dim + c] = Piece(piece);
+        }
+    }
+
+    pub(super) fn n_points(&self) -> usize {
+        self.points.len() / self.dim()
+    }
+
+    /// [`fast::sweep::build_open_curve`] in `D` dimensions, which also writes the
+    /// copy of the points as it goes.
+    pub(super) fn solve_fused<const D: usize>(&mut self, points: &[f64], uniform: Option<f64>) {
+        let knots = self.pieces.knots();
+        let span = knots.last().copied().unwrap_or(0.0) - knots.first().copied().unwrap_or(0.0);
+        let ws = fast::inverse_power_of_two(span);
+        let inv = core::array::from_fn(|c| self.inv_scales.get(c).copied().unwrap_or(1.0));
+        let parts = self.pieces.parts_mut();
+        fast::sweep::build_open_curve::<D>(
+            parts.knots,
+            points,
+            inv,
+            &self.alphas,
+            uniform,
+            ws,
+            parts.coefs,
+            &mut self.d,
+            &mut self.points,
+        );
+    }
+
+    /// Coordinate `c` of knot point `i` (the curve's point at knot `i`) in the
+    /// curve's units, from `f`, the scaled control point's coordinate.
+    #[inline]
+    pub(super) fn knot_coord_with(&self, f: f64, i: usize, c: usize) -> f64 {
+        ((f + self.d[i * self.dim() + c]) * self.pieces.scale(c)).clamp(-f64::MAX, f64::MAX)
+    }
+
+    /// Coordinate `c` of knot point `i` in the curve's units.
+    #[inline]
+    pub(super) fn knot_coord(&self, i: usize, c: usize) -> f64 {
+        self.knot_coord_with(self.fv(i, c), i, c)
+    }
+
+    /// Coordinate `c` of control point `i`, scaled: `P / scale`.
+    #[inline]
+    pub(super) fn fv(&self, i: usize, c: usize) -> f64 {
+        self.points[i * self.dim() + c] * self.inv_scales[c]
+    }
+}

@@ -1,0 +1,397 @@
+//! Building a spline: checking the input, solving the paper's system (16)
+//! for the knot values and forming the pieces (fused in one sweep where it
+//! can, step by step where it must name a fault), and rebuilding in place.
+
+use super::{Extrapolate, Shape, Spline, TINY_SPAN};
+use crate::error::{Error, Field};
+use crate::fast::search::{Summary, STRIDE};
+use crate::fast::{sweep, Piece};
+use crate::method::{self, piece_coefs, OpenSystem};
+use crate::method::{power_of_two_scale, scale_for_max};
+use crate::pieces::Pieces;
+use crate::validate::{check_finite, resolve_alphas, validate_knots};
+use crate::validate::{Alphas, ALPHA_MAX, ALPHA_MIN, MIN_RELATIVE_INTERVAL};
+
+/// Every check of a spline's input, one at a time so that the first fault is
+/// named: the knots (giving the widths), the values' length and finiteness, the
+/// alphas (giving one per interval).
+pub(super) fn validate_step_by_step(
+    knots: &[f64],
+    values: &[f64],
+    alphas: Alphas<'_>,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let widths = validate_knots(knots)?;
+    if values.len() != knots.len() {
+        return Err(Error::LengthMismatch {
+            field: Field::Value,
+            expected: knots.len(),
+            found: values.len(),
+        });
+    }
+    check_finite(Field::Value, values)?;
+    let resolved = resolve_alphas(alphas, widths.len())?;
+    Ok((widths, resolved))
+}
+
+/// Every check of [`Spline::build`] in one branch-free pass: `Some(max |F|)`
+/// when the input is valid, `None` when something is wrong (the step-by-step
+/// validation then finds what). A finite positive span and widths that are
+/// positive and at least `span * MIN_RELATIVE_INTERVAL` imply finite,
+/// strictly increasing knots.
+///
+/// As it reads the knots it puts every [`STRIDE`]-th into `summary`
+/// (see [`Summary`]), which then needs no pass over them of its
+/// own; when it returns `None` the summary may be partly written.
+pub(super) fn quick_check(
+    knots: &[f64],
+    values: &[f64],
+    alphas: Alphas<'_>,
+    summary: &mut Summary,
+) -> Option<f64> {
+    let n = knots.len();
+    if n < 2 || values.len() != n {
+        return None;
+    }
+    let span = knots[n - 1] - knots[0];
+    if !(span.is_finite() && span > 0.0) {
+        return None;
+    }
+    let thr = span * MIN_RELATIVE_INTERVAL;
+    // Widths in four lanes, so that the loop vectorises; a stretch of
+    // `STRIDE` knots at a time, whose first goes into the summary.
+    let every = &mut summary.every;
+    every.clear();
+    every.reserve(n.div_ceil(STRIDE));
+    let mut lanes = [true; 4];
+    let (left, right) = (&knots[..n - 1], &knots[1..]);
+    let (lc, rc) = (left.chunks_exact(STRIDE), right.chunks_exact(STRIDE));
+    let (lr, rr) = (lc.remainder(), rc.remainder());
+    for (l, r) in lc.zip(rc) {
+        every.push(l[0]);
+        for j in 0..STRIDE {
+            let d = r[j] - l[j];
+            lanes[j % 4] &= (d >= thr) & (d > 0.0);
+        }
+    }
+    for (l, r) in lr.iter().zip(rr) {
+        let d = r - l;
+        lanes[0] &= (d >= thr) & (d > 0.0);
+    }
+    // The stretches the loop did not reach (the last knot's included).
+    every.extend(knots[(n - 1) / STRIDE * STRIDE..].iter().step_by(STRIDE));
+    let mut ok = lanes.iter().all(|&b| b);
+    // Four running maxima and finiteness flags, so that the loop vectorises.
+    let mut mx = [0.0f64; 4];
+    let mut fin = [true; 4];
+    let chunks = values.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for j in 0..4 {
+            let a = c[j].abs();
+            mx[j] = if a > mx[j] { a } else { mx[j] };
+            fin[j] &= c[j].is_finite();
+        }
+    }
+    for &v in rest {
+        let a = v.abs();
+        mx[0] = if a > mx[0] { a } else { mx[0] };
+        fin[0] &= v.is_finite();
+    }
+    ok &= fin.iter().all(|&f| f);
+    match alphas {
+        Alphas::Uniform(a) => ok &= (ALPHA_MIN..=ALPHA_MAX).contains(&a),
+        Alphas::PerInterval(a) => {
+            ok &= a.len() == n - 1;
+            ok &= a
+                .iter()
+                .fold(true, |ok, a| ok & (ALPHA_MIN..=ALPHA_MAX).contains(a));
+        }
+    }
+    let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
+    if ok {
+        summary.formed();
+    }
+    ok.then_some(m)
+}
+
+impl Spline {
+    /// Builds the spline with `alpha = 1/2` on every interval.
+    ///
+    /// # Errors
+    ///
+    /// See [`Spline::with_alphas`].
+    pub fn new(knots: &[f64], values: &[f64]) -> Result<Self, Error> {
+        Self::build(knots, values, Alphas::default())
+    }
+
+    /// Builds the spline with the same `alpha` on every interval.
+    ///
+    /// # Errors
+    ///
+    /// See [`Spline::with_alphas`].
+    pub fn with_alpha(knots: &[f64], values: &[f64], alpha: f64) -> Result<Self, Error> {
+        Self::build(knots, values, Alphas::Uniform(alpha))
+    }
+
+    /// Builds the spline with `alphas[k]` on interval `k` (one fewer alphas than
+    /// knots).
+    ///
+    /// # Errors
+    ///
+    /// - [`Error::TooFewPoints`] for fewer than 2 knots;
+    /// - [`Error::LengthMismatch`] when `values` or `alphas` has the wrong length;
+    /// - [`Error::NonFinite`] for a NaN or infinite knot, value or alpha;
+    /// - [`Error::NotIncreasing`] when a knot does not exceed the one before;
+    /// - [`Error::SpanOverflow`] when `knots[N-1] - knots[0]` overflows;
+    /// - [`Error::IntervalTooSmall`] for an interval narrower than
+    ///   [`MIN_RELATIVE_INTERVAL`] times the span;
+    /// - [`Error::AlphaOutOfRange`] for an alpha outside `[ALPHA_MIN, ALPHA_MAX]`.
+    pub fn with_alphas(knots: &[f64], values: &[f64], alphas: &[f64]) -> Result<Self, Error> {
+        Self::build(knots, values, Alphas::PerInterval(alphas))
+    }
+
+    /// Builds the spline from any [`Alphas`] choice.
+    ///
+    /// # Errors
+    ///
+    /// See [`Spline::with_alphas`].
+    pub fn build(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
+        let mut s = Self::empty();
+        s.rebuild(knots, values, alphas)?;
+        Ok(s)
+    }
+
+    /// A spline with nothing in it, to build into.
+    pub(super) fn empty() -> Self {
+        Spline {
+            pieces: Pieces::default(),
+            values: Vec::new(),
+            alphas: Shape::default(),
+            pre: 1.0,
+            extrapolate: Extrapolate::default(),
+        }
+    }
+
+    /// The spline through the points `(knots[k], values[k])`: the
+    /// interpolating variant (`docs/method.md` §11). Its knot values are
+    /// `values` (to rounding) and it touches every leg of its solved control
+    /// polygon, whose values [`Spline::values`] returns; it is C1 like every
+    /// spline here and passes through the data, but it is not confined to the
+    /// hull of `values` (it swings far less than the interpolating cubic spline).
+    /// Every capability of a spline works on it.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::build`]; [`Error::Overflow`] when a solved control value
+    /// leaves the range of a double.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Alphas, Spline};
+    /// let x = [0.0, 1.0, 2.0, 3.0];
+    /// let y = [0.0, 2.0, 1.0, 3.0];
+    /// let s = Spline::through(&x, &y, Alphas::default())?;
+    /// for (k, v) in s.knot_values().iter().enumerate() {
+    ///     assert!((v - y[k]).abs() < 1e-14);
+    /// }
+    /// // It touches the legs of its control polygon, not of the data.
+    /// let g = s.values();
+    /// assert!((s.eval(0.5)? - (g[0] + g[1]) / 2.0).abs() < 1e-14);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn through(knots: &[f64], values: &[f64], alphas: Alphas<'_>) -> Result<Self, Error> {
+        Self::through_fast(knots, values, alphas)
+    }
+
+    /// [`Spline::through`] step by step: validation that names each fault,
+    /// the system assembled and factored ([`method::through_controls`]); the
+    /// reference the fused sweep is tested against.
+    pub(crate) fn through_checked(
+        knots: &[f64],
+        values: &[f64],
+        alphas: Alphas<'_>,
+    ) -> Result<Self, Error> {
+        let (widths, resolved) = validate_step_by_step(knots, values, alphas)?;
+        let g = method::through_controls(&widths, &resolved, values, 1, false).ok_or(
+            Error::Overflow {
+                what: "a solved control value",
+            },
+        )?;
+        Self::build(knots, &g, alphas)
+    }
+
+    /// [`Spline::through`] for valid input, in one forward and one backward
+    /// sweep of `(T + K) d = K P` (§11) that forms each row as it goes, after
+    /// the build's one-pass check; anything the check does not pass goes the
+    /// step-by-step way, which names the fault.
+    pub(super) fn through_fast(
+        knots: &[f64],
+        values: &[f64],
+        alphas: Alphas<'_>,
+    ) -> Result<Self, Error> {
+        let mut s = Self::empty();
+        let Some(max_abs) = quick_check(knots, values, alphas, s.pieces.parts_mut().summary) else {
+            return Self::through_checked(knots, values, alphas);
+        };
+        let n = knots.len();
+        let scale = scale_for_max(max_abs);
+        let inv = 1.0 / scale;
+        let f = |k: usize| values[k] * inv;
+        let uniform = match alphas {
+            Alphas::Uniform(a) => Some(method::alpha_terms(a)),
+            Alphas::PerInterval(_) => None,
+        };
+        let terms = |k: usize| match (uniform, alphas) {
+            (Some(t), _) => t,
+            (None, Alphas::PerInterval(a)) => method::alpha_terms(a[k]),
+            (None, Alphas::Uniform(a)) => method::alpha_terms(a),
+        };
+        // Forward: c'_k and r'_k of the Thomas sweep, stored in `c` and `g`.
+        let mut c = vec![0.0; n];
+        let mut g = vec![0.0; n];
+        let (mut cp, mut rp) = (0.0, 0.0);
+        for k in 1..n.saturating_sub(1) {
+            let (hl, hr) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
+            let (p, q) = method::neighbour_weights(hl, hr);
+            let [al, b1, _, _] = terms(k - 1);
+            let [_, _, b2, cr] = terms(k);
+            let (lo, di, up) = method::through_row(p, q, al, b1, b2, cr);
+            let rhs = q * (f(k + 1) - f(k)) - p * (f(k) - f(k - 1));
+            let m = di - lo * cp;
+            cp = up / m;
+            rp = (rhs - lo * rp) / m;
+            c[k] = cp;
+            g[k] = rp;
+        }
+        // Backward: d_k = r'_k - c'_k d_{k+1}, then G_k = P_k - d_k.
+        let mut next = 0.0;
+        g[n - 1] = values[n - 1];
+        g[0] = values[0];
+        let mut max_g = values[0].abs().max(values[n - 1].abs());
+        for k in (1..n.saturating_sub(1)).rev() {
+            let d = g[k] - c[k] * next;
+            next = d;
+            g[k] = (f(k) - d) * scale;
+            if !g[k].is_finite() {
+                return Err(Error::Overflow {
+                    what: "a solved control value",
+                });
+            }
+            max_g = max_g.max(g[k].abs());
+        }
+        // The knots and alphas passed the check above and every control value
+        // is finite: the build needs no second check (and the summary of the
+        // knots is formed).
+        s.fill(knots, &g, alphas, max_g);
+        Ok(s)
+    }
+
+    /// Rebuilds this spline in place from new data, reusing its allocations
+    /// (no allocation at all when the new data is not longer than the old). The
+    /// extrapolation policy is kept. The result is the spline that
+    /// [`Spline::build`] returns for the same arguments.
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::with_alphas`]; on error the spline is left unchanged.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Alphas, Spline};
+    /// let mut s = Spline::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0])?;
+    /// s.rebuild(&[0.0, 1.0, 2.0], &[0.0, 2.0, 0.0], Alphas::Uniform(0.5))?;
+    /// assert!((s.eval(0.5)? - 1.0).abs() < 1e-15);
+    /// assert!(s.rebuild(&[0.0, 0.0], &[1.0, 2.0], Alphas::default()).is_err());
+    /// assert!((s.eval(0.5)? - 1.0).abs() < 1e-15);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn rebuild(
+        &mut self,
+        knots: &[f64],
+        values: &[f64],
+        alphas: Alphas<'_>,
+    ) -> Result<(), Error> {
+        let Some(max_abs) = quick_check(knots, values, alphas, self.pieces.parts_mut().summary)
+        else {
+            // Something is wrong (or on an edge the quick check does not
+            // decide): the step-by-step validation names it. The summary of
+            // the knots held first, which the check may have overwritten.
+            self.pieces.knots_changed();
+            let reference = Self::build_reference(knots, values, alphas)?;
+            let policy = self.extrapolate;
+            *self = reference.with_extrapolation(policy);
+            return Ok(());
+        };
+        self.fill(knots, values, alphas, max_abs);
+        Ok(())
+    }
+
+    /// The build after the check: `knots`, `values` and `alphas` are valid,
+    /// `max_abs` is the largest `|values[k]|`, and the summary is that of
+    /// `knots`.
+    pub(super) fn fill(&mut self, knots: &[f64], values: &[f64], alphas: Alphas<'_>, max_abs: f64) {
+        let n = knots.len();
+        let scale = scale_for_max(max_abs);
+        let span = knots[n - 1] - knots[0];
+        match alphas {
+            Alphas::Uniform(a) => self.alphas.set_uniform(a, n - 1),
+            Alphas::PerInterval(a) => self.alphas.set_each(a),
+        }
+        let parts = self.pieces.parts_mut();
+        sweep::build(
+            knots,
+            values,
+            self.alphas.given(),
+            self.alphas.uniform(),
+            1.0 / scale,
+            crate::fast::inverse_power_of_two(span),
+            (parts.coefs, parts.knots, &mut self.values),
+        );
+        self.pieces.set_scales([scale].into_iter());
+        self.pre = if span < TINY_SPAN {
+            crate::fast::inverse_power_of_two(span)
+        } else {
+            1.0
+        };
+    }
+
+    /// The straightforward construction: validate step by step, assemble and
+    /// factor the system with [`OpenSystem`], solve, and form each piece with
+    /// [`piece_coefs`]. The reference that the fused sweep is tested against.
+    pub(crate) fn build_reference(
+        knots: &[f64],
+        values: &[f64],
+        alphas: Alphas<'_>,
+    ) -> Result<Self, Error> {
+        let given = alphas;
+        let (widths, alphas) = validate_step_by_step(knots, values, given)?;
+        let scale = power_of_two_scale(values);
+        let inv = 1.0 / scale;
+        let f: Vec<f64> = values.iter().map(|v| v * inv).collect();
+        let system = OpenSystem::new(&widths, &alphas);
+        let mut d = Vec::new();
+        system.solve(&f, &mut d);
+        let coefs = (0..widths.len())
+            .map(|k| Piece(piece_coefs(f[k], f[k + 1], d[k], d[k + 1], alphas[k])))
+            .collect();
+        let span = knots[knots.len() - 1] - knots[0];
+        let mut shape = Shape::default();
+        match given {
+            Alphas::Uniform(a) => shape.set_uniform(a, alphas.len()),
+            Alphas::PerInterval(a) => shape.set_each(a),
+        }
+        Ok(Spline {
+            pieces: Pieces::from_parts(knots.to_vec(), coefs, vec![scale]),
+            values: values.to_vec(),
+            alphas: shape,
+            pre: if span < TINY_SPAN {
+                crate::fast::inverse_power_of_two(span)
+            } else {
+                1.0
+            },
+            extrapolate: Extrapolate::default(),
+        })
+    }
+}
