@@ -5,6 +5,10 @@
 //! control points, and every query answers a finite number or an error.
 #![no_main]
 
+use bzspline::Arclen;
+use bzspline::Bounds;
+use bzspline::Flatten;
+use bzspline::ParamCurve;
 use bzspline::{Curve, CurveBuilder, Param, Repeats, ALPHA_MAX, ALPHA_MIN};
 use bzspline_fuzz::Reader;
 use libfuzzer_sys::fuzz_target;

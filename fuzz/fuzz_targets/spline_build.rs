@@ -6,6 +6,7 @@
 //! solved control value overflows).
 #![no_main]
 
+use bzspline::ParamCurve;
 use bzspline::{Alphas, Error, Spline, ALPHA_MAX, ALPHA_MIN};
 use bzspline_fuzz::{cubic, cubic_deriv, Data, Reader};
 use libfuzzer_sys::fuzz_target;

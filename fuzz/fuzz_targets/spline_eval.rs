@@ -4,6 +4,7 @@
 //! batch answers equal the one-by-one answers.
 #![no_main]
 
+use bzspline::ParamCurve;
 use bzspline::{Error, Extrapolate, Spline};
 use bzspline_fuzz::{Data, Reader};
 use libfuzzer_sys::fuzz_target;

@@ -9,6 +9,8 @@
 // criterion_group! generates a public function that cannot carry a doc comment.
 #![allow(missing_docs)]
 
+use bzspline::Flatten;
+use bzspline::ParamCurve;
 use std::hint::black_box;
 use std::time::Duration;
 

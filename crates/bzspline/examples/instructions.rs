@@ -23,6 +23,9 @@
 #[allow(dead_code)] // the timing helpers the other examples use
 mod common;
 
+use bzspline::Bounds;
+use bzspline::Flatten;
+use bzspline::ParamCurve;
 use std::hint::black_box;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Spline};

@@ -14,6 +14,8 @@
 
 mod common;
 
+use bzspline::Bounds;
+use bzspline::Flatten;
 use std::hint::black_box;
 
 use bzspline::{Alphas, Curve, CurveBuilder, Spline};

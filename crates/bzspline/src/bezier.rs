@@ -150,7 +150,7 @@ impl<const D: usize> BezierPieces for CubicBez<D> {
 /// The fewest equal steps in `t` that keep every chord within `tol`: the
 /// chord over a step `delta` is within `delta^2 / 8 max |C''|` of the curve,
 /// and `C''` is linear in `t`, largest at an end (`docs/method.md` §3; the
-/// bound of [`crate::flatten`]).
+/// bound of [`Flatten`](crate::Flatten)).
 impl<const D: usize> Flatten for CubicBez<D> {
     fn flatten(&self, tol: f64) -> Result<Polyline, Error> {
         if !(tol.is_finite() && tol > 0.0) {

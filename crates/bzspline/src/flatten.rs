@@ -64,6 +64,7 @@ pub(crate) mod tests {
     use super::*;
     use crate::curve::Curve;
     use crate::spline::Spline;
+    use crate::traits::Flatten;
 
     /// Distance from `p` to the segment `a`-`b`.
     pub(crate) fn seg_dist(p: &[f64], a: &[f64], b: &[f64]) -> f64 {

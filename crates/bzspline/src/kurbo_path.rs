@@ -3,6 +3,7 @@
 use crate::curve::Curve;
 use crate::error::Error;
 use crate::spline::Spline;
+use crate::traits::ParamCurve;
 use kurbo::{BezPath, Point};
 
 fn check(v: &[f64]) -> Result<(), Error> {

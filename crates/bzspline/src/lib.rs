@@ -27,16 +27,21 @@
 //! [`Curve`] applies the construction to every coordinate of control points in
 //! `R^d` on one shared parameter grid ([`Param`]: uniform, chordal, centripetal
 //! or given), open or closed; a closed curve solves one cyclic tridiagonal
-//! system ([`CyclicThomas`]) and is C1 across its closing knot too. The module
-//! [`curve`] adds tangents, normals, curvature, arc length and its inverse,
-//! equal-length resampling, the exact bounding box, the nearest point, a local
-//! re-solve after moving one control point, Bezier and SVG export; [`flatten`]
-//! turns curves and splines into polylines within a tolerance. Optional
-//! features: `serde` (Serialize/Deserialize on the data types) and `kurbo`
-//! (conversion into `kurbo::BezPath`).
+//! system and is C1 across its closing knot too. A curve has tangents,
+//! normals, curvature, equal-length resampling, the nearest point, a local
+//! re-solve after moving one control point, and Bezier and SVG export.
+//!
+//! What curves and splines share is in capability traits, as in kurbo:
+//! [`ParamCurve`] (domain and evaluation), [`Arclen`] (arc length and its
+//! inverse), [`Bounds`] (the exact bounding box), [`Flatten`] (a polyline within
+//! a tolerance) and [`BezierPieces`]; import the trait to call its methods.
+//! [`Spline::smoothing`] fits noisy data; the module [`text`] holds the number
+//! writer and readers that every output and option parser uses. Optional
+//! features: `serde` (Serialize/Deserialize on the data types), `kurbo`
+//! (conversion into `kurbo::BezPath`) and `rayon` (parallel batches).
 //!
 //! ```
-//! use bzspline::{Curve, DEFAULT_ACCURACY};
+//! use bzspline::{Arclen, Curve, DEFAULT_ACCURACY};
 //!
 //! let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 //! let c = Curve::closed(&square)?; // uniform parameters, alpha = 1/2
@@ -77,10 +82,10 @@
 //! ```
 
 mod bezier;
-pub mod curve;
+mod curve;
 mod error;
 mod fast;
-pub mod flatten;
+mod flatten;
 mod fraction;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
@@ -90,10 +95,18 @@ mod pieces;
 mod poly;
 mod polyline;
 mod smoothing;
-pub mod spline;
+mod spline;
 mod traits;
 mod tridiag;
 mod validate;
+
+/// Numbers as text: the shortest round-trip writer every output uses, and
+/// the readers of numbers and fractions (`1/3`) that every entry point's
+/// options use.
+pub mod text {
+    pub use crate::fraction::{parse_alpha, parse_fraction};
+    pub use crate::num::Shortest;
+}
 
 pub use bezier::CubicBez;
 pub use curve::{
@@ -101,12 +114,9 @@ pub use curve::{
 };
 pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
-pub use fraction::{parse_alpha, parse_fraction};
-pub use num::Shortest;
 pub use smoothing::{Smoothed, Smoothing};
 pub use spline::{
-    Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline, ALPHA_MAX, ALPHA_MIN,
-    DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,
+    Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline, UnknownExtrapolation,
+    ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,
 };
 pub use traits::{write_svg_path, Arclen, BezierPieces, Bounds, Flatten, ParamCurve};
-pub use tridiag::{CyclicThomas, Thomas};

@@ -11,7 +11,7 @@ use core::fmt;
 /// which no reader takes for a number: the writers here refuse them first.
 ///
 /// ```
-/// use bzspline::Shortest;
+/// use bzspline::text::Shortest;
 /// assert_eq!(Shortest(1e308).to_string(), "1e308");
 /// assert_eq!(Shortest(0.1).to_string(), "0.1");
 /// assert_eq!(Shortest(100.0).to_string(), "100");

@@ -77,12 +77,13 @@ pub trait ParamCurve {
     /// As [`ParamCurve::eval_into`]; an overflow of the derivative.
     fn deriv_into(&self, t: f64, order: u32, out: &mut [f64]) -> Result<(), Error>;
 
-    /// The point at `t` as an array of `D` coordinates.
+    /// The point at `t` as an array of `D` coordinates (`Curve::point(i)` is
+    /// control point `i`, not this).
     ///
     /// # Errors
     ///
     /// As [`ParamCurve::eval_into`] (`D` must be the dimension).
-    fn point<const D: usize>(&self, t: f64) -> Result<[f64; D], Error>
+    fn point_at<const D: usize>(&self, t: f64) -> Result<[f64; D], Error>
     where
         Self: Sized,
     {
@@ -124,6 +125,16 @@ pub trait BezierPieces {
 }
 
 /// A polyline within a distance of the curve.
+///
+/// On a segment with local parameter `t` in `[0, 1]`, the chord between the
+/// points at `t0` and `t0 + delta` deviates from the curve by at most
+/// `delta^2 / 8 * max |r''(t)|`, and `r''` of a cubic is linear in `t`, largest
+/// at an end of the segment; `m = ceil(sqrt(max |r''| / (8 tol)))` equal steps
+/// a segment keep every point of the curve within `tol` of the polyline, the
+/// fewest equal steps the bound allows. Vertices are points of the curve, and
+/// the first and last are its ends exactly. A spline takes equal steps a
+/// piece; a planar curve also merges runs of segments that stay within `tol`
+/// of one chord.
 pub trait Flatten {
     /// Vertices on the curve, every point of the curve within `tol` of the
     /// polyline; the first and last vertices are the curve's ends.

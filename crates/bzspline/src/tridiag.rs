@@ -1,7 +1,7 @@
 //! Tridiagonal solvers (Thomas algorithm).
 //!
 //! The spline's system is diagonally dominant for every alpha in `[1/3, 2/3]`
-//! (see [`crate::spline`]), so Gaussian elimination without pivoting is stable.
+//! (`docs/method.md` §5), so Gaussian elimination without pivoting is stable.
 //! The matrix does not depend on the right-hand side: a curve in `R^d` factors it
 //! once and solves `d` right-hand sides.
 
@@ -10,7 +10,7 @@
 /// Row `i` reads `lower[i] * x[i-1] + diag[i] * x[i] + upper[i] * x[i+1] = r[i]`
 /// (`lower[0]` and `upper[n-1]` are ignored).
 #[derive(Clone, Debug, Default)]
-pub struct Thomas {
+pub(crate) struct Thomas {
     /// `lower[i]` for the forward sweep.
     lower: Vec<f64>,
     /// Reciprocal of the eliminated pivot of row `i`.
@@ -25,7 +25,7 @@ impl Thomas {
     /// Returns `None` if a pivot is zero or not finite, which cannot happen for a
     /// diagonally dominant matrix with a strictly dominant first row.
     #[must_use]
-    pub fn factor(lower: &[f64], diag: &[f64], upper: &[f64]) -> Option<Self> {
+    pub(crate) fn factor(lower: &[f64], diag: &[f64], upper: &[f64]) -> Option<Self> {
         let n = diag.len();
         if lower.len() != n || upper.len() != n {
             return None;
@@ -38,7 +38,10 @@ impl Thomas {
     /// that the caller needs no arrays for them.
     ///
     /// Returns `None` as [`Self::factor`] does.
-    pub fn factor_rows(n: usize, mut row: impl FnMut(usize) -> (f64, f64, f64)) -> Option<Self> {
+    pub(crate) fn factor_rows(
+        n: usize,
+        mut row: impl FnMut(usize) -> (f64, f64, f64),
+    ) -> Option<Self> {
         let mut lower = Vec::with_capacity(n);
         let mut inv_pivot = Vec::with_capacity(n);
         let mut up = Vec::with_capacity(n);
@@ -64,20 +67,14 @@ impl Thomas {
 
     /// Number of unknowns.
     #[must_use]
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.inv_pivot.len()
-    }
-
-    /// True for the empty system.
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.inv_pivot.is_empty()
     }
 
     /// Solves in place: on entry `rhs` holds the right-hand side, on return the
     /// solution. `rhs.len()` must equal [`Self::len`]; other lengths leave `rhs`
     /// untouched and return `false`.
-    pub fn solve_in_place(&self, rhs: &mut [f64]) -> bool {
+    pub(crate) fn solve_in_place(&self, rhs: &mut [f64]) -> bool {
         let n = self.len();
         if rhs.len() != n {
             return false;
@@ -109,7 +106,7 @@ impl Thomas {
 /// `v = (1, 0, .., lower[0] / gamma)`. `B` stays diagonally dominant when the
 /// cyclic matrix is, so each solve is two Thomas sweeps and one update.
 #[derive(Clone, Debug)]
-pub struct CyclicThomas {
+pub(crate) struct CyclicThomas {
     thomas: Thomas,
     /// `B^-1 u`.
     z: Vec<f64>,
@@ -127,7 +124,7 @@ impl CyclicThomas {
     /// Sherman-Morrison denominator is zero or not finite (which cannot happen
     /// for a strictly diagonally dominant matrix).
     #[must_use]
-    pub fn factor(lower: &[f64], diag: &[f64], upper: &[f64]) -> Option<Self> {
+    pub(crate) fn factor(lower: &[f64], diag: &[f64], upper: &[f64]) -> Option<Self> {
         let n = diag.len();
         if n < 3 || lower.len() != n || upper.len() != n {
             return None;
@@ -159,19 +156,13 @@ impl CyclicThomas {
 
     /// Number of unknowns.
     #[must_use]
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.z.len()
-    }
-
-    /// Always false: a cyclic system has at least three unknowns.
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.z.is_empty()
     }
 
     /// Solves in place, as [`Thomas::solve_in_place`]: wrong lengths leave `rhs`
     /// untouched and return `false`.
-    pub fn solve_in_place(&self, rhs: &mut [f64]) -> bool {
+    pub(crate) fn solve_in_place(&self, rhs: &mut [f64]) -> bool {
         let n = self.len();
         if !self.thomas.solve_in_place(rhs) {
             return false;

@@ -6,6 +6,8 @@
 //! spline are exact at any magnitude; and a curve near `f64::MAX` found by
 //! fuzzing.
 
+use bzspline::Bounds;
+use bzspline::ParamCurve;
 use bzspline::{Curve, Error, Param, Spline, ALPHA_MAX, ALPHA_MIN};
 use proptest::collection::vec;
 use proptest::prelude::*;

@@ -2,6 +2,10 @@
 //! flattening, nearest point, bounding box, SVG round trip, and independent
 //! checks of the knot points.
 
+use bzspline::Arclen;
+use bzspline::Bounds;
+use bzspline::Flatten;
+use bzspline::ParamCurve;
 use bzspline::{Curve, Error, Param, Spline, ALPHA_MAX, ALPHA_MIN};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;

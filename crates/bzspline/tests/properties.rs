@@ -2,6 +2,7 @@
 //! fixed case counts): convex hull, Bezier export, derivative, invariance under
 //! linear functions and scaling, exact straight lines, extreme knot spacing.
 
+use bzspline::ParamCurve;
 use bzspline::{Extrapolate, Spline, ALPHA_MAX, ALPHA_MIN};
 use proptest::collection::vec;
 use proptest::prelude::*;
