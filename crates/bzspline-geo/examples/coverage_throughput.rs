@@ -13,6 +13,7 @@
 //! side (or only makes the mosaic), for instruction counts:
 //! `valgrind --tool=callgrind target/release/examples/coverage_throughput 60 55 4 1 --only coverage`.
 
+use bzspline::Flatten;
 use std::time::Instant;
 
 use bzspline::{CurveBuilder, Param};

@@ -69,17 +69,17 @@ pub struct CoverageBuilder {
 impl CoverageBuilder {
     /// Merges positions closer than `distance` first, and puts positions
     /// that close to another line's or ring's edge into it
-    /// ([`crate::topology::snap`]); `None` (the default) does not snap.
+    /// ([`crate::snap`]); `None` (the default) does not snap.
     pub fn snap(mut self, distance: impl Into<Option<f64>>) -> Self {
         self.snap = distance.into();
         self
     }
 
     /// Smooths the geometries as one part of a larger coverage, with the
-    /// nodes of the whole ([`crate::nodes`]): the part's lines and rings are
+    /// nodes of the whole ([`crate::parts`]): the part's lines and rings are
     /// cut as the whole coverage would cut them, and smoothed the same where
     /// the part also holds the features that meet its extent (see the module
-    /// docs of [`crate::nodes`]); with the nodes' extent the default
+    /// docs of [`crate::parts`]); with the nodes' extent the default
     /// tolerance is the whole's. Snapping is done within the part; snap the
     /// whole first when parts must agree on it.
     pub fn nodes(mut self, nodes: Nodes) -> Self {
@@ -261,7 +261,7 @@ impl std::fmt::Display for Location {
 }
 
 /// The lines and rings of `geometries`, in the order a [`Coverage`] holds
-/// them: for [`crate::nodes::meetings`] and [`crate::nodes::Nodes::of`].
+/// them: for [`crate::parts::meetings`] and [`crate::nodes::Nodes::of`].
 #[must_use]
 pub fn coverage_chains(geometries: &[Geometry<f64>]) -> Vec<(ChainKind, Vec<Coord>)> {
     gather(geometries).0

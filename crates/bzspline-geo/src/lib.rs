@@ -13,7 +13,7 @@
 //! arc or itself, where a ring would turn over or a hole leave its shell, the
 //! arcs involved are refined (control points inserted along their legs, which
 //! draws the curve towards the original polyline) until nothing conflicts,
-//! keeping an original edge only as the last resort ([`smooth`] module).
+//! keeping an original edge only as the last resort (below).
 //!
 //! What is promised, for input whose arcs do not cross:
 //!
@@ -36,25 +36,62 @@
 //! assert_eq!(smoothed.len(), 2);
 //! # Ok::<(), bzspline_geo::Error>(())
 //! ```
+//!
+//! ## Arcs
+//!
+//! A coverage's lines and rings are cut into arcs, maximal runs of edges
+//! used by the same lines and rings, so that a border two polygons share is
+//! stored once.
+//!
+//! The arcs are found the way topojson-server finds them: a position is a
+//! *junction* when it ends a line or when it is met with two different pairs
+//! of neighbours (two runs of edges part or join there); every line and ring
+//! is cut at its junctions, and runs with the same positions in the same or
+//! the opposite order become one arc. A ring without junctions is one closed
+//! arc (an island, a lake, a lone polygon), found again when another ring has
+//! the same positions from any start and in either direction. Positions are
+//! compared exactly, bit for bit ([`snap`] merges near ones first).
+//!
+//! ## Smoothing
+//!
+//! Every arc is smoothed once, as the method's curve through its positions
+//! taken as control points, flattened to a tolerance, and then refined
+//! where the result would cross, touch or overlap itself or another arc, or
+//! where a ring would turn over or a hole leave its shell.
+//!
+//! An open arc is smoothed as an open curve, which starts and ends at the
+//! arc's end positions (the nodes), so arcs still meet where they met. A
+//! closed arc whose start is no node (an island, a lake) is smoothed as a
+//! closed curve. Positions that must stay (nodes inside an arc, and with
+//! [`SmoothOptions::keep_angle`] every sharper corner) cut an arc into
+//! pieces, each smoothed on its own.
+//!
+//! Refinement: the curve of the method touches every leg of its control
+//! polygon and lies close to it, so inserting control points along the legs
+//! (each leg cut into `2^level` equal parts) draws the curve towards the
+//! original polyline, which did not cross. Each conflict raises the level of
+//! the legs of the two segments involved (and their neighbours); a leg past
+//! [`MAX_LEVEL`] is kept as the original edge, the last resort. Conflicts
+//! between two original edges were in the input and are left as they are.
 
 mod coverage;
 mod crossings;
 mod error;
 mod graph;
-pub mod levels;
-pub mod line;
-pub mod nodes;
+mod levels;
+mod line;
+mod nodes;
 pub mod parts;
-pub mod smooth;
+mod smooth;
 mod smoothing;
-pub mod topology;
+mod topology;
 
 pub use coverage::{coverage_chains, Coverage, CoverageBuilder, Location};
 pub use error::Error;
-pub use levels::{arc_key, Levels};
+pub use line::smooth_line;
 pub use nodes::Nodes;
 pub use smooth::{
     default_tolerance_of, SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL,
 };
 pub use smoothing::Smooth;
-pub use topology::{ArcRef, Chain, ChainKind, Topology};
+pub use topology::{snap, ArcRef, Chain, ChainKind, Topology};

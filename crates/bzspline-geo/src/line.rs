@@ -1,15 +1,15 @@
-//! One line or ring smoothed on its own, in any dimension: the method's
-//! curve with its positions as control points (open for a line, closed for a
-//! ring), flattened to a tolerance, with no regard for neighbours. What
-//! smoothing ring by ring means, and how positions with z are smoothed (the
-//! third coordinate carried along as a curve in space).
+//! One line or ring smoothed on its own, in any dimension.
 
+use bzspline::Flatten;
 use bzspline::{CurveBuilder, Error, Repeats};
 
 use crate::smooth::SmoothOptions;
 
 /// The smoothed positions of one line (`closed` false) or ring, `dim`
-/// numbers a position, flattened to within `tolerance`.
+/// numbers a position, flattened to within `tolerance`: the method's curve
+/// with the positions as control points (open for a line, closed for a
+/// ring), with no regard for neighbours. This is what smoothing ring by ring
+/// means; positions with z are smoothed as a curve in space.
 ///
 /// A line keeps its end positions exactly; a ring comes out closed, its last
 /// position bit for bit its first (a ring's closing repeat in the input is
@@ -27,7 +27,7 @@ use crate::smooth::SmoothOptions;
 /// # Examples
 ///
 /// ```
-/// use bzspline_geo::{line::smooth_line, SmoothOptions};
+/// use bzspline_geo::{smooth_line, SmoothOptions};
 ///
 /// // A line in space: x, y, z.
 /// let pts = [0.0, 0.0, 10.0, 1.0, 2.0, 11.0, 3.0, 2.0, 12.0, 4.0, 0.0, 13.0];

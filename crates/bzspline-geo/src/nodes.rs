@@ -1,28 +1,5 @@
-//! Nodes found over a whole coverage and handed to its parts, so that each
-//! part, smoothed alone, cuts every arc it holds as the whole coverage would,
-//! and smooths it the same.
-//!
-//! A part of a coverage (one partition of a large one, say) finds its own
-//! junctions, but not those it shares with other parts: where a border runs
-//! on in another part, or another part's line ends on it, the part sees no
-//! junction. [`meetings`] says, for one part, how each of its positions is
-//! met; [`across`] combines the parts' meetings into the positions that are
-//! junctions of the whole but maybe not of a part; given those
-//! ([`CoverageBuilder::nodes`](crate::CoverageBuilder::nodes)), every part cuts
-//! its chains where the whole does. Arcs are stored in a canonical form that
-//! does not depend on the order of the chains, so the same arc is smoothed
-//! to the same positions, bit for bit, in every part that holds it and the
-//! rings that use it.
-//!
-//! Two things about an arc depend on more than the arc: how many positions it
-//! must keep (a ring of two arcs keeps three from each), and whether it must
-//! be refined (where it would come too close to another arc). A part decides
-//! them right when it also holds the features of other parts that meet its
-//! extent (a ring that shares an arc, and an arc that comes near one, meet
-//! it), those next to them (so that their arcs are cut as in the whole), and
-//! runs the rounds of the conflict search together with the other parts,
-//! passing the [`Levels`](crate::Levels) between rounds: the protocol of
-//! [`crate::parts`].
+//! The nodes of a whole coverage handed to its parts, and how the parts
+//! find them (the protocol in [`crate::parts`]).
 
 use std::hash::Hasher;
 
@@ -42,7 +19,7 @@ use crate::graph::{junctions, key, ChainKind, Paths, UNMET};
 /// # Examples
 ///
 /// ```
-/// use bzspline_geo::nodes::{across, meetings};
+/// use bzspline_geo::parts::{across, meetings};
 /// use bzspline_geo::{coverage_chains, Coverage, SmoothOptions};
 /// use geo_types::{polygon, Geometry};
 ///
@@ -98,7 +75,7 @@ impl Nodes {
             .collect();
         Ok(Nodes {
             keys,
-            extent: extent(chains),
+            extent: chains_extent(chains),
         })
     }
 
@@ -220,7 +197,7 @@ pub fn across(meetings: impl IntoIterator<Item = Meeting>) -> Nodes {
 
 /// The bounding box of `chains`' finite positions; `None` without any.
 #[must_use]
-pub fn extent(chains: &[(ChainKind, Vec<Coord>)]) -> Option<Rect<f64>> {
+pub fn chains_extent(chains: &[(ChainKind, Vec<Coord>)]) -> Option<Rect<f64>> {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for c in chains.iter().flat_map(|(_, cs)| cs) {
         if c.x.is_finite() && c.y.is_finite() {

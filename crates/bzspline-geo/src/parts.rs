@@ -3,7 +3,7 @@
 //! smoothed at once: which features each part holds, and the rounds of the
 //! conflict search they run together.
 //!
-//! Every part is smoothed with the nodes of the whole ([`crate::nodes`]) and
+//! Every part is smoothed with the nodes of the whole ([Nodes](#nodes)) and
 //! holds three kinds of features:
 //!
 //! - its own, whose results it keeps;
@@ -22,11 +22,39 @@
 //! levels all parts ended the round before at, and the levels they end at are
 //! merged (each leg at its highest); when no part raised any, the parts'
 //! results of that round are the whole's. There are at most [`MAX_ROUNDS`].
+//!
+//! ## Nodes
+//!
+//! The [`Nodes`](crate::Nodes) are found over the whole coverage and handed
+//! to every part, so that each part, smoothed alone, cuts every arc it holds
+//! as the whole coverage would, and smooths it the same.
+//!
+//! A part of a coverage (one partition of a large one, say) finds its own
+//! junctions, but not those it shares with other parts: where a border runs
+//! on in another part, or another part's line ends on it, the part sees no
+//! junction. [`meetings`] says, for one part, how each of its positions is
+//! met; [`across`] combines the parts' meetings into the positions that are
+//! junctions of the whole but maybe not of a part; given those
+//! ([`CoverageBuilder::nodes`](crate::CoverageBuilder::nodes)), every part cuts
+//! its chains where the whole does. Arcs are stored in a canonical form that
+//! does not depend on the order of the chains, so the same arc is smoothed
+//! to the same positions, bit for bit, in every part that holds it and the
+//! rings that use it.
+//!
+//! Two things about an arc depend on more than the arc: how many positions it
+//! must keep (a ring of two arcs keeps three from each), and whether it must
+//! be refined (where it would come too close to another arc). A part decides
+//! them right when it also holds the features of other parts that meet its
+//! extent (a ring that shares an arc, and an arc that comes near one, meet
+//! it), those next to them (so that their arcs are cut as in the whole), and
+//! runs the rounds of the conflict search together with the other parts,
+//! passing the [`Levels`] between rounds, as above.
 
 use geo_types::{coord, Rect};
 
 use crate::error::Error;
-use crate::levels::Levels;
+pub use crate::levels::{arc_key, Levels};
+pub use crate::nodes::{across, chains_extent, meetings, Meeting};
 
 /// The most rounds parts run together before giving up (the whole needs at
 /// most three times [`crate::MAX_LEVEL`]; this leaves room for every part's
@@ -139,8 +167,7 @@ impl Holding {
 /// # Examples
 ///
 /// ```
-/// use bzspline_geo::parts::Rounds;
-/// use bzspline_geo::Levels;
+/// use bzspline_geo::parts::{Levels, Rounds};
 ///
 /// let mut rounds = Rounds::new();
 /// assert_eq!(rounds.round(), 1);

@@ -1,23 +1,7 @@
-//! Smoothing a topology: every arc once, as the method's curve through its
-//! positions taken as control points, flattened to a tolerance; then refined
-//! where the result would cross, touch or overlap itself or another arc, or
-//! where a ring would turn over or a hole leave its shell.
-//!
-//! An open arc is smoothed as an open curve, which starts and ends at the
-//! arc's end positions (the nodes), so arcs still meet where they met. A
-//! closed arc whose start is no node (an island, a lake) is smoothed as a
-//! closed curve. Positions that must stay (nodes inside an arc, and with
-//! [`SmoothOptions::keep_angle`] every sharper corner) cut an arc into
-//! pieces, each smoothed on its own.
-//!
-//! Refinement: the curve of the method touches every leg of its control
-//! polygon and lies close to it, so inserting control points along the legs
-//! (each leg cut into `2^level` equal parts) draws the curve towards the
-//! original polyline, which did not cross. Each conflict raises the level of
-//! the legs of the two segments involved (and their neighbours); a leg past
-//! [`MAX_LEVEL`] is kept as the original edge, the last resort. Conflicts
-//! between two original edges were in the input and are left as they are.
+//! Smoothing a topology: the options, every arc once, the rounds of the
+//! conflict search (the crate docs say how).
 
+use bzspline::Flatten;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use bzspline::{CurveBuilder, Param};
@@ -209,7 +193,7 @@ struct Plan {
 }
 
 impl Topology {
-    /// Smooths every arc once (see the [module docs](crate::smooth)); shared
+    /// Smooths every arc once (see the [crate docs](crate#smoothing)); shared
     /// borders come out identical for every line and ring that uses them.
     ///
     /// # Errors

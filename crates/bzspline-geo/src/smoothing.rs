@@ -18,7 +18,7 @@ use crate::error::Error;
 use crate::smooth::SmoothOptions;
 
 /// Geometries smoothed with the method's curves, each as a coverage of its
-/// own (see the [module docs](self)).
+/// own (see the crate docs).
 ///
 /// # Examples
 ///

@@ -1,15 +1,5 @@
-//! The topology of a coverage: its lines and rings cut into arcs, maximal
-//! runs of edges used by the same lines and rings, so that a border two
-//! polygons share is stored once.
-//!
-//! The arcs are found the way topojson-server finds them: a position is a
-//! *junction* when it ends a line or when it is met with two different pairs
-//! of neighbours (two runs of edges part or join there); every line and ring
-//! is cut at its junctions, and runs with the same positions in the same or
-//! the opposite order become one arc. A ring without junctions is one closed
-//! arc (an island, a lake, a lone polygon), found again when another ring has
-//! the same positions from any start and in either direction. Positions are
-//! compared exactly, bit for bit ([`snap`] merges near ones first).
+//! The topology of a coverage: its lines and rings cut into arcs (the
+//! crate docs say how arcs are found).
 
 use rustc_hash::FxHashMap;
 

@@ -1,10 +1,11 @@
 //! Parts of a coverage smoothed alone, each with the nodes of the whole
-//! (`bzspline_geo::nodes`), against the whole coverage smoothed at once:
+//! (`bzspline_geo::parts`), against the whole coverage smoothed at once:
 //! every feature must come out the same, bit for bit.
 
 mod common;
 
-use bzspline_geo::nodes::{across, extent, meetings, Nodes};
+use bzspline_geo::parts::{across, chains_extent, meetings};
+use bzspline_geo::Nodes;
 use bzspline_geo::{coverage_chains, parts, Coverage, SmoothOptions, Stats};
 use common::*;
 use geo_types::{Geometry, LineString};
@@ -50,7 +51,7 @@ fn by_parts_with(
         met.extend(meetings(&coverage_chains(p)).unwrap());
     }
     let mut nodes = across(met);
-    if let Some(e) = extent(&coverage_chains(gs)) {
+    if let Some(e) = chains_extent(&coverage_chains(gs)) {
         nodes = nodes.with_extent(e);
     }
     let mut out: Vec<Option<Geometry<f64>>> = vec![None; gs.len()];

@@ -6,7 +6,7 @@
 //!   JSON arrays and `fit` objects, GeoJSON (every geometry checked first) and
 //!   the paper's examples, each point knowing the file and line it came from.
 //! - [`model`]: a fit (a spline y(x) or a curve) and its JSON and SVG forms,
-//!   numbers written by the one formatter ([`bzspline::Shortest`]).
+//!   numbers written by the one formatter ([`bzspline::text::Shortest`]).
 //! - [`options`]: the options every entry point takes, parsed once (alphas
 //!   as decimals or fractions).
 //! - [`time`]: ISO 8601 dates and date-times as numbers and back.

@@ -470,7 +470,7 @@ struct Compact;
 
 impl serde_json::ser::Formatter for Compact {
     fn write_f64<W: ?Sized + std::io::Write>(&mut self, w: &mut W, v: f64) -> std::io::Result<()> {
-        write!(w, "{}", bzspline::Shortest(v))
+        write!(w, "{}", bzspline::text::Shortest(v))
     }
 }
 
@@ -519,9 +519,9 @@ impl serde_json::ser::Formatter for LinesFormatter {
         w.write_all(if self.depth == 1 { b": " } else { b":" })
     }
 
-    /// Numbers as every output writes them ([`bzspline::Shortest`]).
+    /// Numbers as every output writes them ([`bzspline::text::Shortest`]).
     fn write_f64<W: ?Sized + std::io::Write>(&mut self, w: &mut W, v: f64) -> std::io::Result<()> {
-        write!(w, "{}", bzspline::Shortest(v))
+        write!(w, "{}", bzspline::text::Shortest(v))
     }
 }
 

@@ -1,12 +1,12 @@
 //! The options more than one entry point takes (the command, its server,
 //! the bindings), parsed once: shape parameters as decimals or fractions
-//! ([`bzspline::parse_fraction`], [`bzspline::parse_alpha`], re-exported
+//! ([`bzspline::text::parse_fraction`], [`bzspline::text::parse_alpha`], re-exported
 //! here). The parametrisation's names are [`bzspline::Param`]'s own
 //! (`"centripetal".parse()`), the smoothing options' checks and defaults
 //! [`bzspline_geo::SmoothOptions`]'s.
 
+pub use bzspline::text::{parse_alpha, parse_fraction};
 use bzspline::Smoothing;
-pub use bzspline::{parse_alpha, parse_fraction};
 
 /// A smoothing weight, as `--smooth` and the bindings take it: `auto` (or
 /// `gcv`) for the `lambda` of least generalized cross-validation score, or

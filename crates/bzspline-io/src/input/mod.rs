@@ -2,11 +2,12 @@
 //! Every point keeps where it came from, so that errors (the readers' own and the
 //! library's, which carry 0-based indices) name the file and line at fault.
 //!
-//! One file a format: [`table`] (CSV, TSV, semicolons), [`json`] (arrays of
-//! points and `fit`'s object), [`geojson`] (the first line, ring or run of
+//! One file a format: `table.rs` ([`parse_table`]: CSV, TSV, semicolons),
+//! `json.rs` ([`parse_json`]: arrays of points and `fit`'s object),
+//! `geojson.rs` ([`parse_geojson_points`]: the first line, ring or run of
 //! points); the check every GeoJSON geometry passes before it is converted
-//! ([`geometry`]); the paper's examples in [`examples`]; library errors mapped
-//! to lines in [`explain`].
+//! (`geometry.rs`, [`check_document`]); the paper's examples in `examples.rs`;
+//! library errors mapped to lines in `explain.rs` ([`explain`]).
 
 mod examples;
 mod explain;
@@ -25,7 +26,7 @@ pub use examples::example;
 pub use examples::EXAMPLE1;
 pub use explain::explain;
 pub use geojson::parse_geojson_points;
-pub use geometry::{check_document, to_geojson, MAX_POSITION_LEN};
+pub use geometry::{check_document, to_geojson, Fault, MAX_POSITION_LEN};
 pub use json::parse_json;
 pub use table::{parse_table, parse_table_with, Col, Select};
 

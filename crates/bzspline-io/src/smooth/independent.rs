@@ -145,7 +145,7 @@ fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Po
         .alpha(opts.alpha)
         .param(opts.param.clone())
         .through(opts.through);
-    let out = bzspline_geo::line::smooth_line(&flat, dim, closed, opts.tolerance, &smooth)
+    let out = bzspline_geo::smooth_line(&flat, dim, closed, opts.tolerance, &smooth)
         .map_err(|e| anyhow!("{e}"))?;
     Ok(out
         .chunks_exact(dim)

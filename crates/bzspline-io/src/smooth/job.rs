@@ -52,7 +52,7 @@ pub struct Settings {
 
 impl Settings {
     /// Checks the settings as a whole: every number in its range
-    /// ([`options`](crate::options)), and no combination that cannot be
+    /// ([`crate::options`]), and no combination that cannot be
     /// done: every geometry on its own (`independent`) with a snap distance
     /// or TopoJSON output, which need one topology for the document.
     ///
