@@ -71,10 +71,10 @@ pub fn run(cli: Cli) -> Result<()> {
 }
 
 /// A number as text that parses back to the same double, as every output of
-/// the command writes it ([`bzspline::Shortest`]).
+/// the command writes it ([`bzspline::text::Shortest`]).
 #[must_use]
 pub fn num(v: f64) -> String {
-    bzspline::Shortest(v).to_string()
+    bzspline::text::Shortest(v).to_string()
 }
 
 fn fit(a: &FitArgs) -> Result<()> {

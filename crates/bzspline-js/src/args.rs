@@ -189,11 +189,11 @@ impl Options {
 }
 
 /// One alpha: a number, or text (a decimal or a fraction `p/q`, parsed by
-/// [`bzspline::parse_alpha`], which also checks the range). A number's range
+/// [`bzspline::text::parse_alpha`], which also checks the range). A number's range
 /// is checked where it is used (by the library, or [`check_alpha`]).
 pub fn alpha_value(v: &JsValue) -> Result<f64, JsValue> {
     match v.as_string() {
-        Some(s) => bzspline::parse_alpha(&s).map_err(range_error),
+        Some(s) => bzspline::text::parse_alpha(&s).map_err(range_error),
         None => v.as_f64().ok_or_else(|| {
             type_error(format!(
                 "alpha must be a number or a fraction such as \"1/3\" (found {})",

@@ -1,6 +1,9 @@
 //! `Curve`: the method's curve through control points in the plane or in
 //! space, open or closed, for JavaScript.
 
+use bzspline::Bounds;
+use bzspline::Flatten;
+use bzspline::ParamCurve;
 use bzspline::{Arclen, Param, DEFAULT_ACCURACY};
 use js_sys::{Array, Float64Array};
 use wasm_bindgen::prelude::*;

@@ -1,6 +1,7 @@
 //! `Spline`: the method's spline y = S(x) for JavaScript, with values,
 //! derivatives, integrals, extrema and its exact Bezier pieces.
 
+use bzspline::ParamCurve;
 use std::rc::Rc;
 
 use bzspline::{Extrapolate, ExtremumKind};

@@ -1,6 +1,9 @@
 //! `bzspline.Curve`: the method's curve in R^d, open or closed, for numpy
 //! arrays.
 
+use bzspline::Bounds;
+use bzspline::Flatten;
+use bzspline::ParamCurve;
 use std::sync::Arc;
 
 use numpy::ndarray::{ArrayD, IxDyn};

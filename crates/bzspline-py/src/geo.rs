@@ -7,9 +7,8 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2}
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
-use bzspline_geo::line::smooth_line;
-use bzspline_geo::nodes::{across, meetings, Meeting, Nodes};
-use bzspline_geo::{coverage_chains, parts, Coverage, Levels, SmoothOptions};
+use bzspline_geo::parts::{self, across, meetings, Levels, Meeting};
+use bzspline_geo::{coverage_chains, smooth_line, Coverage, Nodes, SmoothOptions};
 
 /// Coordinates and offsets (innermost first) of a ragged array.
 type Ragged = (Vec<[f64; 2]>, Vec<Vec<i64>>);

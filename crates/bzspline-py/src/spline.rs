@@ -2,6 +2,7 @@
 //! scipy's conventions (calling, `derivative`, `antiderivative`,
 //! `integrate`, pickling).
 
+use bzspline::ParamCurve;
 use std::sync::Arc;
 
 use numpy::ndarray::IxDyn;
@@ -589,8 +590,8 @@ impl Spline {
         format!(
             "Spline(n={}, domain=({}, {}), through={}{})",
             self.inner.knots().len(),
-            bzspline::Shortest(self.inner.domain().0),
-            bzspline::Shortest(self.inner.domain().1),
+            bzspline::text::Shortest(self.inner.domain().0),
+            bzspline::text::Shortest(self.inner.domain().1),
             if self.through { "True" } else { "False" },
             if self.nu != 0 {
                 format!(", nu={}", self.nu)

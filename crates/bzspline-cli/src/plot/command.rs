@@ -2,6 +2,7 @@
 //! draws the figure as SVG or PNG.
 
 use anyhow::{anyhow, Result};
+use bzspline::ParamCurve;
 use clap::Args;
 
 use super::{read_overlay, render_pdf, render_png, render_svg, FigureArgs, PlotData};

@@ -16,6 +16,7 @@ mod hull;
 mod png;
 mod svg;
 
+use bzspline::ParamCurve;
 use bzspline::{Curve, Spline};
 
 pub use args::{read_overlay, FigureArgs};
