@@ -1,0 +1,303 @@
+//! One arc smoothed at given leg levels: cut where positions must stay,
+//! each piece's control polygon refined along its legs, the method's curve
+//! flattened, and each output segment traced back to the legs it lies along.
+
+use bzspline::{CurveBuilder, Flatten};
+use geo_types::Coord;
+
+use super::{SmoothOptions, MAX_LEVEL, STRAIGHT};
+use crate::error::Error;
+use crate::graph::key;
+
+/// Which original legs one output segment lies along, and whether it is an
+/// original edge.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Seg {
+    pub(super) lo: u32,
+    pub(super) hi: u32,
+    pub(super) original: bool,
+}
+
+/// How one arc is smoothed, fixed for all rounds.
+pub(super) struct Plan {
+    /// Smoothed as a closed curve when nothing cuts it.
+    pub(super) closed_curve: bool,
+    /// Positions that stay (per distinct position).
+    pub(super) fixed: Vec<bool>,
+    /// The fewest positions the output may have.
+    pub(super) min_out: usize,
+}
+
+/// One arc smoothed at the given leg levels: its positions, what each output
+/// segment lies along, and how many pieces were kept as they were because
+/// their curve could not be built.
+pub(super) fn smooth_arc(
+    ai: usize,
+    arc: &[Coord],
+    plan: &Plan,
+    levels: &[u8],
+    opts: &SmoothOptions,
+    tol: f64,
+) -> Result<(Vec<Coord>, Vec<Seg>, usize), Error> {
+    let n_legs = arc.len() - 1;
+    if n_legs == 0 {
+        return Ok((arc.to_vec(), Vec::new(), 0));
+    }
+    let closed = is_closed(arc);
+    if closed && n_legs < 3 {
+        // Too few distinct positions for a ring's curve: kept as it is.
+        let all: Vec<usize> = (0..=n_legs).map(|j| j % n_legs).collect();
+        let (mut out, mut segs) = (Vec::new(), Vec::new());
+        keep(arc, &all, &mut out, &mut segs);
+        return finish(ai, out, segs, 0, closed);
+    }
+    // Leg l runs from position l to l + 1 (for a closed arc, modulo n_legs).
+    let straight = |l: usize| levels[l] >= STRAIGHT;
+    // A position cuts the arc when it is fixed or ends a straight leg.
+    let cuts = |i: usize| -> bool {
+        let before = if i > 0 {
+            Some(i - 1)
+        } else if closed {
+            Some(n_legs - 1)
+        } else {
+            None
+        };
+        plan.fixed[i] || (i < n_legs && straight(i)) || before.is_some_and(straight)
+    };
+    let spline_err = |e| Error::Spline { arc: ai, source: e };
+    let mut out: Vec<Coord> = Vec::new();
+    let mut segs: Vec<Seg> = Vec::new();
+    let mut kept = 0;
+    // Positions in the order smoothed: a closed arc from its first cut round
+    // to it again.
+    let walk: Vec<usize> = if closed {
+        if plan.closed_curve && !(0..n_legs).any(cuts) {
+            let all: Vec<usize> = (0..=n_legs).collect();
+            let (ctrl, leg_of) = refine(arc, &all, levels, true);
+            match curve_polyline(&ctrl, true, opts, tol, plan.min_out).map_err(spline_err)? {
+                Some(flat) => collect(&flat, &leg_of, &mut out, &mut segs),
+                None => {
+                    kept += 1;
+                    keep(arc, &all, &mut out, &mut segs);
+                }
+            }
+            return finish(ai, out, segs, kept, closed);
+        }
+        let start = (0..n_legs).find(|&i| cuts(i)).unwrap_or(0);
+        (0..=n_legs).map(|j| (start + j) % n_legs).collect()
+    } else {
+        (0..arc.len()).collect()
+    };
+    let single_piece = !(1..n_legs).any(|j| cuts(walk[j]));
+    let mut j0 = 0;
+    for j in 1..walk.len() {
+        if j + 1 != walk.len() && !cuts(walk[j]) {
+            continue;
+        }
+        let piece = &walk[j0..=j];
+        j0 = j;
+        if piece.len() == 2 {
+            keep(arc, piece, &mut out, &mut segs);
+            continue;
+        }
+        let (ctrl, leg_of) = refine(arc, piece, levels, false);
+        let min = if single_piece { plan.min_out } else { 2 };
+        match curve_polyline(&ctrl, false, opts, tol, min).map_err(spline_err)? {
+            Some(flat) => {
+                let joint = out.len().checked_sub(1);
+                collect(&flat, &leg_of, &mut out, &mut segs);
+                // The piece ends exactly at its cut positions.
+                out[joint.unwrap_or(0)] = arc[piece[0]];
+                let last = out.len() - 1;
+                out[last] = arc[piece[piece.len() - 1]];
+            }
+            None => {
+                kept += 1;
+                keep(arc, piece, &mut out, &mut segs);
+            }
+        }
+    }
+    finish(ai, out, segs, kept, closed)
+}
+
+/// Checks an arc's output and closes a closed one on its first position.
+fn finish(
+    ai: usize,
+    mut out: Vec<Coord>,
+    segs: Vec<Seg>,
+    kept: usize,
+    closed: bool,
+) -> Result<(Vec<Coord>, Vec<Seg>, usize), Error> {
+    if out.iter().any(|c| !(c.x.is_finite() && c.y.is_finite())) {
+        return Err(Error::Overflow { arc: ai });
+    }
+    if closed {
+        let first = out[0];
+        let last = out.len() - 1;
+        out[last] = first;
+    }
+    debug_assert_eq!(segs.len() + 1, out.len());
+    Ok((out, segs, kept))
+}
+
+/// Appends the original edges along the positions `walk` of `arc`.
+fn keep(arc: &[Coord], walk: &[usize], out: &mut Vec<Coord>, segs: &mut Vec<Seg>) {
+    if out.is_empty() {
+        out.push(arc[walk[0]]);
+    }
+    for w in walk.windows(2) {
+        out.push(arc[w[1]]);
+        segs.push(Seg {
+            lo: w[0] as u32,
+            hi: w[0] as u32,
+            original: true,
+        });
+    }
+}
+
+/// The control polygon of the positions `walk` of `arc` (closed: the walk
+/// returns to its start), each leg `l` cut into `2^levels[l]` equal parts,
+/// flat `[x, y, ...]`; and the original leg of each of its intervals.
+fn refine(arc: &[Coord], walk: &[usize], levels: &[u8], closed: bool) -> (Vec<f64>, Vec<u32>) {
+    let mut ctrl = Vec::with_capacity(2 * walk.len());
+    let mut leg_of = Vec::with_capacity(walk.len());
+    for w in walk.windows(2) {
+        let (a, b) = (arc[w[0]], arc[w[1]]);
+        let leg = w[0];
+        let parts = 1u32 << levels[leg].min(MAX_LEVEL);
+        for k in 0..parts {
+            let t = f64::from(k) / f64::from(parts);
+            ctrl.push(a.x + (b.x - a.x) * t);
+            ctrl.push(a.y + (b.y - a.y) * t);
+            leg_of.push(leg as u32);
+        }
+    }
+    if !closed {
+        let last = arc[walk[walk.len() - 1]];
+        ctrl.push(last.x);
+        ctrl.push(last.y);
+    }
+    (ctrl, leg_of)
+}
+
+/// The flattened curve of the control points `ctrl` (at least `min`
+/// positions, sampled evenly in the parameter when flattening gives fewer):
+/// its vertices' parameters and coordinates, and the curve's knots; `None`
+/// when no curve can be built on them (points too close for the
+/// parametrisation, say). Through the points, every control point is a
+/// vertex, with its coordinates exactly.
+///
+/// # Errors
+///
+/// The flattening's: a tolerance that asks for too many vertices.
+fn curve_polyline(
+    ctrl: &[f64],
+    closed: bool,
+    opts: &SmoothOptions,
+    tol: f64,
+    min: usize,
+) -> Result<Option<Flat>, bzspline::Error> {
+    let Ok(curve) = CurveBuilder::new(ctrl, 2)
+        .closed(closed)
+        .param(opts.param.clone())
+        .alpha(opts.alpha)
+        .through(opts.through)
+        .build()
+    else {
+        return Ok(None);
+    };
+    let mut poly = if opts.through {
+        curve.flatten_with_knots(tol)?
+    } else {
+        curve.flatten(tol)?
+    };
+    if poly.len() < min {
+        poly = curve.sample(min)?;
+    }
+    let knots = curve.knots().to_vec();
+    let params = poly.params().to_vec();
+    let mut coords = poly.coords().to_vec();
+    if opts.through {
+        let n = ctrl.len() / 2;
+        let mut k = 0;
+        for (i, &t) in params.iter().enumerate() {
+            while k < knots.len() && knots[k] < t {
+                k += 1;
+            }
+            if k < knots.len() && knots[k] == t {
+                let j = k % n;
+                coords[2 * i] = ctrl[2 * j];
+                coords[2 * i + 1] = ctrl[2 * j + 1];
+            }
+        }
+    }
+    Ok(Some(Flat {
+        params,
+        coords,
+        knots,
+    }))
+}
+
+/// A flattened piece: vertex parameters, coordinates (flat), the knots.
+struct Flat {
+    params: Vec<f64>,
+    coords: Vec<f64>,
+    knots: Vec<f64>,
+}
+
+/// Appends the polyline's vertices (after the first when `out` already
+/// ends at it) and its segments' legs.
+fn collect(flat: &Flat, leg_of: &[u32], out: &mut Vec<Coord>, segs: &mut Vec<Seg>) {
+    let knots = &flat.knots;
+    let nint = knots.len() - 1;
+    // The interval a parameter starts (or, `right`, ends) a segment in.
+    let interval = |p: f64, right: bool| -> usize {
+        let k = if right {
+            knots.partition_point(|&k| k < p)
+        } else {
+            knots.partition_point(|&k| k <= p)
+        };
+        k.saturating_sub(1).min(nint - 1)
+    };
+    let params = &flat.params;
+    let coords = &flat.coords;
+    out.reserve(params.len());
+    segs.reserve(params.len());
+    let mut prev = params[0];
+    for (i, &p) in params.iter().enumerate() {
+        let c = Coord {
+            x: coords[2 * i],
+            y: coords[2 * i + 1],
+        };
+        if out.is_empty() {
+            out.push(c);
+            continue;
+        }
+        if i == 0 || out.last().map(|&l| key(l)) == Some(key(c)) {
+            continue;
+        }
+        let lo = interval(prev, false);
+        let hi = interval(p, true).max(lo);
+        out.push(c);
+        segs.push(Seg {
+            lo: leg_of[lo],
+            hi: leg_of[hi],
+            original: false,
+        });
+        prev = p;
+    }
+}
+
+pub(super) fn is_closed(a: &[Coord]) -> bool {
+    a.len() >= 2 && key(a[0]) == key(a[a.len() - 1])
+}
+
+/// The angle in degrees between the legs into and out of `b`.
+pub(super) fn turning_degrees(a: Coord, b: Coord, c: Coord) -> f64 {
+    let (ux, uy) = (b.x - a.x, b.y - a.y);
+    let (vx, vy) = (c.x - b.x, c.y - b.y);
+    (ux * vy - uy * vx)
+        .abs()
+        .atan2(ux * vx + uy * vy)
+        .to_degrees()
+}
