@@ -1,6 +1,8 @@
 // Spline and Curve for numbers: their defining conditions checked on many
 // generated inputs, errors that name the index, and memory released.
 import { test } from "node:test";
+import { setFlagsFromString } from "node:v8";
+import { runInNewContext } from "node:vm";
 import assert from "node:assert/strict";
 import { Spline, Curve, memoryBytes } from "../js/index.js";
 import { series, close, random } from "./record.mjs";
@@ -152,4 +154,33 @@ test("memory is released: 100,000 constructions do not grow the module's heap", 
     c.free();
   }
   assert.equal(memoryBytes(), before);
+});
+
+test("memory is released without free(): the garbage collector's finalizers return it", async () => {
+  // gc() as --expose-gc gives it, for this test alone.
+  setFlagsFromString("--expose-gc");
+  const gc = runInNewContext("gc");
+  const settle = async () => {
+    gc();
+    // Finalization callbacks run in a task of their own after the collection.
+    await new Promise((resolve) => setTimeout(resolve, 0));
+  };
+  const x = Float64Array.from({ length: 200 }, (_, i) => i);
+  const y = x.map(Math.sin);
+  const round = () => {
+    for (let i = 0; i < 1000; i++) {
+      new Spline(x, y).at(3.5);
+      new Curve([[0, 0], [1, 2], [3, 1], [4, 4]]).arclen();
+    }
+  };
+  round();
+  await settle();
+  const before = memoryBytes();
+  // 100,000 of each, never freed: some 2 GB of the module's heap if nothing
+  // were returned (a spline of 200 points holds about 20 kB).
+  for (let r = 0; r < 100; r++) {
+    round();
+    await settle();
+  }
+  assert.ok(memoryBytes() <= before + 16 * 2 ** 20, `${memoryBytes()} bytes after, ${before} before`);
 });
