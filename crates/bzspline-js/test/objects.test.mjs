@@ -184,3 +184,15 @@ test("memory is released without free(): the garbage collector's finalizers retu
   }
   assert.ok(memoryBytes() <= before + 16 * 2 ** 20, `${memoryBytes()} bytes after, ${before} before`);
 });
+
+test("evaluating a large typed array does not grow the module's memory by its size", () => {
+  const x = Float64Array.from({ length: 1000 }, (_, i) => i);
+  const s = new Spline(x, x.map(Math.sin));
+  const q = Float64Array.from({ length: 4e6 }, (_, i) => (i * 999) / 4e6);
+  const before = memoryBytes();
+  const v = s.at(q);
+  // 32 MB in and 32 MB out; WebAssembly memory never shrinks once grown.
+  assert.ok(memoryBytes() - before <= 4 * 2 ** 20, `grew by ${memoryBytes() - before} bytes`);
+  for (const i of [0, 1, 65535, 65536, 65537, 2e6, 4e6 - 1]) assert.equal(v[i], s.at(q[i]), `at(q)[${i}]`);
+  s.free();
+});
