@@ -1,4 +1,5 @@
-// d3.line().curve(c)(data) with d3's curves and ours, Spline construction and
+// d3.line().curve(c)(data) with d3's curves and ours (also into a context that
+// draws nothing, the curves' own work), Spline construction and
 // evaluation, and the sizes a page loads. Ratios within one run are what to
 // compare (BENCHMARKS.md):   node bench/curves.mjs
 import { gzipSync } from "node:zlib";
@@ -32,14 +33,21 @@ const curves = {
   curveMonotoneX: d3.curveMonotoneX,
   curveBzsplineX,
 };
+// A context that draws nothing: the curves' own work without d3-path's
+// formatting of the path string.
+const nothing = { moveTo() {}, lineTo() {}, bezierCurveTo() {}, closePath() {} };
 for (const n of [1000, 100000]) {
   const data = series(n);
   const reps = n > 10000 ? 15 : 300;
-  const base = time(() => d3.line().curve(d3.curveNatural)(data), reps);
-  console.log(`\nd3.line()(data), ${n} points: median ms, and the ratio to curveNatural`);
-  for (const [name, c] of Object.entries(curves)) {
-    const ms = time(() => d3.line().curve(c)(data), reps);
-    console.log(`  ${name.padEnd(16)} ${ms.toFixed(3).padStart(9)}  ${(ms / base).toFixed(2)}`);
+  for (const [what, line] of [
+    ["d3.line()(data)", () => d3.line()],
+    ["into a context that draws nothing", () => d3.line().context(nothing)],
+  ]) {
+    const ms = Object.fromEntries(Object.entries(curves).map(([name, c]) => [name, time(() => line().curve(c)(data), reps)]));
+    console.log(`\n${what}, ${n} points: median ms, and the ratio to curveNatural`);
+    for (const [name, t] of Object.entries(ms)) {
+      console.log(`  ${name.padEnd(16)} ${t.toFixed(3).padStart(9)}  ${(t / ms.curveNatural).toFixed(2)}`);
+    }
   }
 }
 
