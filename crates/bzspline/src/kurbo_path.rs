@@ -3,7 +3,6 @@
 use crate::curve::Curve;
 use crate::error::Error;
 use crate::spline::Spline;
-use crate::traits::ParamCurve;
 use kurbo::{BezPath, Point};
 
 fn check(v: &[f64]) -> Result<(), Error> {
@@ -34,12 +33,7 @@ impl Curve {
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn to_bez_path(&self) -> Result<BezPath, Error> {
-        if self.dim() != 2 {
-            return Err(Error::InvalidArgument {
-                what: "a kurbo path needs a planar curve; dimension",
-                value: self.dim() as f64,
-            });
-        }
+        self.check_planar("a kurbo path needs a planar curve; dimension")?;
         let mut path = BezPath::new();
         for k in 0..self.len() {
             let p = self.segment_points(k).unwrap_or_default();

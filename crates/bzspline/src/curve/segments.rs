@@ -11,6 +11,18 @@ use crate::traits::BBox;
 use crate::traits::{BezierPieces, Bounds, ParamCurve};
 
 impl Curve {
+    /// `Ok` for a planar curve; otherwise [`Error::InvalidArgument`] with
+    /// `what` and the dimension.
+    pub(crate) fn check_planar(&self, what: &'static str) -> Result<(), Error> {
+        if self.dim() != 2 {
+            return Err(Error::InvalidArgument {
+                what,
+                value: self.dim() as f64,
+            });
+        }
+        Ok(())
+    }
+
     /// Where the curve touches each leg: `(x_k, alpha_k P_k + (1 - alpha_k)
     /// P_{k+1})` with `x_k = tau_{k+1} - alpha_k h_k` (docs/method.md §9, misprint 1).
     #[must_use]
@@ -123,12 +135,7 @@ impl Curve {
     /// # Ok::<(), bzspline::Error>(())
     /// ```
     pub fn to_svg_path(&self) -> Result<String, Error> {
-        if self.dim() != 2 {
-            return Err(Error::InvalidArgument {
-                what: "an SVG path needs a planar curve; dimension",
-                value: self.dim() as f64,
-            });
-        }
+        self.check_planar("an SVG path needs a planar curve; dimension")?;
         let mut out = String::new();
         // Writing into a String cannot fail; `false` is a non-finite point.
         match crate::traits::write_svg_path(self, self.closed, &mut out) {
