@@ -20,39 +20,33 @@ use crate::poly::quadratic_roots;
 use crate::polyline::Polyline;
 use crate::traits::Arclen;
 use crate::traits::ParamCurve;
-use std::sync::OnceLock;
 
-/// Gauss-Legendre nodes and weights on `[-1, 1]`.
-fn gauss_legendre() -> &'static ([f64; GL_N], [f64; GL_N]) {
-    static TABLE: OnceLock<([f64; GL_N], [f64; GL_N])> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        let n = GL_N;
-        let mut x = [0.0; GL_N];
-        let mut w = [0.0; GL_N];
-        for i in 0..n {
-            let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-            let mut dp = 1.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, z);
-                for j in 2..=n {
-                    let jf = j as f64;
-                    let p2 = ((2.0 * jf - 1.0) * z * p1 - (jf - 1.0) * p0) / jf;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
-                let dz = p1 / dp;
-                z -= dz;
-                if dz.abs() < 1e-16 {
-                    break;
-                }
-            }
-            x[i] = z;
-            w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-        }
-        (x, w)
-    })
-}
+/// The 8-point Gauss-Legendre rule on `[-1, 1]`: nodes (the roots of the
+/// Legendre polynomial P8) and weights, as Newton's method on P8 gives them in
+/// doubles (the test `gauss_legendre_rule` redoes the computation, and checks
+/// them against the published values and the rule's exactness). A constant
+/// rather than computed at first use: nothing to initialise, and no cosine
+/// in the WebAssembly module.
+const GL_X: [f64; GL_N] = [
+    0.9602898564975363,
+    0.7966664774136268,
+    0.525532409916329,
+    0.18343464249564978,
+    -0.18343464249564978,
+    -0.525532409916329,
+    -0.7966664774136268,
+    -0.9602898564975363,
+];
+const GL_W: [f64; GL_N] = [
+    0.10122853629037679,
+    0.22238103445337445,
+    0.3137066458778874,
+    0.362683783378362,
+    0.362683783378362,
+    0.3137066458778874,
+    0.22238103445337445,
+    0.10122853629037679,
+];
 
 const GL_N: usize = 8;
 const MAX_DEPTH: u32 = 40;
@@ -68,7 +62,7 @@ impl Curve {
     }
 
     fn gl(&self, k: usize, a: f64, b: f64, buf: &mut [f64]) -> f64 {
-        let (x, w) = gauss_legendre();
+        let (x, w) = (&GL_X, &GL_W);
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
         let mut s = 0.0;
         for (xi, wi) in x.iter().zip(w) {
@@ -583,12 +577,67 @@ mod tests {
         }
     }
 
+    /// The rule by Newton's method on the three-term recurrence of the
+    /// Legendre polynomials, from the classical first guesses.
+    fn newton_rule() -> ([f64; GL_N], [f64; GL_N]) {
+        let n = GL_N;
+        let (mut x, mut w) = ([0.0; GL_N], [0.0; GL_N]);
+        for i in 0..n {
+            let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, z);
+                for j in 2..=n {
+                    let jf = j as f64;
+                    let p2 = ((2.0 * jf - 1.0) * z * p1 - (jf - 1.0) * p0) / jf;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
+                let dz = p1 / dp;
+                z -= dz;
+                if dz.abs() < 1e-16 {
+                    break;
+                }
+            }
+            x[i] = z;
+            w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+        }
+        (x, w)
+    }
+
     #[test]
-    fn gauss_legendre_integrates_polynomials_exactly() {
-        let (x, w) = gauss_legendre();
+    // The published values with the digits as printed.
+    #[allow(clippy::excessive_precision)]
+    fn gauss_legendre_rule() {
+        // The constants are the computed rule, bit for bit.
+        let (x, w) = newton_rule();
+        for i in 0..GL_N {
+            assert_eq!(GL_X[i].to_bits(), x[i].to_bits(), "node {i}");
+            assert_eq!(GL_W[i].to_bits(), w[i].to_bits(), "weight {i}");
+        }
+        // The published rule (Abramowitz and Stegun, table 25.4), to 1e-15 (the
+        // recurrence leaves the weight of the outer nodes 5e-16 off).
+        let published = [
+            (0.183_434_642_495_649_804_939, 0.362_683_783_378_361_982_965),
+            (0.525_532_409_916_328_985_818, 0.313_706_645_877_887_287_338),
+            (0.796_666_477_413_626_739_592, 0.222_381_034_453_374_470_544),
+            (0.960_289_856_497_536_231_684, 0.101_228_536_290_376_259_153),
+        ];
+        for (k, (px, pw)) in published.iter().enumerate() {
+            // The nodes run from 1 to -1: the pair of nodes +-px.
+            let (i, j) = (GL_N / 2 - 1 - k, GL_N / 2 + k);
+            for (node, weight) in [(GL_X[i], GL_W[i]), (-GL_X[j], GL_W[j])] {
+                assert!((node - px).abs() <= 1e-15, "node {k}: {node} against {px}");
+                assert!(
+                    (weight - pw).abs() <= 1e-15,
+                    "weight {k}: {weight} against {pw}"
+                );
+            }
+        }
         // An 8-point rule is exact to degree 15.
         for deg in 0..16 {
-            let got: f64 = x.iter().zip(w).map(|(x, w)| w * x.powi(deg)).sum();
+            let got: f64 = GL_X.iter().zip(&GL_W).map(|(x, w)| w * x.powi(deg)).sum();
             let want = if deg % 2 == 1 {
                 0.0
             } else {
