@@ -96,7 +96,7 @@ mod tests {
     #[test]
     fn quadratic_roots_are_stable() {
         let mut r = quadratic_roots(1.0, -3.0, 2.0);
-        r.sort_by(f64::total_cmp);
+        r.sort_unstable_by(f64::total_cmp);
         assert_eq!(r.len(), 2);
         assert!(close(r[0], 1.0, 1e-15) && close(r[1], 2.0, 1e-15), "{r:?}");
         assert_eq!(quadratic_roots(0.0, 2.0, -1.0), vec![0.5]);

@@ -36,7 +36,7 @@ pub(crate) fn real_roots_in(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
         .map(|(i, v)| i as f64 * v)
         .collect();
     let mut crit = real_roots_in(&dc, lo, hi);
-    crit.sort_by(f64::total_cmp);
+    crit.sort_unstable_by(f64::total_cmp);
     let mut pts = Vec::with_capacity(crit.len() + 2);
     pts.push(lo);
     pts.extend(crit);
@@ -186,7 +186,7 @@ mod tests {
             c = next;
         }
         let mut got = real_roots_in(&c, 0.0, 1.0);
-        got.sort_by(f64::total_cmp);
+        got.sort_unstable_by(f64::total_cmp);
         assert_eq!(got.len(), 4, "{got:?}");
         for (g, w) in got.iter().zip([0.3, 0.30001, 0.7, 0.9]) {
             // The close pair is ill-conditioned: rounding moves it by ~1e-11.

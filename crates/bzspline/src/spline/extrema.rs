@@ -15,7 +15,7 @@ impl Spline {
         for (k, Piece(c)) in self.pieces.coefs().iter().enumerate() {
             let h = self.pieces.width(k);
             let mut roots = quadratic_roots(3.0 * c[3], 2.0 * c[2], c[1]);
-            roots.sort_by(f64::total_cmp);
+            roots.sort_unstable_by(f64::total_cmp);
             for t in roots {
                 // Knots belong to the piece on their right; the domain's ends are
                 // not interior points.
