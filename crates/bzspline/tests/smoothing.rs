@@ -608,3 +608,19 @@ fn a_dropped_repeat_adds_its_weight_to_the_point_it_repeats() {
         }
     );
 }
+
+#[test]
+fn plain_build_refuses_a_smoothing_builder() {
+    let pts: Vec<[f64; 2]> = (0..10).map(|i| [f64::from(i), f64::from(i % 3)]).collect();
+    let b = Curve::builder_from(&pts).smoothing(Smoothing::Lambda(1.0));
+    assert!(matches!(
+        b.clone().build(),
+        Err(Error::InvalidArgument { what, .. }) if what.contains("build_smoothed")
+    ));
+    let mut c = Curve::open(&pts).unwrap();
+    let before = c.clone();
+    assert!(b.clone().build_into(&mut c).is_err());
+    assert_eq!(c, before);
+    // The same builder smooths through build_smoothed.
+    assert!(b.build_smoothed().is_ok());
+}

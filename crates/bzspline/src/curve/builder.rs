@@ -154,6 +154,9 @@ impl<'a> CurveBuilder<'a> {
     /// assert!(worst < 0.02);
     /// # Ok::<(), bzspline::Error>(())
     /// ```
+    ///
+    /// Such a builder is built with [`CurveBuilder::build_smoothed`];
+    /// [`CurveBuilder::build`] and [`CurveBuilder::build_into`] refuse it.
     #[must_use]
     pub fn smoothing(mut self, smoothing: Smoothing) -> Self {
         self.smoothing = Some(smoothing);
@@ -245,7 +248,9 @@ impl<'a> CurveBuilder<'a> {
     ///   consecutive points under [`Repeats::Reject`];
     /// - [`Error::AlphaOutOfRange`] for an alpha outside `[1/3, 2/3]`;
     /// - the knot errors of [`crate::Spline::with_alphas`] for the parameters
-    ///   (not increasing, an interval too small relative to the span).
+    ///   (not increasing, an interval too small relative to the span);
+    /// - [`Error::InvalidArgument`] when [`CurveBuilder::smoothing`] was set
+    ///   (build it with [`CurveBuilder::build_smoothed`]).
     pub fn build(self) -> Result<Curve, Error> {
         let mut c = Curve::empty();
         Curve::build_from(self, &mut c)?;
@@ -306,8 +311,12 @@ impl Curve {
 
     fn build_from(b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
         if b.smoothing.is_some() {
-            *target = b.build_smoothed()?.fit;
-            return Ok(());
+            // Not dispatched from here, so that a program building plain
+            // curves does not carry the fit (the WebAssembly module's size).
+            return Err(Error::InvalidArgument {
+                what: "a smoothing curve is built with build_smoothed",
+                value: 0.0,
+            });
         }
         if b.through {
             return Self::build_through(b, target);
