@@ -120,9 +120,11 @@ pub struct UnknownParam(pub String);
 
 impl std::fmt::Display for UnknownParam {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The name in quotes as it was given: escaping it (`{:?}`) would
+        // bring Debug's Unicode tables into the WebAssembly module (4 kB).
         write!(
             f,
-            "{:?} is not \"uniform\", \"chordal\" or \"centripetal\"",
+            "\"{}\" is not \"uniform\", \"chordal\" or \"centripetal\"",
             self.0
         )
     }

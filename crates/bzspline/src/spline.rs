@@ -77,9 +77,10 @@ pub struct UnknownExtrapolation(pub String);
 
 impl core::fmt::Display for UnknownExtrapolation {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        // In quotes as given, as `UnknownParam`.
         write!(
             f,
-            "{:?} is not \"error\", \"clamp\", \"extend\" or \"nan\"",
+            "\"{}\" is not \"error\", \"clamp\", \"extend\" or \"nan\"",
             self.0
         )
     }
