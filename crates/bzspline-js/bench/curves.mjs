@@ -62,5 +62,9 @@ console.log(`\nSpline of ${n} points: build ${build.toFixed(2)} ms; 1,000,000 ev
 
 const gz = (f) => gzipSync(readFileSync(new URL(f, import.meta.url)), { level: 9 }).length;
 const core = gz("../wasm/core_bg.wasm") + gz("../wasm/core.js") + gz("../js/index.js") + gz("../js/curves.js") + gz("../js/load.js");
-const geo = gz("../wasm/geo_bg.wasm") + gz("../wasm/geo.js") + gz("../js/geo.js");
-console.log(`\ngzipped: curves entry ${(core / 1000).toFixed(1)} kB; geo entry ${(geo / 1000).toFixed(1)} kB`);
+// The other entries: what they load beyond the curves entry (smoothing
+// imports it), and all the map entry loads.
+const smoothing = gz("../wasm/smoothing_bg.wasm") + gz("../wasm/smoothing.js") + gz("../js/smoothing.js");
+const geo = gz("../wasm/geo_bg.wasm") + gz("../wasm/geo.js") + gz("../js/geo.js") + gz("../js/load.js");
+const kb = (b) => `${(b / 1000).toFixed(1)} kB`;
+console.log(`\ngzipped: curves entry ${kb(core)}; smoothing entry ${kb(smoothing)} more; geo entry ${kb(geo)}`);

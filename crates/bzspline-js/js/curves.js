@@ -158,8 +158,9 @@ class Closed {
 /** A d3 curve factory with d3-style parameter methods. */
 function factory(Kind, core, o) {
   const curve = (context) => new Kind(context, core, o);
-  // Checked at once, by the library's own parsers (fractions, names).
-  curve.alpha = (a) => factory(Kind, core, { ...o, alpha: core.checkAlpha(a) });
+  // Coerced to a number as d3's own factories do (`+a`), and checked at once
+  // by the core (the range; a parametrisation by the library's parser).
+  curve.alpha = (a) => factory(Kind, core, { ...o, alpha: core.checkAlpha(+a) });
   curve.through = (t = true) => factory(Kind, core, { ...o, through: !!t });
   if (o.kind === "curve") {
     curve.param = (p) => factory(Kind, core, { ...o, param: core.checkParam(String(p)) });

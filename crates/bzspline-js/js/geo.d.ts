@@ -11,8 +11,8 @@ export interface SmoothOptions {
   independent?: boolean;
   /** Pass through every position. */
   through?: boolean;
-  /** The shape parameter in [1/3, 2/3] (a number or a fraction such as "1/3"). */
-  alpha?: number | string;
+  /** The shape parameter in [1/3, 2/3] (a third is `1/3`). */
+  alpha?: number;
   param?: "centripetal" | "chordal" | "uniform";
   /** The one TopoJSON object to return as GeoJSON. */
   object?: string;

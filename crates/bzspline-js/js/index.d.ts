@@ -3,8 +3,8 @@
 /** Numbers as an Array or a typed array. */
 export type Numbers = ArrayLike<number>;
 
-/** A shape parameter in [1/3, 2/3]: a number or a fraction such as "1/3". */
-export type Alpha = number | string;
+/** A shape parameter in [1/3, 2/3] (a third is `1/3`). */
+export type Alpha = number;
 
 export interface SplineOptions {
   /** One shape parameter for every interval (default 0.5). */
@@ -14,19 +14,6 @@ export interface SplineOptions {
   /** Pass through every (x, y): the interpolating variant. */
   through?: boolean;
   /** Outside the knots: extend the end cubics (true, the default), NaN (false) or hold the end values. */
-  extrapolate?: boolean | "clamp";
-}
-
-export interface SmoothingOptions {
-  /** One weight per point, finite and >= 0 (default 1); a point of weight 0 does not move the fit. */
-  w?: Numbers;
-  /** The roughness penalty's weight, >= 0; omitted or null: chosen by generalized cross-validation. */
-  lam?: number | null;
-  /** One shape parameter for every interval (default 0.5). */
-  alpha?: Alpha;
-  /** One shape parameter per interval (n - 1 of them); not with `alpha`. */
-  alphas?: Numbers;
-  /** Outside the knots, as for `new Spline`. */
   extrapolate?: boolean | "clamp";
 }
 
@@ -47,13 +34,6 @@ export type Point = [number, number];
  */
 export class Spline {
   constructor(x: Numbers, y: Numbers, options?: SplineOptions);
-  /**
-   * The smoothing spline of noisy data in the method's basis (knots at x),
-   * as scipy's make_smoothing_spline: control values minimising
-   * sum w (S(x) - y)^2 + lam * integral S''^2, lam chosen by cross-validation
-   * when omitted. O(n).
-   */
-  static smoothing(x: Numbers, y: Numbers, options?: SmoothingOptions): Spline;
   /** S(x) (or this derivative): a number for a number, a Float64Array for an array. */
   at(x: number): number;
   at(x: Numbers): Float64Array;
@@ -76,12 +56,6 @@ export class Spline {
   readonly segments: [Point, Point, Point, Point][];
   /** The derivative order this object evaluates. */
   readonly nu: number;
-  /** For a smoothing fit, the lam used; else undefined. */
-  readonly lam: number | undefined;
-  /** For a smoothing fit, its generalized cross-validation score; else undefined. */
-  readonly gcv: number | undefined;
-  /** For a smoothing fit, its effective degrees of freedom; else undefined. */
-  readonly dof: number | undefined;
 }
 
 export interface CurveOptions {
@@ -96,32 +70,8 @@ export interface CurveOptions {
 }
 
 /** A curve by the method in the plane or in space, open or closed. */
-export interface CurveSmoothingOptions {
-  /** One weight per point, finite and >= 0 (default 1). */
-  w?: Numbers;
-  /** The roughness penalty's weight, >= 0; omitted or null: chosen by generalized cross-validation. */
-  lam?: number | null;
-  /** How the parameters follow the points (default "centripetal"), or the parameters (a track's times). */
-  param?: "centripetal" | "chordal" | "uniform" | Numbers;
-  /** One shape parameter for every leg (default 0.5). */
-  alpha?: Alpha;
-  /** One shape parameter per leg. */
-  alphas?: Numbers;
-}
-
 export class Curve {
   constructor(points: ArrayLike<Numbers>, options?: CurveOptions);
-  /**
-   * The smoothing curve of noisy points (open, one lam for every coordinate),
-   * on the parameters of the points; lam chosen by cross-validation when omitted.
-   */
-  static smoothing(points: ArrayLike<Numbers>, options?: CurveSmoothingOptions): Curve;
-  /** For a smoothing fit, the lam used; else undefined. */
-  readonly lam: number | undefined;
-  /** For a smoothing fit, its generalized cross-validation score; else undefined. */
-  readonly gcv: number | undefined;
-  /** For a smoothing fit, its effective degrees of freedom; else undefined. */
-  readonly dof: number | undefined;
   /** The point (or derivative nu) at parameter t, or an array of them. */
   at(t: number, nu?: number): Float64Array;
   at(t: Numbers, nu?: number): Float64Array[];
@@ -139,6 +89,8 @@ export class Curve {
   svgPath(): string;
   free(): void;
   readonly knots: Float64Array;
+  /** The shape parameters, one per leg. */
+  readonly alphas: Float64Array;
   readonly dim: number;
   readonly closed: boolean;
   readonly segments: Float64Array[][];

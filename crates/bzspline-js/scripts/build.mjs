@@ -2,12 +2,15 @@
 // wasm32-unknown-unknown (added with rustup when missing), wasm-bindgen (the
 // CLI at exactly the version of the wasm-bindgen crate in Cargo.lock,
 // installed from crates.io with cargo when missing) and, when npm's binaryen
-// is installed (a development dependency), wasm-opt. Two modules: `core` (curves) and `geo` (curves and maps).
+// is installed (a development dependency), wasm-opt. Three modules, one per
+// entry of the package: `core` (curves), `smoothing` (the smoothing fits) and
+// `geo` (maps). The glue's JavaScript is written without its doc comments,
+// which the package's own .d.ts files carry (a page loads the glue as it is).
 //
-//   node scripts/build.mjs           both modules into wasm/
+//   node scripts/build.mjs           the three modules into wasm/
 //   node scripts/build.mjs --if-missing   only when wasm/ is not built yet
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdirSync, readFileSync, statSync } from "node:fs";
+import { existsSync, mkdirSync, readFileSync, statSync, writeFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 
@@ -15,7 +18,12 @@ const pkg = join(dirname(fileURLToPath(import.meta.url)), "..");
 const out = join(pkg, "wasm");
 const root = join(pkg, "..", "..");
 
-if (process.argv.includes("--if-missing") && existsSync(join(out, "geo_bg.wasm"))) {
+const modules = [
+  ["core", []],
+  ["smoothing", ["--no-default-features", "--features", "smoothing"]],
+  ["geo", ["--no-default-features", "--features", "geo"]],
+];
+if (process.argv.includes("--if-missing") && modules.every(([name]) => existsSync(join(out, `${name}_bg.wasm`)))) {
   process.exit(0);
 }
 if (!existsSync(join(root, "Cargo.lock"))) {
@@ -54,15 +62,17 @@ const artifact = join(target, "wasm32-unknown-unknown", "wasm", "bzspline_js.was
 const wasmOpt = join(pkg, "node_modules", ".bin", "wasm-opt");
 mkdirSync(out, { recursive: true });
 
-for (const [name, features] of [["core", []], ["geo", ["--features", "geo"]]]) {
+for (const [name, features] of modules) {
   run("cargo", [
     "build", "--locked", "-p", "bzspline-js", "--target", "wasm32-unknown-unknown",
     "--profile", "wasm", ...features,
   ]);
   run("wasm-bindgen", [artifact, "--target", "web", "--out-dir", out, "--out-name", name]);
+  const glue = join(out, `${name}.js`);
+  writeFileSync(glue, readFileSync(glue, "utf8").replace(/^[ \t]*\/\*\*[^]*?\*\/\n/gm, ""));
   const file = join(out, `${name}_bg.wasm`);
   if (existsSync(wasmOpt)) {
-    run(wasmOpt, ["-Oz", "--enable-bulk-memory", "--enable-nontrapping-float-to-int",
+    run(wasmOpt, ["-Oz", "--strip-producers", "--strip-target-features", "--enable-bulk-memory", "--enable-nontrapping-float-to-int",
       "--enable-sign-ext", "--enable-mutable-globals", "--enable-reference-types",
       "--enable-multivalue", file, "-o", file]);
   }

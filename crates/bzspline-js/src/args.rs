@@ -1,5 +1,10 @@
 //! Arguments from JavaScript: numbers and arrays of numbers, option objects,
-//! and the errors thrown back.
+//! and the errors thrown back. Each module build (curves, smoothing, maps)
+//! uses part of them.
+#![cfg_attr(
+    not(all(feature = "curves", feature = "smoothing", feature = "geo")),
+    allow(dead_code)
+)]
 
 use bzspline::Alphas;
 use js_sys::{Array, Float64Array, Reflect};
@@ -13,6 +18,12 @@ pub fn range_error(msg: impl std::fmt::Display) -> JsValue {
 /// A `TypeError` with the message.
 pub fn type_error(msg: impl std::fmt::Display) -> JsValue {
     js_sys::TypeError::new(&msg.to_string()).into()
+}
+
+/// `o[name] = v`.
+pub fn set(o: &js_sys::Object, name: &str, v: JsValue) {
+    // Setting a property of a fresh plain object cannot fail.
+    let _ = Reflect::set(o, &JsValue::from_str(name), &v);
 }
 
 /// A library error as a `RangeError`.
@@ -87,7 +98,7 @@ pub fn kind(v: &JsValue) -> String {
     } else if v.is_undefined() {
         "undefined".into()
     } else if let Some(s) = v.as_string() {
-        format!("the string {s:?}")
+        format!("the string \"{s}\"")
     } else {
         v.js_typeof().as_string().unwrap_or_default()
     }
@@ -149,14 +160,12 @@ impl Options {
     }
 
     /// A string option (`null` is none).
-    #[cfg_attr(not(feature = "geo"), allow(dead_code))]
     pub fn string(&self, name: &str) -> Result<Option<String>, JsValue> {
         self.typed(name, "a string", JsValue::as_string)
     }
 
     /// The option `name` read by `read`, `None` when absent or `null`, a
     /// `TypeError` saying it must be `what` otherwise.
-    #[cfg_attr(not(feature = "geo"), allow(dead_code))]
     fn typed<T>(
         &self,
         name: &str,
@@ -172,8 +181,8 @@ impl Options {
         }
     }
 
-    /// The shape parameters: `alpha` (one number, or a string fraction such as
-    /// `"1/3"`) or `alphas` (one per interval), not both.
+    /// The shape parameters: `alpha` (one number) or `alphas` (one per
+    /// interval), not both.
     pub fn alphas(&self) -> Result<AlphaArg, JsValue> {
         let one = match self.get("alpha") {
             None => None,
@@ -188,40 +197,33 @@ impl Options {
     }
 }
 
-/// One alpha: a number, or text (a decimal or a fraction `p/q`, parsed by
-/// [`bzspline::text::parse_alpha`], which also checks the range). A number's range
-/// is checked where it is used (by the library, or [`check_alpha`]).
+/// One alpha: a number (write a third as `1/3`, which JavaScript evaluates
+/// to the nearest double, as the command reads its text `"1/3"`). A string
+/// is a `TypeError`: reading decimal text would take Rust's float parser into
+/// the module (about 14 kB of it gzipped). The range is checked where the
+/// number is used (by the library, or `checkAlpha`).
 pub fn alpha_value(v: &JsValue) -> Result<f64, JsValue> {
-    match v.as_string() {
-        Some(s) => bzspline::text::parse_alpha(&s).map_err(range_error),
-        None => v.as_f64().ok_or_else(|| {
-            type_error(format!(
-                "alpha must be a number or a fraction such as \"1/3\" (found {})",
-                kind(v)
-            ))
-        }),
-    }
+    v.as_f64().ok_or_else(|| {
+        type_error(format!(
+            "alpha must be a number, such as 1/3 (found {})",
+            kind(v)
+        ))
+    })
 }
 
-/// An alpha for the d3 curve factories, checked at once: as
-/// [`alpha_value`], and a number in [1/3, 2/3].
-#[wasm_bindgen::prelude::wasm_bindgen(js_name = checkAlpha)]
-pub fn check_alpha(v: &JsValue) -> Result<f64, JsValue> {
-    let a = alpha_value(v)?;
-    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
-        Ok(a)
-    } else {
-        Err(range_error(format!("alpha = {a} is outside [1/3, 2/3]")))
+/// The `param` option: a name or the parameters themselves.
+pub fn param_of(o: &Options) -> Result<bzspline::Param, JsValue> {
+    match o.get("param") {
+        None => Ok(bzspline::Param::default()),
+        Some(v) => match v.as_string() {
+            Some(s) => s.parse::<bzspline::Param>().map_err(range_error),
+            None if v.is_object() => Ok(bzspline::Param::Given(numbers(&v, "param")?)),
+            None => Err(type_error(format!(
+                "param must be a name or an array of parameters (found {})",
+                kind(&v)
+            ))),
+        },
     }
-}
-
-/// A parametrisation's name for the d3 curve factories, checked at once by
-/// [`bzspline::Param`]'s own parser.
-#[wasm_bindgen::prelude::wasm_bindgen(js_name = checkParam)]
-pub fn check_param(name: &str) -> Result<String, JsValue> {
-    name.parse::<bzspline::Param>()
-        .map(|_| name.to_owned())
-        .map_err(range_error)
 }
 
 /// One alpha for every interval, or one each.

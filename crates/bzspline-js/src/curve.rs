@@ -4,12 +4,11 @@
 use bzspline::Bounds;
 use bzspline::Flatten;
 use bzspline::ParamCurve;
-use bzspline::{Arclen, Param, DEFAULT_ACCURACY};
+use bzspline::{Arclen, DEFAULT_ACCURACY};
 use js_sys::{Array, Float64Array};
 use wasm_bindgen::prelude::*;
 
-use crate::args::{kind, lib_error, numbers, points, range_error, type_error, Options};
-use crate::spline::set;
+use crate::args::{lib_error, numbers, param_of, points, set, Options};
 
 /// A curve in R^d by the method: each coordinate the method's spline of one
 /// shared parameter; starts and ends at the end points (open), touches every
@@ -17,23 +16,6 @@ use crate::spline::set;
 #[wasm_bindgen]
 pub struct Curve {
     inner: bzspline::Curve,
-    /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
-    smoothing: Option<[f64; 3]>,
-}
-
-/// The `param` option: a name or the parameters themselves.
-fn param_of(o: &Options) -> Result<Param, JsValue> {
-    match o.get("param") {
-        None => Ok(Param::default()),
-        Some(v) => match v.as_string() {
-            Some(s) => s.parse::<Param>().map_err(range_error),
-            None if v.is_object() => Ok(Param::Given(numbers(&v, "param")?)),
-            None => Err(type_error(format!(
-                "param must be a name or an array of parameters (found {})",
-                kind(&v)
-            ))),
-        },
-    }
 }
 
 /// Rows of `d` numbers as `[[...], ...]`.
@@ -62,53 +44,7 @@ impl Curve {
             .through(o.flag("through", false)?)
             .build()
             .map_err(lib_error)?;
-        Ok(Curve {
-            inner,
-            smoothing: None,
-        })
-    }
-
-    /// `Curve.smoothing(points, {w, lam, param, alpha, alphas})`: the
-    /// smoothing curve of noisy points (an open curve, one `lam` for every
-    /// coordinate, chosen by generalized cross-validation when omitted), on
-    /// the parameters of the points (give a track's times as `param`).
-    pub fn smoothing(pts: &JsValue, options: &JsValue) -> Result<Curve, JsValue> {
-        let (flat, dim) = points(pts, "points")?;
-        let o = Options::new(options)?;
-        let param = param_of(&o)?;
-        let alphas = o.alphas()?;
-        let (w, how) = o.smoothing()?;
-        let mut b = bzspline::CurveBuilder::new(&flat, dim.max(1))
-            .param(param)
-            .alpha_choice(alphas.choice())
-            .smoothing(how);
-        if let Some(w) = &w {
-            b = b.weights(w);
-        }
-        let fit = b.build_smoothed().map_err(lib_error)?;
-        Ok(Curve {
-            smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
-            inner: fit.fit,
-        })
-    }
-
-    /// For a smoothing fit, the `lam` used; else undefined.
-    #[wasm_bindgen(getter)]
-    pub fn lam(&self) -> Option<f64> {
-        self.smoothing.map(|s| s[0])
-    }
-
-    /// For a smoothing fit, its generalized cross-validation score; else
-    /// undefined.
-    #[wasm_bindgen(getter)]
-    pub fn gcv(&self) -> Option<f64> {
-        self.smoothing.map(|s| s[1])
-    }
-
-    /// For a smoothing fit, its effective degrees of freedom; else undefined.
-    #[wasm_bindgen(getter)]
-    pub fn dof(&self) -> Option<f64> {
-        self.smoothing.map(|s| s[2])
+        Ok(Curve { inner })
     }
 
     /// The point at parameter t (a `Float64Array` of d numbers), or for an
@@ -132,6 +68,12 @@ impl Curve {
     #[wasm_bindgen(getter)]
     pub fn knots(&self) -> Float64Array {
         Float64Array::from(self.inner.knots())
+    }
+
+    /// The shape parameters, one per leg.
+    #[wasm_bindgen(getter)]
+    pub fn alphas(&self) -> Float64Array {
+        Float64Array::from(self.inner.alphas())
     }
 
     /// The dimension d.

@@ -1,6 +1,9 @@
-//! The WebAssembly core of the `bzspline` npm package: the method's splines
-//! and curves ([`spline`], [`curve`]), the Bezier pieces the d3 curves draw
-//! ([`paths`]) and, with the `geo` feature, map smoothing ([`geo`]).
+//! The WebAssembly modules of the `bzspline` npm package, one per entry: with
+//! the `curves` feature (the default; the `bzspline` entry) the method's
+//! splines and curves ([`spline`], [`curve`]) and the Bezier pieces the d3
+//! curves draw ([`paths`]); with `smoothing` (`bzspline/smoothing`) the
+//! smoothing fits ([`smoothing`]); with `geo` (`bzspline/geo`) map smoothing
+//! ([`geo`]).
 //!
 //! wasm-bindgen generates the JavaScript glue; the package's own modules
 //! (`js/`) load it and add the d3 curve factories. Errors reach JavaScript as
@@ -8,13 +11,20 @@
 //! words it) or `TypeError` (an argument of the wrong kind).
 
 mod args;
+#[cfg(feature = "curves")]
 pub mod curve;
 #[cfg(feature = "geo")]
 pub mod geo;
+#[cfg(feature = "curves")]
 pub mod paths;
+#[cfg(feature = "smoothing")]
+pub mod smoothing;
+#[cfg(feature = "curves")]
 pub mod spline;
 
+#[cfg(feature = "curves")]
 pub use curve::Curve;
+#[cfg(feature = "curves")]
 pub use spline::Spline;
 
 /// The bytes of memory the WebAssembly module holds (its linear memory,

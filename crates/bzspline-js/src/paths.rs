@@ -2,10 +2,13 @@
 //! start of the first piece and every piece's three control points after its
 //! start, flat (`x0, y0`, then `x1, y1, x2, y2, x3, y3` per piece), or an
 //! empty array when the run cannot be drawn so (the
-//! JavaScript side then draws straight lines; a d3 curve never throws).
+//! JavaScript side then draws straight lines; a d3 curve never throws); and
+//! the factories' checks of their parameters.
 
 use bzspline::{Alphas, Param, Repeats};
 use wasm_bindgen::prelude::*;
+
+use crate::args::{alpha_value, range_error};
 
 /// The pieces of y = S(x) through the control points (x strictly
 /// increasing): `alpha` in [1/3, 2/3], `through` for the interpolating
@@ -63,4 +66,25 @@ pub fn curve_pieces(
         }
     }
     out
+}
+
+/// An alpha for the d3 curve factories, checked at once: as
+/// `alpha_value`, and a number in [1/3, 2/3].
+#[wasm_bindgen(js_name = checkAlpha)]
+pub fn check_alpha(v: &JsValue) -> Result<f64, JsValue> {
+    let a = alpha_value(v)?;
+    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
+        Ok(a)
+    } else {
+        Err(range_error(format!("alpha = {a} is outside [1/3, 2/3]")))
+    }
+}
+
+/// A parametrisation's name for the d3 curve factories, checked at once by
+/// [`bzspline::Param`]'s own parser.
+#[wasm_bindgen(js_name = checkParam)]
+pub fn check_param(name: &str) -> Result<String, JsValue> {
+    name.parse::<bzspline::Param>()
+        .map(|_| name.to_owned())
+        .map_err(range_error)
 }

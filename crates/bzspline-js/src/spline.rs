@@ -8,7 +8,7 @@ use bzspline::{Extrapolate, ExtremumKind};
 use js_sys::{Array, Float64Array};
 use wasm_bindgen::prelude::*;
 
-use crate::args::{kind, lib_error, numbers, range_error, type_error, Options};
+use crate::args::{kind, lib_error, numbers, range_error, set, type_error, Options};
 
 /// What a spline does outside its knots.
 #[derive(Clone, Copy, PartialEq)]
@@ -31,8 +31,6 @@ pub struct Spline {
     outside: Outside,
     /// The derivative order this object evaluates (from `derivative`).
     nu: u32,
-    /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
-    smoothing: Option<[f64; 3]>,
 }
 
 /// The `extrapolate` option: true (extend, the default), false (NaN) or
@@ -64,8 +62,8 @@ impl Outside {
 #[wasm_bindgen]
 impl Spline {
     /// `new Spline(x, y, {alpha, alphas, through, extrapolate})`: x strictly
-    /// increasing and finite, y as many; alpha in [1/3, 2/3] (0.5, or a
-    /// fraction such as `"1/3"`) or alphas one per interval; `through` to
+    /// increasing and finite, y as many; alpha in [1/3, 2/3] (0.5 by
+    /// default; a number, such as `1/3`) or alphas one per interval; `through` to
     /// pass through every (x, y); `extrapolate` true (extend the end cubics),
     /// false (NaN) or `"clamp"`.
     #[wasm_bindgen(constructor)]
@@ -86,52 +84,7 @@ impl Spline {
             inner: Rc::new(built.with_extrapolation(outside.policy())),
             outside,
             nu: 0,
-            smoothing: None,
         })
-    }
-
-    /// `Spline.smoothing(x, y, {w, lam, alpha, alphas, extrapolate})`: the
-    /// smoothing spline of noisy data in the method's basis (knots at x,
-    /// control values minimising `sum w (S(x) - y)^2 + lam int S''^2`), as
-    /// scipy's `make_smoothing_spline`: `lam` omitted (or null) is chosen by
-    /// generalized cross-validation; `w` one weight per point, finite and
-    /// >= 0 (default 1). The result's `lam`, `gcv` and `dof` report the fit.
-    pub fn smoothing(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Spline, JsValue> {
-        let x = numbers(x, "x")?;
-        let y = numbers(y, "y")?;
-        let o = Options::new(options)?;
-        let alphas = o.alphas()?;
-        let outside = outside_of(&o)?;
-        let (w, how) = o.smoothing()?;
-        let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.choice(), how)
-            .map_err(lib_error)?;
-        Ok(Spline {
-            inner: Rc::new(fit.fit.with_extrapolation(outside.policy())),
-            outside,
-            nu: 0,
-            smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
-        })
-    }
-
-    /// For a smoothing fit, the `lam` used (the one chosen when none was
-    /// given); else undefined.
-    #[wasm_bindgen(getter)]
-    pub fn lam(&self) -> Option<f64> {
-        self.smoothing.map(|s| s[0])
-    }
-
-    /// For a smoothing fit, its generalized cross-validation score; else
-    /// undefined.
-    #[wasm_bindgen(getter)]
-    pub fn gcv(&self) -> Option<f64> {
-        self.smoothing.map(|s| s[1])
-    }
-
-    /// For a smoothing fit, its effective degrees of freedom (2 for a line,
-    /// n for interpolation); else undefined.
-    #[wasm_bindgen(getter)]
-    pub fn dof(&self) -> Option<f64> {
-        self.smoothing.map(|s| s[2])
     }
 
     /// S(x) (or this object's derivative) at x: a number for a number, a
@@ -157,7 +110,6 @@ impl Spline {
             inner: Rc::clone(&self.inner),
             outside: self.outside,
             nu: self.nu.saturating_add(nu.unwrap_or(1)),
-            smoothing: self.smoothing,
         }
     }
 
@@ -330,10 +282,4 @@ impl Spline {
 /// `[x, y]`.
 pub(crate) fn pair(x: f64, y: f64) -> Array {
     Array::of2(&x.into(), &y.into())
-}
-
-/// `o[name] = v`.
-pub(crate) fn set(o: &js_sys::Object, name: &str, v: JsValue) {
-    // Setting a property of a fresh plain object cannot fail.
-    let _ = js_sys::Reflect::set(o, &JsValue::from_str(name), &v);
 }

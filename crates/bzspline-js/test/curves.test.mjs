@@ -160,7 +160,9 @@ test("d3.lineRadial and d3.areaRadial take the curves", () => {
 test("factories take parameters in d3's style and check them at once", () => {
   const data = series(8, 17);
   assert.notEqual(d3.line().curve(curveBzsplineX.alpha(1 / 3))(data), d3.line().curve(curveBzsplineX)(data));
-  assert.equal(d3.line().curve(curveBzsplineX.alpha("1/2"))(data), d3.line().curve(curveBzsplineX)(data));
+  // Coerced as d3 coerces its curves' parameters.
+  assert.equal(d3.line().curve(curveBzsplineX.alpha("0.5"))(data), d3.line().curve(curveBzsplineX)(data));
+  assert.throws(() => curveBzsplineX.alpha("1/3"), RangeError);
   const calls = record(d3.line().curve(curveBzspline.param("uniform")), data);
   const c = new Curve(data, { param: "uniform" });
   c.segments.forEach((seg, k) => assert.deepEqual(calls[k + 1], ["C", ...seg[1], ...seg[2], ...seg[3]]));

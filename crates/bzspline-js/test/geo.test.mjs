@@ -42,7 +42,7 @@ test("GeoJSON coverages: the command's output, bit for bit, with each option", (
     const file = join(fixtures, name);
     same(file, {}, []);
     same(file, { tolerance: 0.01 }, ["--tolerance", "0.01"]);
-    same(file, { through: true, alpha: "1/3" }, ["--through", "--alpha", "1/3"]);
+    same(file, { through: true, alpha: 1 / 3 }, ["--through", "--alpha", "1/3"]);
     same(file, { keepAngle: 60, param: "uniform" }, ["--keep-angle", "60", "--param", "uniform"]);
     same(file, { independent: true }, ["--independent"]);
     same(file, { snap: 1e-9 }, ["--snap", "1e-9"]);

@@ -1,5 +1,6 @@
-// Spline.smoothing: the smoothing spline of noisy data, the command's own
-// (`bzspline fit --smooth`) bit for bit, with its exact limits and refusals.
+// bzspline/smoothing: the smoothing spline of noisy data, the command's own
+// (`bzspline fit --smooth`) bit for bit, with its exact limits and refusals;
+// the results are the curves entry's Spline and Curve.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
@@ -7,6 +8,7 @@ import { existsSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 import { Spline, Curve } from "../js/index.js";
+import { smoothingSpline, smoothingCurve } from "../js/smoothing.js";
 import { random, close } from "./record.mjs";
 
 const root = join(dirname(fileURLToPath(import.meta.url)), "../../..");
@@ -35,7 +37,7 @@ test("the fit is the command's, bit for bit, with lam, gcv and dof", () => {
       execFileSync(bin, ["fit", "--input-format", "csv", "--smooth", smooth], { input: table }),
     );
     const lam = smooth === "auto" ? undefined : Number(smooth);
-    const s = Spline.smoothing(x, y, { lam });
+    const s = smoothingSpline(x, y, { lam });
     assert.deepEqual(Array.from(s.controlValues), got.values, `seed ${seed}`);
     assert.equal(s.lam, got.lambda);
     assert.equal(s.gcv, got.gcv);
@@ -46,26 +48,26 @@ test("the fit is the command's, bit for bit, with lam, gcv and dof", () => {
 
 test("lam 0 passes through; weights of zero are ignored; a plain spline has no lam", () => {
   const { x, y } = noisy(60, 4);
-  const s = Spline.smoothing(x, y, { lam: 0 });
+  const s = smoothingSpline(x, y, { lam: 0 });
   x.forEach((v, i) => close(s.at(v), y[i], 1e-12, `point ${i}`));
   const w = x.map((_, i) => (i % 7 === 0 ? 0 : 1));
-  const a = Spline.smoothing(x, y, { w });
+  const a = smoothingSpline(x, y, { w });
   const moved = y.map((v, i) => (w[i] === 0 ? v + 100 : v));
-  const b = Spline.smoothing(x, moved, { w: Float64Array.from(w) });
+  const b = smoothingSpline(x, moved, { w: Float64Array.from(w) });
   assert.deepEqual(Array.from(a.controlValues), Array.from(b.controlValues));
+  assert.ok(a instanceof Spline);
   assert.equal(new Spline(x, y).lam, undefined);
-  assert.equal(a.derivative().lam, a.lam);
 });
 
 test("bad input throws naming the index", () => {
   const { x, y } = noisy(10, 5);
   const cases = [
-    [() => Spline.smoothing(x.slice(0, 2), y.slice(0, 2)), RangeError, /at least 3/],
-    [() => Spline.smoothing(x, y, { w: x.map((_, i) => (i === 3 ? -1 : 1)) }), RangeError, /weights\[3\]/],
-    [() => Spline.smoothing(x, y, { lam: -1 }), RangeError, /lambda/],
-    [() => Spline.smoothing(x, y, { lam: "lots" }), TypeError, /lam/],
-    [() => Spline.smoothing(x, y, { w: [1, 2] }), RangeError, /weights/],
-    [() => Spline.smoothing([...x].reverse(), y), RangeError, /increasing/],
+    [() => smoothingSpline(x.slice(0, 2), y.slice(0, 2)), RangeError, /at least 3/],
+    [() => smoothingSpline(x, y, { w: x.map((_, i) => (i === 3 ? -1 : 1)) }), RangeError, /weights\[3\]/],
+    [() => smoothingSpline(x, y, { lam: -1 }), RangeError, /lambda/],
+    [() => smoothingSpline(x, y, { lam: "lots" }), TypeError, /lam/],
+    [() => smoothingSpline(x, y, { w: [1, 2] }), RangeError, /weights/],
+    [() => smoothingSpline([...x].reverse(), y), RangeError, /increasing/],
   ];
   for (const [f, kind, message] of cases) {
     assert.throws(f, (e) => e instanceof kind && message.test(e.message), String(f));
@@ -77,7 +79,7 @@ test("a noisy track is smoothed on its times, each coordinate the function fit",
   const n = 300;
   const t = Array.from({ length: n }, (_, i) => (6 * i) / (n - 1));
   const track = t.map((s) => [10 * Math.cos(s) + 0.6 * (r() - 0.5), 10 * Math.sin(s) + 0.6 * (r() - 0.5)]);
-  const c = Curve.smoothing(track, { param: t });
+  const c = smoothingCurve(track, { param: t });
   assert.ok(c.lam > 0 && c.dof > 3 && c.dof < n);
   assert.deepEqual(Array.from(c.knots), t);
   const off = (p) => Math.abs(Math.hypot(p[0], p[1]) - 10);
@@ -85,11 +87,32 @@ test("a noisy track is smoothed on its times, each coordinate the function fit",
   const fit = c.at(t).reduce((a, p) => a + off(p), 0) / n;
   assert.ok(fit < 0.6 * data, `fit ${fit} against the data's ${data}`);
   for (const d of [0, 1]) {
-    const s = Spline.smoothing(t, track.map((p) => p[d]), { lam: c.lam });
+    const s = smoothingSpline(t, track.map((p) => p[d]), { lam: c.lam });
     c.segments.forEach((seg, k) => {
       seg.forEach((p, j) => close(p[d], s.segments[k][j][1], 1e-11, `segment ${k} point ${j}`));
     });
   }
-  assert.throws(() => Curve.smoothing(track.slice(0, 2)), RangeError);
+  assert.throws(() => smoothingCurve(track.slice(0, 2)), RangeError);
+  assert.ok(c instanceof Curve);
   assert.equal(new Curve(track).lam, undefined);
+});
+
+test("the options reach the spline: alpha, alphas, extrapolate; repeats in a curve", () => {
+  const { x, y } = noisy(40, 8);
+  const lam = 0.05;
+  const a = smoothingSpline(x, y, { lam, alpha: 0.4, extrapolate: "clamp" });
+  assert.ok(Array.from(a.alphas).every((v) => v === 0.4));
+  assert.equal(a.at(x[39] + 5), a.at(x[39]));
+  assert.ok(Number.isNaN(smoothingSpline(x, y, { lam, extrapolate: false }).at(x[0] - 1)));
+  const alphas = x.slice(1).map((_, i) => (i % 2 ? 1 / 3 : 2 / 3));
+  assert.deepEqual(Array.from(smoothingSpline(x, y, { lam, alphas }).alphas), alphas);
+  assert.throws(() => smoothingSpline(x, y, { alpha: 0.5, alphas }), TypeError);
+  assert.throws(() => smoothingSpline(x, y, { extrapolate: "yes" }), TypeError);
+  // A curve on given parameters and alphas keeps them.
+  const pts = x.map((v, i) => [v, y[i]]);
+  const legs = alphas.map((v) => 1 - v);
+  const c = smoothingCurve(pts, { lam, param: x, alphas: legs });
+  assert.deepEqual(Array.from(c.knots), x);
+  assert.deepEqual(Array.from(c.alphas), legs);
+  assert.deepEqual(c.knots, smoothingCurve(pts, { lam, param: Float64Array.from(x) }).knots);
 });

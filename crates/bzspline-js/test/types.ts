@@ -3,19 +3,23 @@
 import { line, area } from "d3-shape";
 import { Spline, Curve, curveBzsplineX, curveBzspline, curveBzsplineClosed, type Extremum } from "../js/index.js";
 import { smooth } from "../js/geo.js";
+import { smoothingSpline, smoothingCurve } from "../js/smoothing.js";
 
-const s = new Spline([0, 1, 2], Float64Array.of(0, 1, 0), { alpha: "1/3", extrapolate: "clamp" });
+const s = new Spline([0, 1, 2], Float64Array.of(0, 1, 0), { alpha: 1 / 3, extrapolate: "clamp" });
 const v: number = s.at(0.5);
 const vs: Float64Array = s.at([0.5, 1.5]);
 const e: Extremum[] = s.extrema();
 const d1: number = s.derivative().at(1);
 const segs: [number, number][][] = s.segments;
-const sm = Spline.smoothing([0, 1, 2, 3], [0, 1, 0, 1], { w: [1, 1, 0, 1] });
-const lam: number | undefined = sm.lam;
-Spline.smoothing([0, 1, 2], [0, 1, 0], { lam: 0.5, alpha: "1/3" });
+const sm = smoothingSpline([0, 1, 2, 3], [0, 1, 0, 1], { w: [1, 1, 0, 1] });
+const lam: number = sm.lam;
+const sv: number = sm.at(1.5);
+smoothingSpline([0, 1, 2], [0, 1, 0], { lam: 0.5, alpha: 1 / 3 });
 // @ts-expect-error: lam is a number (or omitted for cross-validation)
-Spline.smoothing([0, 1, 2], [0, 1, 0], { lam: "auto" });
-const sc: number | undefined = Curve.smoothing([[0, 0], [1, 1], [2, 0]], { param: [0, 1, 2], lam: 1 }).dof;
+smoothingSpline([0, 1, 2], [0, 1, 0], { lam: "auto" });
+const sc: number = smoothingCurve([[0, 0], [1, 1], [2, 0]], { param: [0, 1, 2], lam: 1 }).dof;
+// @ts-expect-error: a plain spline reports no fit
+new Spline([0, 1], [0, 1]).lam;
 const c = new Curve([[0, 0], [1, 0], [1, 1]], { closed: true, param: "chordal" });
 const p: Float64Array = c.at(0.25);
 const near: number = c.nearest([2, 2]).distance;
@@ -24,12 +28,14 @@ const outline: string | null = area().curve(curveBzspline.param("uniform"))([[0,
 line().curve(curveBzsplineClosed);
 const out: string = smooth("{}", { tolerance: 1, keepAngle: 60, output: "topojson" });
 const obj: object = smooth({ type: "FeatureCollection", features: [] }, { independent: true });
-// @ts-expect-error: alpha is a number or a fraction, not a boolean
+// @ts-expect-error: alpha is a number, not a boolean
 new Spline([0, 1], [0, 1], { alpha: true });
+// @ts-expect-error: alpha is a number, not text (a third is 1 / 3)
+new Spline([0, 1], [0, 1], { alpha: "1/3" });
 // @ts-expect-error: the chart curve has no parametrisation
 curveBzsplineX.param("uniform");
 // @ts-expect-error: an unknown parametrisation
 curveBzspline.param("spiral");
 s.free();
 c.free();
-export { lam, sc, v, vs, e, d1, segs, p, near, path, outline, out, obj };
+export { lam, sv, sc, v, vs, e, d1, segs, p, near, path, outline, out, obj };

@@ -1,0 +1,52 @@
+// Types of the `bzspline/smoothing` entry.
+import type { Alpha, Curve, Numbers, Spline } from "./index.js";
+
+/** What a smoothing fit reports. */
+export interface Fit {
+  /** The roughness penalty's weight used (the one chosen when none was given). */
+  readonly lam: number;
+  /** The fit's generalized cross-validation score. */
+  readonly gcv: number;
+  /** The fit's effective degrees of freedom (2 for a line, n through every point). */
+  readonly dof: number;
+}
+
+export interface SmoothingOptions {
+  /** One weight per point, finite and >= 0 (default 1); a point of weight 0 does not move the fit. */
+  w?: Numbers | null;
+  /** The roughness penalty's weight, >= 0; omitted or null: chosen by generalized cross-validation. */
+  lam?: number | null;
+  /** One shape parameter for every interval (default 0.5). */
+  alpha?: Alpha;
+  /** One shape parameter per interval (n - 1 of them); not with `alpha`. */
+  alphas?: Numbers;
+  /** Outside the knots, as for `new Spline`. */
+  extrapolate?: boolean | "clamp";
+}
+
+export interface CurveSmoothingOptions {
+  /** One weight per point, finite and >= 0 (default 1). */
+  w?: Numbers | null;
+  /** The roughness penalty's weight, >= 0; omitted or null: chosen by generalized cross-validation. */
+  lam?: number | null;
+  /** How the parameters follow the points (default "centripetal"), or the parameters (a track's times). */
+  param?: "centripetal" | "chordal" | "uniform" | Numbers;
+  /** One shape parameter for every leg (default 0.5). */
+  alpha?: Alpha;
+  /** One shape parameter per leg. */
+  alphas?: Numbers;
+}
+
+/**
+ * The smoothing spline of noisy data in the method's basis (knots at x), as
+ * scipy's make_smoothing_spline: control values minimising
+ * sum w (S(x) - y)^2 + lam * integral S''^2, lam chosen by generalized
+ * cross-validation when omitted. O(n). A `Spline` of the `bzspline` entry.
+ */
+export function smoothingSpline(x: Numbers, y: Numbers, options?: SmoothingOptions): Spline & Fit;
+
+/**
+ * The smoothing curve of noisy points (open, one lam for every coordinate),
+ * on the parameters of the points. A `Curve` of the `bzspline` entry.
+ */
+export function smoothingCurve(points: ArrayLike<Numbers>, options?: CurveSmoothingOptions): Curve & Fit;

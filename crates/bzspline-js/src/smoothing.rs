@@ -1,0 +1,76 @@
+//! The smoothing fits of the package's `bzspline/smoothing` entry, a module
+//! of their own so that a page drawing curves does not load the fit. Each
+//! returns what the core module builds the result from: a smoothing spline
+//! (curve) is the method's spline (curve) of its control values (points) on
+//! the data's knots (`docs/method.md` §12), so the entry passes them to the
+//! core's `Spline` (`Curve`) constructor, whose build is the library's, and
+//! the object it returns is the fit bit for bit.
+
+use bzspline::ParamCurve;
+use js_sys::{Float64Array, Object};
+use wasm_bindgen::prelude::*;
+
+use crate::args::{lib_error, numbers, param_of, points, set, Options};
+
+/// The fit's `lam`, GCV score and degrees of freedom on `o`.
+fn report(o: &Object, lambda: f64, gcv: f64, dof: f64) {
+    set(o, "lam", lambda.into());
+    set(o, "gcv", gcv.into());
+    set(o, "dof", dof.into());
+}
+
+/// `splineFit(x, y, {w, lam, alpha, alphas})`: the smoothing spline of the
+/// data in the method's basis (`bzspline::Spline::smoothing`) as
+/// `{x, controls, lam, gcv, dof}`: knots, control values, the `lam` used (the
+/// one chosen by generalized cross-validation when `lam` is omitted or null),
+/// its score and effective degrees of freedom. `w`: one weight per point,
+/// finite and >= 0 (default 1).
+#[wasm_bindgen(js_name = splineFit)]
+pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
+    let x = numbers(x, "x")?;
+    let y = numbers(y, "y")?;
+    let o = Options::new(options)?;
+    let alphas = o.alphas()?;
+    let (w, how) = o.smoothing()?;
+    let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.choice(), how)
+        .map_err(lib_error)?;
+    let out = Object::new();
+    set(&out, "x", Float64Array::from(x.as_slice()).into());
+    set(
+        &out,
+        "controls",
+        Float64Array::from(fit.fit.values()).into(),
+    );
+    report(&out, fit.lambda, fit.gcv, fit.dof);
+    Ok(out)
+}
+
+/// `curveFit(points, {w, lam, param, alpha, alphas})`: the smoothing curve
+/// of noisy points (open, one `lam` for every coordinate;
+/// `bzspline::CurveBuilder::build_smoothed`) as `{points, dim, knots, alphas,
+/// lam, gcv, dof}`: the control points (flat, `dim` numbers each), the
+/// parameters and alphas of the fit's legs, and the fit's report.
+#[wasm_bindgen(js_name = curveFit)]
+pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
+    let (flat, dim) = points(pts, "points")?;
+    let o = Options::new(options)?;
+    let param = param_of(&o)?;
+    let alphas = o.alphas()?;
+    let (w, how) = o.smoothing()?;
+    let mut b = bzspline::CurveBuilder::new(&flat, dim.max(1))
+        .param(param)
+        .alpha_choice(alphas.choice())
+        .smoothing(how);
+    if let Some(w) = &w {
+        b = b.weights(w);
+    }
+    let fit = b.build_smoothed().map_err(lib_error)?;
+    let c = &fit.fit;
+    let out = Object::new();
+    set(&out, "points", Float64Array::from(c.points()).into());
+    set(&out, "dim", (c.dim() as f64).into());
+    set(&out, "knots", Float64Array::from(c.knots()).into());
+    set(&out, "alphas", Float64Array::from(c.alphas()).into());
+    report(&out, fit.lambda, fit.gcv, fit.dof);
+    Ok(out)
+}
