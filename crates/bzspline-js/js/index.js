@@ -16,8 +16,10 @@ import init, {
 } from "../wasm/core.js";
 import { curves } from "./curves.js";
 import { load } from "./load.js";
+import { shape } from "./objects.js";
 
 await load(init, initSync, new URL("../wasm/core_bg.wasm", import.meta.url));
+shape(Spline, Curve);
 
 export { Spline, Curve, memoryBytes };
 export const { curveBzsplineX, curveBzsplineY, curveBzspline, curveBzsplineClosed } = curves({

@@ -5,7 +5,7 @@ use bzspline::Bounds;
 use bzspline::Flatten;
 use bzspline::ParamCurve;
 use bzspline::{Arclen, DEFAULT_ACCURACY};
-use js_sys::{Array, Float64Array};
+use js_sys::Float64Array;
 use wasm_bindgen::prelude::*;
 
 use crate::args::{lib_error, numbers, param_of, points, set, Options};
@@ -16,13 +16,6 @@ use crate::args::{lib_error, numbers, param_of, points, set, Options};
 #[wasm_bindgen]
 pub struct Curve {
     inner: bzspline::Curve,
-}
-
-/// Rows of `d` numbers as `[[...], ...]`.
-fn rows(flat: &[f64], d: usize) -> Array {
-    flat.chunks(d)
-        .map(|r| JsValue::from(Float64Array::from(r)))
-        .collect()
 }
 
 #[wasm_bindgen]
@@ -48,12 +41,14 @@ impl Curve {
     }
 
     /// The point at parameter t (a `Float64Array` of d numbers), or for an
-    /// array of parameters an array of points; `nu` gives a derivative.
-    pub fn at(&self, t: &JsValue, nu: Option<u32>) -> Result<JsValue, JsValue> {
+    /// array of parameters the points flat, d numbers each (`at` in
+    /// JavaScript shapes them); `nu` gives a derivative.
+    #[wasm_bindgen(js_name = _at)]
+    pub fn at(&self, t: &JsValue, nu: Option<u32>) -> Result<Float64Array, JsValue> {
         let nu = nu.unwrap_or(0);
         if let Some(s) = t.as_f64() {
             let p = self.inner.deriv(s, nu).map_err(lib_error)?;
-            return Ok(Float64Array::from(p.as_slice()).into());
+            return Ok(Float64Array::from(p.as_slice()));
         }
         let ts = numbers(t, "t")?;
         let d = self.inner.dim();
@@ -61,7 +56,7 @@ impl Curve {
         self.inner
             .deriv_many(&ts, nu, &mut out)
             .map_err(lib_error)?;
-        Ok(rows(&out, d).into())
+        Ok(Float64Array::from(out.as_slice()))
     }
 
     /// The parameters of the knots.
@@ -93,16 +88,15 @@ impl Curve {
         Arclen::arclen(&self.inner, accuracy.unwrap_or(DEFAULT_ACCURACY)).map_err(lib_error)
     }
 
-    /// `n` points (at least 2) at equal arc-length steps from start to end.
-    pub fn resample(&self, n: usize, accuracy: Option<f64>) -> Result<Array, JsValue> {
+    /// `n` points (at least 2) at equal arc-length steps from start to end,
+    /// flat (`resample` in JavaScript shapes them).
+    #[wasm_bindgen(js_name = _resample)]
+    pub fn resample(&self, n: usize, accuracy: Option<f64>) -> Result<Vec<f64>, JsValue> {
         let p = self
             .inner
             .resample(n, accuracy.unwrap_or(DEFAULT_ACCURACY))
             .map_err(lib_error)?;
-        Ok((0..p.len())
-            .filter_map(|i| p.point(i))
-            .map(|r| JsValue::from(Float64Array::from(r)))
-            .collect())
+        Ok(p.coords().to_vec())
     }
 
     /// The point of the curve nearest to `p`: `{t, point, distance}`.
@@ -125,22 +119,21 @@ impl Curve {
         o.into()
     }
 
-    /// A polyline within `tolerance` of the curve, from its start to its end.
-    pub fn flatten(&self, tolerance: f64) -> Result<Array, JsValue> {
+    /// A polyline within `tolerance` of the curve, from its start to its end,
+    /// flat (`flatten` in JavaScript shapes it).
+    #[wasm_bindgen(js_name = _flatten)]
+    pub fn flatten(&self, tolerance: f64) -> Result<Vec<f64>, JsValue> {
         let p = self.inner.flatten(tolerance).map_err(lib_error)?;
-        Ok((0..p.len())
-            .filter_map(|i| p.point(i))
-            .map(|r| JsValue::from(Float64Array::from(r)))
-            .collect())
+        Ok(p.coords().to_vec())
     }
 
-    /// Every segment as its four control points, `[[p0, p1, p2, p3], ...]`.
-    #[wasm_bindgen(getter)]
-    pub fn segments(&self) -> Array {
-        let d = self.inner.dim();
+    /// Every segment's four control points, flat (`4 d` numbers a segment;
+    /// `segments` in JavaScript shapes them).
+    #[wasm_bindgen(js_name = _segments)]
+    pub fn segments(&self) -> Vec<f64> {
         (0..self.inner.len())
             .filter_map(|k| self.inner.segment_points(k))
-            .map(|p| JsValue::from(rows(&p, d)))
+            .flatten()
             .collect()
     }
 

@@ -174,31 +174,25 @@ impl Spline {
         Float64Array::from(self.inner.alphas())
     }
 
-    /// The points where S touches each leg of the control polygon,
-    /// `[[x, y], ...]`.
-    #[wasm_bindgen(getter, js_name = tangentPoints)]
-    pub fn tangent_points(&self) -> Array {
+    /// The points where S touches each leg of the control polygon, flat
+    /// (`x0, y0, x1, y1, ...`; `tangentPoints` in JavaScript shapes them).
+    #[wasm_bindgen(js_name = _tangentPoints)]
+    pub fn tangent_points_flat(&self) -> Vec<f64> {
         self.inner
             .tangent_points()
             .into_iter()
-            .map(|(x, y)| JsValue::from(pair(x, y)))
+            .flat_map(|(x, y)| [x, y])
             .collect()
     }
 
-    /// Every piece as the four control points of a cubic Bezier segment,
-    /// `[[[x0, y0], [x1, y1], [x2, y2], [x3, y3]], ...]`.
-    #[wasm_bindgen(getter)]
-    pub fn segments(&self) -> Array {
+    /// Every piece's four Bezier control points, flat (8 numbers a piece;
+    /// `segments` in JavaScript shapes them).
+    #[wasm_bindgen(js_name = _segments)]
+    pub fn segments_flat(&self) -> Vec<f64> {
         self.inner
             .segments()
-            .into_iter()
-            .map(|b| {
-                JsValue::from(
-                    b.p.iter()
-                        .map(|p| JsValue::from(pair(p[0], p[1])))
-                        .collect::<Array>(),
-                )
-            })
+            .iter()
+            .flat_map(|b| b.p.as_flattened().iter().copied())
             .collect()
     }
 
@@ -277,9 +271,4 @@ impl Spline {
         }
         Ok(())
     }
-}
-
-/// `[x, y]`.
-pub(crate) fn pair(x: f64, y: f64) -> Array {
-    Array::of2(&x.into(), &y.into())
 }
