@@ -603,3 +603,19 @@ fn eval_many_with_wrong_output_length() {
     // Empty input and output agree.
     assert_eq!(s.eval_many(&[], &mut []), Ok(()));
 }
+
+#[test]
+fn output_buffers_are_written_not_judged() {
+    // Whatever `out` holds before (NaN from an earlier batch, infinities) is
+    // overwritten: only its length is checked.
+    let s = Spline::new(&X, &F).expect("valid");
+    let xs = [0.5, 1.5, 2.0, 2.5];
+    for order in 0..=3 {
+        let mut want = [0.0; 4];
+        s.deriv_many(&xs, order, &mut want).expect("a clean buffer");
+        let mut out = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        s.deriv_many(&xs, order, &mut out)
+            .expect("a buffer holding NaN");
+        assert_eq!(out, want, "order {order}");
+    }
+}
