@@ -41,6 +41,27 @@ function time(f, reps) {
   return t.sort((a, b) => a - b)[reps >> 1];
 }
 
+/**
+ * The medians of `reps` timings of each function of `fs` (an object), taken
+ * in turn (one of each per round), so that a spell of the machine's noise
+ * falls on all of them alike; each is warmed first as in `time`.
+ */
+function timeEach(fs, reps) {
+  const t = Object.fromEntries(Object.keys(fs).map((k) => [k, []]));
+  gc();
+  for (const f of Object.values(fs)) {
+    for (const t0 = performance.now(); performance.now() - t0 < 500; ) f();
+  }
+  for (let i = 0; i < reps; i++) {
+    for (const [k, f] of Object.entries(fs)) {
+      const t0 = performance.now();
+      f();
+      t[k].push(performance.now() - t0);
+    }
+  }
+  return Object.fromEntries(Object.entries(t).map(([k, v]) => [k, v.sort((a, b) => a - b)[reps >> 1]]));
+}
+
 const curves = {
   curveLinear: d3.curveLinear,
   curveNatural: d3.curveNatural,
@@ -58,7 +79,7 @@ for (const n of [1000, 100000]) {
     ["d3.line()(data)", () => d3.line()],
     ["into a context that draws nothing", () => d3.line().context(nothing)],
   ]) {
-    const ms = Object.fromEntries(Object.entries(curves).map(([name, c]) => [name, time(() => line().curve(c)(data), reps)]));
+    const ms = timeEach(Object.fromEntries(Object.entries(curves).map(([name, c]) => [name, () => line().curve(c)(data)])), reps);
     console.log(`\n${what}, ${n} points: median ms, and the ratio to curveNatural`);
     for (const [name, t] of Object.entries(ms)) {
       console.log(`  ${name.padEnd(16)} ${t.toFixed(3).padStart(9)}  ${(t / ms.curveNatural).toFixed(2)}`);
