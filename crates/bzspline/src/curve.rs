@@ -313,16 +313,23 @@ fn check_tolerance(what: &'static str, tol: f64) -> Result<(), Error> {
     Ok(())
 }
 
-/// Checks that `q` holds `dim` numbers: a query point of the curve's
-/// dimension, or the output of a batch of queries.
-pub(crate) fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
-    if q.len() != dim {
+/// Checks that a batch's output buffer holds `len` numbers. Only its length:
+/// the buffer may hold anything before it is written (NaN from an earlier
+/// batch included).
+pub(crate) fn check_output(out: &[f64], len: usize) -> Result<(), Error> {
+    if out.len() != len {
         return Err(Error::LengthMismatch {
             field: Field::Query,
-            expected: dim,
-            found: q.len(),
+            expected: len,
+            found: out.len(),
         });
     }
+    Ok(())
+}
+
+/// Checks that a query point holds `dim` finite numbers.
+pub(crate) fn check_query(q: &[f64], dim: usize) -> Result<(), Error> {
+    check_output(q, dim)?;
     check_finite(Field::Query, q)
 }
 

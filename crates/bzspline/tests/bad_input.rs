@@ -2,7 +2,7 @@
 //! fields. Also the inputs at the edge of what is accepted, which must give
 //! finite results.
 
-use bzspline::{Error, Extrapolate, Field, Spline, ALPHA_MAX, ALPHA_MIN};
+use bzspline::{Curve, Error, Extrapolate, Field, Spline, ALPHA_MAX, ALPHA_MIN};
 
 const X: [f64; 5] = [0.0, 1.0, 2.0, 3.0, 4.0];
 const F: [f64; 5] = [1.0, 3.0, 2.0, 5.0, 4.0];
@@ -618,4 +618,19 @@ fn output_buffers_are_written_not_judged() {
             .expect("a buffer holding NaN");
         assert_eq!(out, want, "order {order}");
     }
+    // The same for a curve's batch and the antiderivative's.
+    let c = Curve::open(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]).expect("valid");
+    let ts = [0.0, 0.5, 1.5, 2.5];
+    let mut want = [0.0; 8];
+    c.deriv_many(&ts, 0, &mut want).expect("a clean buffer");
+    let mut out = [f64::NAN; 8];
+    c.deriv_many(&ts, 0, &mut out)
+        .expect("a buffer holding NaN");
+    assert_eq!(out, want);
+    let f = s.antiderivative();
+    let mut want = [0.0; 4];
+    f.eval_many(&xs, &mut want).expect("a clean buffer");
+    let mut out = [f64::NAN, f64::INFINITY, f64::NAN, f64::NAN];
+    f.eval_many(&xs, &mut out).expect("a buffer holding NaN");
+    assert_eq!(out, want);
 }

@@ -1,7 +1,7 @@
 //! Evaluating a curve: locating the segment of a parameter, points and
 //! derivatives, tangents, normals and curvature, and sampling at equal steps.
 
-use super::{check_query, dot, norm, Curve};
+use super::{check_output, dot, norm, Curve};
 use crate::error::{Error, Field};
 use crate::poly::{deriv_of, horner};
 use crate::polyline::Polyline;
@@ -177,7 +177,7 @@ impl Curve {
     /// ```
     pub fn deriv_many(&self, ss: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
         let dim = self.dim();
-        check_query(out, ss.len() * dim)?;
+        check_output(out, ss.len() * dim)?;
         let mut hint = usize::MAX;
         for (i, (&s, o)) in ss.iter().zip(out.chunks_exact_mut(dim)).enumerate() {
             let (k, t) = self.locate_near(s, hint).map_err(|e| e.at_query(i))?;

@@ -4,7 +4,7 @@
 //! it, summed once at construction.
 
 use super::{Extrapolate, Spline};
-use crate::curve::check_query;
+use crate::curve::check_output;
 use crate::error::{Error, Field};
 use crate::traits::ParamCurve;
 
@@ -169,7 +169,7 @@ impl Antiderivative {
     /// [`Error::LengthMismatch`] when `out` is not as long as `xs`; otherwise
     /// as [`Antiderivative::eval`], naming the query's index.
     pub fn eval_many(&self, xs: &[f64], out: &mut [f64]) -> Result<(), Error> {
-        check_query(out, xs.len())?;
+        check_output(out, xs.len())?;
         for (i, (o, &x)) in out.iter_mut().zip(xs).enumerate() {
             *o = self.at(x, i)?;
         }

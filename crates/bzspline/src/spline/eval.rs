@@ -146,14 +146,7 @@ impl Spline {
     /// [`Spline::eval`], with the index of the failing query in
     /// [`Error::NonFinite`]. On error the contents of `out` are unspecified.
     pub fn deriv_many(&self, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
-        // The length only: `out` may hold anything, NaN included.
-        if out.len() != xs.len() {
-            return Err(Error::LengthMismatch {
-                field: Field::Query,
-                expected: xs.len(),
-                found: out.len(),
-            });
-        }
+        crate::curve::check_output(out, xs.len())?;
         let slow = |i: usize, x: f64, o: &mut f64| -> Result<(), Error> {
             *o = self.deriv(x, order).map_err(|e| e.at_query(i))?;
             Ok(())
@@ -190,14 +183,7 @@ impl Spline {
     #[cfg(feature = "rayon")]
     pub fn par_deriv_many(&self, xs: &[f64], order: u32, out: &mut [f64]) -> Result<(), Error> {
         use rayon::prelude::*;
-        // The length only: `out` may hold anything, NaN included.
-        if out.len() != xs.len() {
-            return Err(Error::LengthMismatch {
-                field: Field::Query,
-                expected: xs.len(),
-                found: out.len(),
-            });
-        }
+        crate::curve::check_output(out, xs.len())?;
         // A few chunks per thread for balance, none so small that the start-up
         // search dominates.
         let chunk = (xs.len() / (4 * rayon::current_num_threads()).max(1)).max(1 << 14);
