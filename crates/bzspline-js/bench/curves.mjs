@@ -25,26 +25,11 @@ setFlagsFromString("--expose-gc");
 const gc = runInNewContext("gc");
 
 /**
- * The median of `reps` timings of f, in milliseconds, after calling it for
- * half a second (V8 first runs WebAssembly from its baseline compiler and
- * swaps in optimised code as functions turn hot).
- */
-function time(f, reps) {
-  gc();
-  for (const t0 = performance.now(); performance.now() - t0 < 500; ) f();
-  const t = [];
-  for (let i = 0; i < reps; i++) {
-    const t0 = performance.now();
-    f();
-    t.push(performance.now() - t0);
-  }
-  return t.sort((a, b) => a - b)[reps >> 1];
-}
-
-/**
- * The medians of `reps` timings of each function of `fs` (an object), taken
- * in turn (one of each per round), so that a spell of the machine's noise
- * falls on all of them alike; each is warmed first as in `time`.
+ * The medians of `reps` timings of each function of `fs` (an object), in
+ * milliseconds, taken in turn (one of each per round), so that a spell of
+ * the machine's noise falls on all of them alike. Each is first called for
+ * half a second: V8 first runs WebAssembly from its baseline compiler and
+ * swaps in optimised code as functions turn hot.
  */
 function timeEach(fs, reps) {
   const t = Object.fromEntries(Object.keys(fs).map((k) => [k, []]));
@@ -61,6 +46,9 @@ function timeEach(fs, reps) {
   }
   return Object.fromEntries(Object.entries(t).map(([k, v]) => [k, v.sort((a, b) => a - b)[reps >> 1]]));
 }
+
+/** The median of `reps` timings of f alone, as `timeEach`. */
+const time = (f, reps) => timeEach({ f }, reps).f;
 
 const curves = {
   curveLinear: d3.curveLinear,
