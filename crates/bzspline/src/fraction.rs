@@ -2,8 +2,6 @@
 //! decimal or a fraction `p/q` (`1/3` for the smallest shape parameter),
 //! parsed once for the command, its server and every binding.
 
-use crate::validate::{ALPHA_MAX, ALPHA_MIN};
-
 /// A number written as a decimal or a fraction `p/q` (`1/3`, `0.5`): the
 /// quotient of the two parsed numbers, the nearest double to the fraction
 /// when `p` and `q` are exact.
@@ -35,11 +33,7 @@ pub fn parse_fraction(s: &str) -> Result<f64, String> {
 /// Text that is no number or fraction, or a value outside the range.
 pub fn parse_alpha(s: &str) -> Result<f64, String> {
     let v = parse_fraction(s)?;
-    if (ALPHA_MIN..=ALPHA_MAX).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("{} is outside [1/3, 2/3]", s.trim()))
-    }
+    crate::check_alpha(v).map_err(|_| format!("{} is outside [1/3, 2/3]", s.trim()))
 }
 
 #[cfg(test)]

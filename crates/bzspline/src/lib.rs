@@ -116,7 +116,7 @@ pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
 pub use smoothing::{Smoothed, Smoothing};
 pub use spline::{
-    Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline, UnknownExtrapolation,
-    ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,
+    check_alpha, AlphaChoice, Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline,
+    UnknownExtrapolation, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,
 };
 pub use traits::{write_svg_path, Arclen, BezierPieces, Bounds, Flatten, ParamCurve};

@@ -182,18 +182,41 @@ pub(crate) fn fit(
     })
 }
 
-/// The checks of a given `lambda`: finite, `>= 0`, and 0 only with every
-/// weight positive.
+impl Smoothing {
+    /// Checks a given `lambda`: finite and `>= 0` ([`Smoothing::Gcv`] is
+    /// always good). Every fit checks it; the command's `--smooth`, its
+    /// server and the bindings check it here too.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] with the `lambda`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::Smoothing;
+    ///
+    /// assert!(Smoothing::Lambda(0.5).check().is_ok());
+    /// assert!(Smoothing::Lambda(-1.0).check().is_err());
+    /// assert!(Smoothing::Lambda(f64::NAN).check().is_err());
+    /// ```
+    pub fn check(self) -> Result<Self, Error> {
+        match self {
+            Smoothing::Lambda(l) if !(l.is_finite() && l >= 0.0) => Err(Error::InvalidArgument {
+                what: "lambda must be a finite number >= 0",
+                value: l,
+            }),
+            ok => Ok(ok),
+        }
+    }
+}
+
+/// The checks of a given `lambda`: [`Smoothing::check`], and 0 only with
+/// every weight positive.
 fn check_lambda(smoothing: Smoothing, weights: &[f64]) -> Result<(), Error> {
-    let Smoothing::Lambda(l) = smoothing else {
+    let Smoothing::Lambda(l) = smoothing.check()? else {
         return Ok(());
     };
-    if !(l.is_finite() && l >= 0.0) {
-        return Err(Error::InvalidArgument {
-            what: "lambda must be a finite number >= 0",
-            value: l,
-        });
-    }
     if l == 0.0 && weights.contains(&0.0) {
         return Err(Error::InvalidArgument {
             what: "lambda = 0 passes through every point and needs every weight positive",

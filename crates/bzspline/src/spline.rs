@@ -31,7 +31,9 @@ pub(crate) mod tests;
 pub use antiderivative::Antiderivative;
 use shape::Shape;
 
-pub use crate::validate::{Alphas, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL};
+pub use crate::validate::{
+    check_alpha, AlphaChoice, Alphas, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,
+};
 
 /// What evaluation does outside `[tau_0, tau_{N-1}]`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -68,6 +70,20 @@ impl Extrapolate {
 impl core::fmt::Display for Extrapolate {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// scipy's `extrapolate` flag: `true` continues the end pieces
+/// ([`Extrapolate::Extend`]), `false` gives NaN outside the knots
+/// ([`Extrapolate::Nan`]). The bindings take `True`/`False` (Python) and
+/// `true`/`false` (JavaScript) through this, and the other policies by name.
+impl From<bool> for Extrapolate {
+    fn from(extend: bool) -> Self {
+        if extend {
+            Extrapolate::Extend
+        } else {
+            Extrapolate::Nan
+        }
     }
 }
 

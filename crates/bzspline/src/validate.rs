@@ -31,6 +31,84 @@ impl Default for Alphas<'_> {
     }
 }
 
+/// The owned form of [`Alphas`]: what an option or a binding's argument
+/// holds (one alpha, or one per interval) before there are knots to count.
+///
+/// [`AlphaChoice::check`] checks every value at once (finite, in
+/// `[1/3, 2/3]`); the count is checked by the construction that takes
+/// [`AlphaChoice::as_alphas`].
+///
+/// # Examples
+///
+/// ```
+/// use bzspline::{AlphaChoice, Spline};
+///
+/// let choice = AlphaChoice::Each(vec![0.4, 0.5]);
+/// choice.check()?;
+/// let s = Spline::build(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0], choice.as_alphas())?;
+/// assert_eq!(s.alphas(), &[0.4, 0.5]);
+/// assert!(AlphaChoice::One(0.7).check().is_err());
+/// # Ok::<(), bzspline::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum AlphaChoice {
+    /// The same alpha on every interval.
+    One(f64),
+    /// One alpha per interval.
+    Each(Vec<f64>),
+}
+
+impl Default for AlphaChoice {
+    fn default() -> Self {
+        AlphaChoice::One(DEFAULT_ALPHA)
+    }
+}
+
+impl AlphaChoice {
+    /// As a construction takes it.
+    #[must_use]
+    pub fn as_alphas(&self) -> Alphas<'_> {
+        match self {
+            AlphaChoice::One(a) => Alphas::Uniform(*a),
+            AlphaChoice::Each(v) => Alphas::PerInterval(v),
+        }
+    }
+
+    /// Checks every value: finite and in `[1/3, 2/3]`
+    /// ([`ALPHA_MIN`]..=[`ALPHA_MAX`]), whatever their count.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] or [`Error::AlphaOutOfRange`] naming the first
+    /// value at fault (index 0 for one alpha).
+    pub fn check(&self) -> Result<(), Error> {
+        match self {
+            AlphaChoice::One(a) => check_alpha(*a).map(drop),
+            AlphaChoice::Each(v) => check_alphas(Alphas::PerInterval(v), v.len()),
+        }
+    }
+}
+
+/// Checks one shape parameter: finite and in `[1/3, 2/3]`
+/// ([`ALPHA_MIN`]..=[`ALPHA_MAX`]). Every entry point that takes an alpha
+/// before it has knots (an option, a d3 curve factory, a smoothing option)
+/// checks it here.
+///
+/// # Errors
+///
+/// [`Error::NonFinite`] or [`Error::AlphaOutOfRange`], at index 0.
+///
+/// # Examples
+///
+/// ```
+/// assert_eq!(bzspline::check_alpha(0.5), Ok(0.5));
+/// assert!(bzspline::check_alpha(0.3).is_err());
+/// assert!(bzspline::check_alpha(f64::NAN).is_err());
+/// ```
+pub fn check_alpha(alpha: f64) -> Result<f64, Error> {
+    check_alphas(Alphas::Uniform(alpha), 1).map(|()| alpha)
+}
+
 /// Checks knots: at least two, finite, strictly increasing, a finite span and no
 /// interval narrower than [`MIN_RELATIVE_INTERVAL`] of it. Returns the widths.
 pub(crate) fn validate_knots(knots: &[f64]) -> Result<Vec<f64>, Error> {
