@@ -412,3 +412,59 @@ fn through_keeps_every_position_and_every_border() {
         }
     }
 }
+
+/// The z example: a line with right-angled corners and z rising along it.
+/// `--keep-angle` keeps its corners as it does in the plane (the turning
+/// angle is planar; z is carried along); Python and JavaScript are checked
+/// against this output in their own tests.
+#[test]
+fn keep_angle_keeps_corners_of_lines_with_z() {
+    let smooth = |extra: &[&str]| -> Vec<Vec<f64>> {
+        let mut args = vec!["smooth", "z_corners.geojson"];
+        args.extend_from_slice(extra);
+        let o = run(&args, None);
+        assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
+        assert!(o.stderr.contains("z"), "no note on z: {}", o.stderr);
+        let v: Value = serde_json::from_str(&o.stdout).unwrap();
+        v["coordinates"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                p.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|c| c.as_f64().unwrap())
+                    .collect()
+            })
+            .collect()
+    };
+    let input = [
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 2.0],
+        [1.0, 1.0, 3.0],
+        [2.0, 1.0, 4.0],
+        [2.0, 0.0, 5.0],
+    ];
+    let kept = smooth(&["--keep-angle", "30"]);
+    let cut = smooth(&[]);
+    assert_ne!(kept, cut, "--keep-angle 30 changed nothing");
+    for p in &input {
+        assert!(kept.iter().any(|q| q == p), "corner {p:?} is not kept");
+    }
+    assert!(
+        !cut.iter().any(|q| q == &input[2]),
+        "without it the corners are cut"
+    );
+    // Between kept corners the line runs along the legs: a straight leg in
+    // the plane, whatever z does.
+    for q in &kept {
+        let on_leg = input.windows(2).any(|w| {
+            let (a, b) = (w[0], w[1]);
+            ((b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0])).abs() < 1e-12
+        });
+        assert!(on_leg, "{q:?} leaves the legs");
+    }
+    // A turn of exactly 90 degrees is not sharper than 90: all are cut.
+    assert_eq!(smooth(&["--keep-angle", "90"]), cut);
+}

@@ -42,8 +42,10 @@ pub enum Error {
     },
     /// An option's value is out of range.
     InvalidOption {
-        /// Which option.
-        what: &'static str,
+        /// Which option (`alpha`, `tolerance`, `keep-angle`, `snap`).
+        option: &'static str,
+        /// What it must be (`must be a positive number`).
+        rule: &'static str,
         /// The value given.
         value: f64,
     },
@@ -84,7 +86,11 @@ impl fmt::Display for Error {
             Error::Polygon { polygon, chain } => {
                 write!(f, "polygon {polygon}: chain {chain} is not a ring")
             }
-            Error::InvalidOption { what, value } => write!(f, "invalid {what}: {value}"),
+            Error::InvalidOption {
+                option,
+                rule,
+                value,
+            } => write!(f, "invalid {option} ({rule}): {value}"),
             Error::Overflow { arc } => write!(f, "arc {arc}: the smoothed arc overflows a double"),
             Error::Rounds { rounds } => write!(
                 f,

@@ -82,6 +82,7 @@ mod levels;
 mod line;
 mod nodes;
 pub mod parts;
+mod piece;
 mod smooth;
 mod smoothing;
 mod topology;
@@ -91,7 +92,8 @@ pub use error::Error;
 pub use line::smooth_line;
 pub use nodes::Nodes;
 pub use smooth::{
-    default_tolerance_of, SmoothOptions, Smoothed, Stats, DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL,
+    check_keep_angle, check_tolerance, default_tolerance_of, SmoothOptions, Smoothed, Stats,
+    DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL,
 };
 pub use smoothing::Smooth;
-pub use topology::{snap, ArcRef, Chain, ChainKind, Topology};
+pub use topology::{check_snap, snap, ArcRef, Chain, ChainKind, Topology};

@@ -15,7 +15,8 @@ use crate::topology::{ChainKind, Topology};
 mod arc;
 mod rings;
 
-use arc::{is_closed, smooth_arc, turning_degrees, Plan, Seg};
+pub(crate) use arc::turning_degrees;
+use arc::{is_closed, smooth_arc, Plan, Seg};
 use rings::{holes_inside, RingFacts, Shoelace};
 
 /// The default flattening tolerance as a fraction of the diagonal of the
@@ -103,30 +104,65 @@ impl SmoothOptions {
         self
     }
 
-    fn check(&self) -> Result<(), Error> {
-        if !(bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&self.alpha) {
+    /// Checks every option's range: alpha in `[1/3, 2/3]`
+    /// ([`bzspline::check_alpha`]), a tolerance positive and finite, a
+    /// keep-angle from 0 to 180 degrees. Smoothing checks them first; the
+    /// command, its server and the bindings check them here too, before
+    /// reading any data. The keep-angle is a turning angle in the plane (x,
+    /// y) everywhere, positions with z included.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidOption`] naming the first option at fault.
+    pub fn validate(&self) -> Result<(), Error> {
+        if bzspline::check_alpha(self.alpha).is_err() {
             return Err(Error::InvalidOption {
-                what: "alpha (must be in [1/3, 2/3])",
+                option: "alpha",
+                rule: "must be in [1/3, 2/3]",
                 value: self.alpha,
             });
         }
         if let Some(t) = self.tolerance {
-            if !(t.is_finite() && t > 0.0) {
-                return Err(Error::InvalidOption {
-                    what: "tolerance (must be a positive number)",
-                    value: t,
-                });
-            }
+            check_tolerance(t)?;
         }
         if let Some(a) = self.keep_angle {
-            if !(0.0..=180.0).contains(&a) {
-                return Err(Error::InvalidOption {
-                    what: "keep-angle (must be in [0, 180] degrees)",
-                    value: a,
-                });
-            }
+            check_keep_angle(a)?;
         }
         Ok(())
+    }
+}
+
+/// A flattening tolerance: a positive finite number.
+///
+/// # Errors
+///
+/// [`Error::InvalidOption`] otherwise.
+pub fn check_tolerance(tolerance: f64) -> Result<f64, Error> {
+    if tolerance.is_finite() && tolerance > 0.0 {
+        Ok(tolerance)
+    } else {
+        Err(Error::InvalidOption {
+            option: "tolerance",
+            rule: "must be a positive number",
+            value: tolerance,
+        })
+    }
+}
+
+/// A keep-angle: degrees from 0 to 180, the turning angle in the plane.
+///
+/// # Errors
+///
+/// [`Error::InvalidOption`] otherwise (NaN included).
+pub fn check_keep_angle(degrees: f64) -> Result<f64, Error> {
+    if (0.0..=180.0).contains(&degrees) {
+        Ok(degrees)
+    } else {
+        Err(Error::InvalidOption {
+            option: "keep-angle",
+            rule: "must be an angle from 0 to 180 degrees",
+            value: degrees,
+        })
     }
 }
 
@@ -165,6 +201,29 @@ pub struct Stats {
     pub area_out: f64,
     /// The tolerance used.
     pub tolerance: f64,
+}
+
+/// Totals over several smoothings (the documents of a file, the lines of
+/// newline-delimited input): counts and areas add up, `rounds` is the most
+/// any took, `tolerance` the last one's.
+impl core::ops::AddAssign<&Stats> for Stats {
+    fn add_assign(&mut self, s: &Stats) {
+        self.lines += s.lines;
+        self.rings += s.rings;
+        self.arcs += s.arcs;
+        self.shared_arcs += s.shared_arcs;
+        self.closed_arcs += s.closed_arcs;
+        self.positions_in += s.positions_in;
+        self.positions_out += s.positions_out;
+        self.refined_legs += s.refined_legs;
+        self.straight_legs += s.straight_legs;
+        self.rounds = self.rounds.max(s.rounds);
+        self.input_conflicts += s.input_conflicts;
+        self.kept_pieces += s.kept_pieces;
+        self.area_in += s.area_in;
+        self.area_out += s.area_out;
+        self.tolerance = s.tolerance;
+    }
 }
 
 /// Smoothed arcs, with the same indices as the topology's.
@@ -251,7 +310,7 @@ impl Topology {
         one: bool,
         exact: &[bool],
     ) -> Result<Smoothed, Error> {
-        opts.check()?;
+        opts.validate()?;
         let arcs = self.arcs();
         let extent = self.nodes().extent();
         let tolerance = opts

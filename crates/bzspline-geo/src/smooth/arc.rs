@@ -2,12 +2,12 @@
 //! each piece's control polygon refined along its legs, the method's curve
 //! flattened, and each output segment traced back to the legs it lies along.
 
-use bzspline::{CurveBuilder, Flatten};
 use geo_types::Coord;
 
 use super::{SmoothOptions, MAX_LEVEL, STRAIGHT};
 use crate::error::Error;
 use crate::graph::key;
+use crate::piece::{self, Flat};
 
 /// Which original legs one output segment lies along, and whether it is an
 /// original edge.
@@ -181,11 +181,8 @@ fn refine(arc: &[Coord], walk: &[usize], levels: &[u8], closed: bool) -> (Vec<f6
 }
 
 /// The flattened curve of the control points `ctrl` (at least `min`
-/// positions, sampled evenly in the parameter when flattening gives fewer):
-/// its vertices' parameters and coordinates, and the curve's knots; `None`
-/// when no curve can be built on them (points too close for the
-/// parametrisation, say). Through the points, every control point is a
-/// vertex, with its coordinates exactly.
+/// positions): [`piece::flatten`] of [`piece::build`]; `None` when no curve
+/// can be built on them (points too close for the parametrisation, say).
 ///
 /// # Errors
 ///
@@ -197,52 +194,10 @@ fn curve_polyline(
     tol: f64,
     min: usize,
 ) -> Result<Option<Flat>, bzspline::Error> {
-    let Ok(curve) = CurveBuilder::new(ctrl, 2)
-        .closed(closed)
-        .param(opts.param.clone())
-        .alpha(opts.alpha)
-        .through(opts.through)
-        .build()
-    else {
+    let Ok(curve) = piece::build(ctrl, 2, closed, opts) else {
         return Ok(None);
     };
-    let mut poly = if opts.through {
-        curve.flatten_with_knots(tol)?
-    } else {
-        curve.flatten(tol)?
-    };
-    if poly.len() < min {
-        poly = curve.sample(min)?;
-    }
-    let knots = curve.knots().to_vec();
-    let params = poly.params().to_vec();
-    let mut coords = poly.coords().to_vec();
-    if opts.through {
-        let n = ctrl.len() / 2;
-        let mut k = 0;
-        for (i, &t) in params.iter().enumerate() {
-            while k < knots.len() && knots[k] < t {
-                k += 1;
-            }
-            if k < knots.len() && knots[k] == t {
-                let j = k % n;
-                coords[2 * i] = ctrl[2 * j];
-                coords[2 * i + 1] = ctrl[2 * j + 1];
-            }
-        }
-    }
-    Ok(Some(Flat {
-        params,
-        coords,
-        knots,
-    }))
-}
-
-/// A flattened piece: vertex parameters, coordinates (flat), the knots.
-struct Flat {
-    params: Vec<f64>,
-    coords: Vec<f64>,
-    knots: Vec<f64>,
+    piece::flatten(&curve, ctrl, 2, opts, tol, min).map(Some)
 }
 
 /// Appends the polyline's vertices (after the first when `out` already
@@ -293,7 +248,7 @@ pub(super) fn is_closed(a: &[Coord]) -> bool {
 }
 
 /// The angle in degrees between the legs into and out of `b`.
-pub(super) fn turning_degrees(a: Coord, b: Coord, c: Coord) -> f64 {
+pub(crate) fn turning_degrees(a: Coord, b: Coord, c: Coord) -> f64 {
     let (ux, uy) = (b.x - a.x, b.y - a.y);
     let (vx, vy) = (c.x - b.x, c.y - b.y);
     (ux * vy - uy * vx)
