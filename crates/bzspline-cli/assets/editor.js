@@ -4,8 +4,8 @@
 
 (() => {
   const SVG_NS = 'http://www.w3.org/2000/svg';
-  const ALPHA_MIN = 1 / 3;
-  const ALPHA_MAX = 2 / 3;
+  // The library's range of alpha, as the server puts it into the page.
+  const [ALPHA_MIN, ALPHA_MAX] = JSON.parse(document.getElementById('alpha-range').textContent);
   const COMB_SAMPLES = 24;
   // The paper's Example 1, as the server puts it into the page.
   const EXAMPLE_1 = JSON.parse(document.getElementById('example-1').textContent);

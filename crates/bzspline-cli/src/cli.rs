@@ -9,8 +9,9 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 
 use crate::input::{self, Points, Source};
-use crate::model::Mode;
-use bzspline_io::options::{self, parse_alpha};
+use crate::model::{Mode, Shape};
+use bzspline::AlphaChoice;
+use bzspline_io::options::parse_alpha;
 
 pub use crate::input::InputFormat;
 use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
@@ -408,35 +409,24 @@ fn at_least_two(s: &str) -> Result<usize, String> {
     }
 }
 
+/// An option's rule as the library words it (`must be ...`), for clap.
+fn rule(e: &bzspline_geo::Error, s: &str) -> String {
+    match e {
+        bzspline_geo::Error::InvalidOption { rule, .. } => format!("{rule} (got {s})"),
+        other => other.to_string(),
+    }
+}
+
 fn positive(s: &str) -> Result<f64, String> {
-    options::check_positive(parse_number(s)?).map_err(|e| format!("{e} (got {s})"))
+    bzspline_geo::check_tolerance(parse_number(s)?).map_err(|e| rule(&e, s))
 }
 
 fn non_negative(s: &str) -> Result<f64, String> {
-    options::check_snap(parse_number(s)?).map_err(|e| format!("{e} (got {s})"))
+    bzspline_geo::check_snap(parse_number(s)?).map_err(|e| rule(&e, s))
 }
 
 fn degrees(s: &str) -> Result<f64, String> {
-    options::check_keep_angle(parse_number(s)?).map_err(|e| format!("{e} (got {s})"))
-}
-
-/// The validated shape options.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Shape {
-    /// Function or curve.
-    pub mode: Mode,
-    /// Closed curve.
-    pub closed: bool,
-    /// Parametrisation of a curve.
-    pub param: bzspline::Param,
-    /// One alpha for all intervals.
-    pub alpha: Option<f64>,
-    /// One alpha per interval.
-    pub alphas: Option<Vec<f64>>,
-    /// Through the points (the interpolating variant).
-    pub through: bool,
-    /// A smoothing fit of the points as noisy data.
-    pub smoothing: Option<bzspline::Smoothing>,
+    bzspline_geo::check_keep_angle(parse_number(s)?).map_err(|e| rule(&e, s))
 }
 
 impl ShapeArgs {
@@ -462,21 +452,25 @@ impl ShapeArgs {
             mode: if curve { Mode::Curve } else { Mode::Function },
             closed: self.closed,
             param: self.param.clone().unwrap_or_default(),
-            alpha: self.alpha,
-            alphas: self.alphas.clone(),
+            alphas: match (&self.alphas, self.alpha) {
+                (Some(each), _) => AlphaChoice::Each(each.clone()),
+                (None, Some(one)) => AlphaChoice::One(one),
+                (None, None) => AlphaChoice::default(),
+            },
             through: self.through,
             smoothing: self.smooth,
         })
     }
 }
 
-/// Rejects a non-finite alpha or one outside [1/3, 2/3] before any work.
+/// Refuses an alpha that [`bzspline::check_alpha`] refuses, before any work,
+/// naming the option.
 pub fn check_alpha(name: &str, a: f64) -> Result<()> {
-    if !a.is_finite() {
+    if bzspline::check_alpha(a).is_err() {
+        if a.is_finite() {
+            usage!("{name} = {a} is outside [1/3, 2/3]");
+        }
         usage!("{name} = {a} is not a finite number");
-    }
-    if !(bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
-        usage!("{name} = {a} is outside [1/3, 2/3]");
     }
     Ok(())
 }
@@ -518,7 +512,7 @@ mod tests {
         let shape = f.shape.validate().unwrap();
         assert_eq!(
             shape.alphas,
-            Some(vec![bzspline::ALPHA_MIN, 2.0 / 3.0, 0.5])
+            bzspline::AlphaChoice::Each(vec![bzspline::ALPHA_MIN, 2.0 / 3.0, 0.5])
         );
         let e = Cli::try_parse_from(["bzspline", "fit", "--alpha", "0.9"]).unwrap_err();
         assert_eq!(e.exit_code(), 2);

@@ -4,9 +4,8 @@
 
 use anyhow::{bail, Result};
 
-use crate::cli::Shape;
 use crate::input::{self, Points};
-use crate::model::{self, FitSpec, Fitted, Mode, SmoothingReport};
+use crate::model::{self, FitSpec, Fitted, Mode, Shape, SmoothingReport};
 
 /// Builds the spline for `points` with the validated `shape`, naming the file
 /// and line of any fault.
@@ -47,13 +46,7 @@ fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
     FitSpec {
         points: std::borrow::Cow::Borrowed(&points.coords),
         dim: points.width,
-        mode: shape.mode,
-        closed: shape.closed,
-        param: shape.param.clone(),
-        alpha: shape.alpha,
-        alphas: shape.alphas.clone(),
-        through: shape.through,
-        smoothing: shape.smoothing,
+        shape: shape.clone(),
     }
 }
 

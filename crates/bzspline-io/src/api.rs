@@ -3,9 +3,9 @@
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use bzspline::{BezierPieces, CubicBez, Param};
+use bzspline::{AlphaChoice, BezierPieces, CubicBez, Param};
 
-use crate::model::{self, FitSpec, Mode};
+use crate::model::{self, FitSpec, Mode, Shape};
 
 /// A refused request: the HTTP status and a message for the JSON body.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -187,9 +187,12 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
         ),
         Some(v) => {
             let l = number(v, || "smooth".to_owned())?;
-            let l = crate::options::check_lambda(l)
-                .map_err(|e| ApiError::new(422, format!("smooth {e} (got {l})")))?;
-            Some(bzspline::Smoothing::Lambda(l))
+            Some(bzspline::Smoothing::Lambda(l).check().map_err(|_| {
+                ApiError::new(
+                    422,
+                    format!("smooth {} (got {l})", crate::options::LAMBDA_RULE),
+                )
+            })?)
         }
     };
     let samples = raw.samples.unwrap_or(0);
@@ -208,13 +211,19 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
         spec: FitSpec {
             points: points.into(),
             dim: 2,
-            mode,
-            closed: raw.closed.unwrap_or(false),
-            param,
-            alpha,
-            alphas,
-            through: raw.through.unwrap_or(false),
-            smoothing,
+            shape: Shape {
+                mode,
+                closed: raw.closed.unwrap_or(false),
+                param,
+                // One per interval takes precedence over one for all.
+                alphas: match (alphas, alpha) {
+                    (Some(each), _) => AlphaChoice::Each(each),
+                    (None, Some(one)) => AlphaChoice::One(one),
+                    (None, None) => AlphaChoice::default(),
+                },
+                through: raw.through.unwrap_or(false),
+                smoothing,
+            },
         },
         samples,
     })
@@ -336,10 +345,13 @@ mod tests {
     fn alphas_may_be_fractions() {
         let body = br#"{"points": [[0,1],[1,2],[2,0]], "alpha": "1/3"}"#;
         let req = parse(body, LIMITS).unwrap();
-        assert_eq!(req.spec.alpha, Some(bzspline::ALPHA_MIN));
+        assert_eq!(req.spec.shape.alphas, AlphaChoice::One(bzspline::ALPHA_MIN));
         let body = br#"{"points": [[0,1],[1,2],[2,0]], "alphas": ["2/3", 0.5]}"#;
         let req = parse(body, LIMITS).unwrap();
-        assert_eq!(req.spec.alphas, Some(vec![2.0 / 3.0, 0.5]));
+        assert_eq!(
+            req.spec.shape.alphas,
+            AlphaChoice::Each(vec![2.0 / 3.0, 0.5])
+        );
         assert!(fit(&req).is_ok());
         let body = br#"{"points": [[0,1],[1,2],[2,0]], "alpha": "1/0"}"#;
         let e = parse(body, LIMITS).unwrap_err();

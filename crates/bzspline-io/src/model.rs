@@ -6,7 +6,7 @@ use std::borrow::Cow;
 use std::fmt;
 
 use bzspline::{
-    Alphas, Arclen, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Smoothing,
+    AlphaChoice, Arclen, BezierPieces, Curve, CurveBuilder, Flatten, Param, ParamCurve, Smoothing,
     Spline,
 };
 use serde::Serialize;
@@ -21,30 +21,65 @@ pub enum Mode {
     Curve,
 }
 
-/// Everything needed to build a spline.
+/// How to fit points: everything but the points themselves. The command's
+/// options, the server's request and the bindings all come to this.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FitSpec<'a> {
-    /// The rows, flat: `x, y` for a function, the coordinates for a curve.
-    pub points: Cow<'a, [f64]>,
-    /// Numbers per row.
-    pub dim: usize,
+pub struct Shape {
     /// Function or curve.
     pub mode: Mode,
     /// Closed curve (ignored for functions).
     pub closed: bool,
     /// Curve parametrisation (ignored for functions).
     pub param: Param,
-    /// One alpha for every interval (default 1/2).
-    pub alpha: Option<f64>,
-    /// One alpha per interval (per leg of a curve, the closing leg last);
-    /// takes precedence over `alpha`.
-    pub alphas: Option<Vec<f64>>,
+    /// One alpha for every interval (default 1/2), or one per interval (per
+    /// leg of a curve, the closing leg last).
+    pub alphas: AlphaChoice,
     /// Through the points (the interpolating variant) instead of touching the
     /// legs of their polygon.
     pub through: bool,
     /// A smoothing fit of the points as noisy data (`docs/method.md` §12)
     /// instead of taking them as control points; open curves and functions.
     pub smoothing: Option<Smoothing>,
+}
+
+impl Default for Shape {
+    fn default() -> Self {
+        Shape {
+            mode: Mode::Function,
+            closed: false,
+            param: Param::default(),
+            alphas: AlphaChoice::default(),
+            through: false,
+            smoothing: None,
+        }
+    }
+}
+
+impl Shape {
+    /// Checks what can be checked before there are points: every alpha
+    /// ([`AlphaChoice::check`]) and a given `lambda` ([`Smoothing::check`]).
+    ///
+    /// # Errors
+    ///
+    /// The library's error naming the alpha (its index) or the `lambda`.
+    pub fn check(&self) -> Result<(), bzspline::Error> {
+        self.alphas.check()?;
+        if let Some(s) = self.smoothing {
+            s.check()?;
+        }
+        Ok(())
+    }
+}
+
+/// Everything needed to build a spline: the points and their [`Shape`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitSpec<'a> {
+    /// The rows, flat: `x, y` for a function, the coordinates for a curve.
+    pub points: Cow<'a, [f64]>,
+    /// Numbers per row.
+    pub dim: usize,
+    /// How to fit them.
+    pub shape: Shape,
 }
 
 /// How a smoothing fit came out: its `lambda`, GCV score and degrees of
@@ -100,7 +135,9 @@ pub fn build_reported(
     spec: &FitSpec<'_>,
 ) -> Result<(Fitted, Option<SmoothingReport>), bzspline::Error> {
     let rows = spec.points.len().checked_div(spec.dim).unwrap_or(0);
-    match spec.mode {
+    let shape = &spec.shape;
+    let alphas = shape.alphas.as_alphas();
+    match shape.mode {
         Mode::Function => {
             if spec.dim != 2 && rows > 0 {
                 return Err(bzspline::Error::LengthMismatch {
@@ -111,18 +148,13 @@ pub fn build_reported(
             }
             let (xs, ys): (Vec<f64>, Vec<f64>) =
                 spec.points.chunks_exact(2).map(|p| (p[0], p[1])).unzip();
-            let alphas = match (&spec.alphas, spec.alpha) {
-                (Some(a), _) => Alphas::PerInterval(a),
-                (None, Some(a)) => Alphas::Uniform(a),
-                (None, None) => Alphas::default(),
-            };
-            if let Some(how) = spec.smoothing {
+            if let Some(how) = shape.smoothing {
                 let s = Spline::smoothing(&xs, &ys, None, alphas, how)?;
                 let report = SmoothingReport::from(&s);
                 return Ok((Fitted::Function(s.fit), Some(report)));
             }
             Ok((
-                Fitted::Function(if spec.through {
+                Fitted::Function(if shape.through {
                     Spline::through(&xs, &ys, alphas)?
                 } else {
                     Spline::build(&xs, &ys, alphas)?
@@ -134,19 +166,15 @@ pub fn build_reported(
             if rows == 0 {
                 return Err(bzspline::Error::TooFewPoints {
                     found: 0,
-                    min: if spec.closed { 3 } else { 2 },
+                    min: if shape.closed { 3 } else { 2 },
                 });
             }
-            let mut b = CurveBuilder::new(&spec.points, spec.dim)
-                .closed(spec.closed)
-                .param(spec.param.clone())
-                .through(spec.through);
-            if let Some(a) = &spec.alphas {
-                b = b.alphas(a);
-            } else if let Some(a) = spec.alpha {
-                b = b.alpha(a);
-            }
-            if let Some(how) = spec.smoothing {
+            let b = CurveBuilder::new(&spec.points, spec.dim)
+                .closed(shape.closed)
+                .param(shape.param.clone())
+                .alpha_choice(alphas)
+                .through(shape.through);
+            if let Some(how) = shape.smoothing {
                 let s = b.smoothing(how).build_smoothed()?;
                 let report = SmoothingReport::from(&s);
                 return Ok((Fitted::Curve(s.fit), Some(report)));
@@ -545,13 +573,10 @@ mod tests {
                 .flat_map(|(i, &y)| [i as f64 + 1.0, y])
                 .collect(),
             dim: 2,
-            mode: Mode::Function,
-            closed: false,
-            param: Param::Uniform,
-            alpha: None,
-            alphas: None,
-            through: false,
-            smoothing: None,
+            shape: Shape {
+                param: Param::Uniform,
+                ..Shape::default()
+            },
         }
     }
 
@@ -582,8 +607,8 @@ mod tests {
     fn the_streamed_object_is_the_value_laid_out() {
         let mut closed = example1();
         closed.points = Cow::Borrowed(&[0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0]);
-        closed.mode = Mode::Curve;
-        closed.closed = true;
+        closed.shape.mode = Mode::Curve;
+        closed.shape.closed = true;
         for spec in [example1(), closed] {
             let f = build(&spec).unwrap();
             let (mut a, mut b) = (Vec::new(), Vec::new());

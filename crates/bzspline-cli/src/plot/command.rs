@@ -54,13 +54,13 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         let label = (!a.figure.overlay.is_empty()).then(|| "bzspline".to_owned());
         data.push(plot_data(&fit_points(&points, &shape)?, label)?);
     } else {
-        if shape.alpha.is_some() || shape.alphas.is_some() {
+        if a.shape.alpha.is_some() || a.shape.alphas.is_some() {
             usage!("--alpha-sweep draws one curve per alpha: leave out --alpha and --alphas");
         }
         for (i, &alpha) in sweep.iter().enumerate() {
             check_alpha(&format!("--alpha-sweep value {}", i + 1), alpha)?;
             let mut one = shape.clone();
-            one.alpha = Some(alpha);
+            one.alphas = bzspline::AlphaChoice::One(alpha);
             data.push(plot_data(
                 &fit_points(&points, &one)?,
                 Some(super::alpha_label(alpha)),

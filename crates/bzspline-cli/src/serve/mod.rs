@@ -168,14 +168,22 @@ fn router(state: Arc<AppState>, guard: guard::HostGuard) -> Router {
 }
 
 /// The editor's page with the paper's Example 1 (the command's own copy of
-/// it) in its data block.
+/// it) and the library's range of alpha in its data blocks.
 fn editor_page() -> &'static str {
     static PAGE: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     PAGE.get_or_init(|| {
         let example = crate::input::example(1);
         let points: Vec<&[f64]> = example.coords.chunks(example.width).collect();
         let json = serde_json::to_string(&points).unwrap_or_else(|_| "[]".to_owned());
-        EDITOR_HTML.replace("EXAMPLE_1_POINTS", &json)
+        // The library's range of alpha: the page clamps to it, never to its own.
+        let range = format!(
+            "[{},{}]",
+            bzspline::text::Shortest(bzspline::ALPHA_MIN),
+            bzspline::text::Shortest(bzspline::ALPHA_MAX)
+        );
+        EDITOR_HTML
+            .replace("EXAMPLE_1_POINTS", &json)
+            .replace("ALPHA_RANGE", &range)
     })
 }
 

@@ -31,7 +31,6 @@ use crate::output::Sink;
 /// errors.
 pub fn run(a: &SmoothArgs) -> Result<()> {
     let alpha = a.alpha.unwrap_or(bzspline::DEFAULT_ALPHA);
-    crate::cli::check_alpha("--alpha", alpha)?;
     let mut lib = SmoothOptions::default().alpha(alpha).param(a.param.clone());
     lib.tolerance = a.tolerance;
     lib.keep_angle = a.keep_angle;

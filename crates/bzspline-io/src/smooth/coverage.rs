@@ -137,7 +137,7 @@ pub fn smooth_each(
             .topology()
             .smooth(opts)
             .map_err(|e| located(&coverage, &e, &|_| place(i), where_))?;
-        super::job::add(&mut total, &s.stats);
+        total += &s.stats;
         out.extend(coverage.assemble(&s.arcs));
     }
     put_back(&mut doc, &out);

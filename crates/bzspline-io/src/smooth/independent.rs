@@ -11,36 +11,22 @@
 //! unchanged.
 
 use anyhow::{anyhow, bail, Result};
-use bzspline::Param;
 use bzspline_geo::SmoothOptions;
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 
-use crate::input;
-
-/// The options of ring-by-ring smoothing.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Options {
-    /// The shape parameter.
-    pub alpha: f64,
-    /// The curves' parametrisation.
-    pub param: Param,
-    /// The flattening tolerance.
-    pub tolerance: f64,
-    /// Input limits (positions per line).
-    pub limits: input::Limits,
-    /// Through every vertex (the interpolating variant), keeping them all.
-    pub through: bool,
-}
-
-/// Smooths every feature of a document; errors name `where_` and the feature
+/// Smooths every feature of a document with `opts` (their tolerance set, or
+/// each line's own default), no line of more than `max_points` positions;
+/// errors name `where_` and the feature
 /// (a lone feature or geometry is `feature 0` when `number_single`, else just
 /// `where_`, the line of newline-delimited input).
 pub fn smooth_document(
     doc: GeoJson,
-    opts: &Options,
+    opts: &SmoothOptions,
+    max_points: usize,
     where_: &str,
     number_single: bool,
 ) -> Result<GeoJson> {
+    let opts = &Ctx { opts, max_points };
     let at = |i: usize| format!("{where_}: feature {i}");
     let single = || {
         if number_single {
@@ -68,14 +54,20 @@ pub fn smooth_document(
     })
 }
 
-fn smooth_feature(mut f: Feature, opts: &Options) -> Result<Feature> {
+/// The options and the limit, as every function below takes them.
+struct Ctx<'a> {
+    opts: &'a SmoothOptions,
+    max_points: usize,
+}
+
+fn smooth_feature(mut f: Feature, opts: &Ctx<'_>) -> Result<Feature> {
     if let Some(g) = f.geometry.take() {
         f.geometry = Some(smooth_geometry(g, opts)?);
     }
     Ok(f)
 }
 
-fn smooth_geometry(mut g: Geometry, opts: &Options) -> Result<Geometry> {
+fn smooth_geometry(mut g: Geometry, opts: &Ctx<'_>) -> Result<Geometry> {
     g.value = match g.value {
         GeometryValue::LineString { coordinates } => GeometryValue::LineString {
             coordinates: smooth_line(&coordinates, false, opts)?,
@@ -111,7 +103,7 @@ fn smooth_geometry(mut g: Geometry, opts: &Options) -> Result<Geometry> {
     Ok(g)
 }
 
-fn smooth_rings(rings: &[Vec<Position>], opts: &Options) -> Result<Vec<Vec<Position>>> {
+fn smooth_rings(rings: &[Vec<Position>], opts: &Ctx<'_>) -> Result<Vec<Vec<Position>>> {
     rings
         .iter()
         .enumerate()
@@ -120,14 +112,14 @@ fn smooth_rings(rings: &[Vec<Position>], opts: &Options) -> Result<Vec<Vec<Posit
 }
 
 /// The smoothed vertices of one line (or ring, `closed`).
-fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Position>> {
+fn smooth_line(line: &[Position], closed: bool, opts: &Ctx<'_>) -> Result<Vec<Position>> {
     let Some(dim) = line.first().map(Position::len) else {
         return Ok(Vec::new());
     };
     if !(2..=3).contains(&dim) {
         bail!("coordinate 0 has {dim} numbers; only 2 (x, y) or 3 (x, y, z) are supported");
     }
-    let max = opts.limits.max_points;
+    let max = opts.max_points;
     if line.len() > max {
         bail!("more than {max} positions (--max-points)");
     }
@@ -141,12 +133,8 @@ fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Po
         .iter()
         .flat_map(|p| p.as_slice().iter().copied())
         .collect();
-    let smooth = SmoothOptions::default()
-        .alpha(opts.alpha)
-        .param(opts.param.clone())
-        .through(opts.through);
-    let out = bzspline_geo::smooth_line(&flat, dim, closed, opts.tolerance, &smooth)
-        .map_err(|e| anyhow!("{e}"))?;
+    let out =
+        bzspline_geo::smooth_line(&flat, dim, closed, opts.opts).map_err(|e| anyhow!("{e}"))?;
     Ok(out
         .chunks_exact(dim)
         .map(|c| Position::from(c.to_vec()))
@@ -157,14 +145,13 @@ fn smooth_line(line: &[Position], closed: bool, opts: &Options) -> Result<Vec<Po
 mod tests {
     use super::*;
 
-    fn opts(tol: f64) -> Options {
-        Options {
-            alpha: 0.5,
-            param: Param::Centripetal,
-            tolerance: tol,
-            limits: input::Limits::DEFAULT,
-            through: false,
-        }
+    fn smooth(line: &[Position], closed: bool, tol: f64) -> Result<Vec<Position>> {
+        let opts = SmoothOptions::default().tolerance(tol);
+        let ctx = Ctx {
+            opts: &opts,
+            max_points: 1000,
+        };
+        smooth_line(line, closed, &ctx)
     }
 
     fn pos(v: &[[f64; 2]]) -> Vec<Position> {
@@ -174,7 +161,7 @@ mod tests {
     #[test]
     fn a_line_keeps_its_ends_and_gains_vertices() {
         let line = pos(&[[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]);
-        let out = smooth_line(&line, false, &opts(1e-3)).unwrap();
+        let out = smooth(&line, false, 1e-3).unwrap();
         assert!(out.len() > line.len(), "{} vertices", out.len());
         assert_eq!(out[0], line[0]);
         assert_eq!(out[out.len() - 1], line[3]);
@@ -183,7 +170,7 @@ mod tests {
     #[test]
     fn a_ring_comes_out_closed_and_inside_the_square() {
         let ring = pos(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]]);
-        let out = smooth_line(&ring, true, &opts(1e-3)).unwrap();
+        let out = smooth(&ring, true, 1e-3).unwrap();
         assert_eq!(out[0], out[out.len() - 1]);
         for p in &out {
             let [x, y] = [p[0], p[1]];
@@ -194,9 +181,9 @@ mod tests {
     #[test]
     fn degenerate_lines_pass_through_and_mixed_dimensions_are_refused() {
         let line = pos(&[[0.0, 0.0], [0.0, 0.0]]);
-        assert_eq!(smooth_line(&line, false, &opts(0.1)).unwrap(), line);
+        assert_eq!(smooth(&line, false, 0.1).unwrap(), line);
         let mixed = vec![Position::from([0.0, 0.0]), Position::from([1.0, 1.0, 1.0])];
-        let e = smooth_line(&mixed, false, &opts(0.1)).unwrap_err();
+        let e = smooth(&mixed, false, 0.1).unwrap_err();
         assert!(e.to_string().contains("coordinate 1 has 3"), "{e}");
     }
 }

@@ -12,7 +12,6 @@ use serde_json::Value;
 
 use super::{chains, coverage, default_tolerance, independent, positions};
 use crate::input::{self, Limits, Points};
-use crate::options;
 use crate::topojson;
 
 /// What a smoothed document is written as.
@@ -52,7 +51,8 @@ pub struct Settings {
 
 impl Settings {
     /// Checks the settings as a whole: every number in its range
-    /// ([`crate::options`]), and no combination that cannot be
+    /// ([`SmoothOptions::validate`], [`bzspline_geo::check_snap`]), and no
+    /// combination that cannot be
     /// done: every geometry on its own (`independent`) with a snap distance
     /// or TopoJSON output, which need one topology for the document.
     ///
@@ -60,21 +60,9 @@ impl Settings {
     ///
     /// A sentence naming the option (as the command spells it) at fault.
     pub fn check(&self) -> Result<(), String> {
-        let o = &self.options;
-        if !(bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&o.alpha) {
-            return Err(format!("alpha = {} is outside [1/3, 2/3]", o.alpha));
-        }
-        let named = |name: &str, v: f64, r: Result<f64, &str>| {
-            r.map(drop).map_err(|e| format!("{name} {e} (got {v})"))
-        };
-        if let Some(t) = o.tolerance {
-            named("tolerance", t, options::check_positive(t))?;
-        }
-        if let Some(a) = o.keep_angle {
-            named("keep-angle", a, options::check_keep_angle(a))?;
-        }
+        self.options.validate().map_err(|e| e.to_string())?;
         if let Some(d) = self.snap {
-            named("snap", d, options::check_snap(d))?;
+            bzspline_geo::check_snap(d).map_err(|e| e.to_string())?;
         }
         if self.independent {
             if self.snap.is_some() {
@@ -218,29 +206,24 @@ impl Job {
                 self.z_at = Some(where_.to_owned());
             }
             let tolerance = lib.tolerance.unwrap_or_else(|| default_tolerance(&doc));
-            let opts = independent::Options {
-                alpha: lib.alpha,
-                param: lib.param.clone(),
-                tolerance,
-                limits: self.settings.limits,
-                through: lib.through,
-            };
+            let opts = lib.clone().tolerance(tolerance);
+            let max = self.settings.limits.max_points;
             let positions_in = positions(&doc);
             let (rings, lines) = chains(&doc);
-            let out = independent::smooth_document(doc, &opts, where_, number_single)?;
+            let out = independent::smooth_document(doc, &opts, max, where_, number_single)?;
             let mut s = Stats::default();
             s.rings = rings;
             s.lines = lines;
             s.positions_in = positions_in;
             s.positions_out = positions(&out);
             s.tolerance = tolerance;
-            add(&mut self.total, &s);
+            self.total += &s;
             return serde_json::to_value(&out).context("formatting GeoJSON");
         }
         if self.settings.independent {
             let limit = self.settings.limits.max_points;
             let (out, s) = coverage::smooth_each(doc, lib, limit, where_, number_single)?;
-            add(&mut self.total, &s);
+            self.total += &s;
             return serde_json::to_value(&out).context("formatting GeoJSON");
         }
         let s = coverage::smooth_document(
@@ -251,7 +234,7 @@ impl Job {
             where_,
             number_single,
         )?;
-        add(&mut self.total, &s.stats);
+        self.total += &s.stats;
         match self.settings.output {
             Output::Geojson => serde_json::to_value(&s.doc).context("formatting GeoJSON"),
             Output::Topojson => Ok(topojson::from_features(
@@ -287,7 +270,7 @@ impl Job {
             .smooth(&self.settings.options)
             .map_err(|e| anyhow!("{name}: {}", topo.describe(&e)))?;
         self.features += topo.features;
-        add(&mut self.total, &s.stats);
+        self.total += &s.stats;
         match self.settings.output {
             Output::Topojson => Ok(topo.to_topojson(&s.arcs)),
             Output::Geojson => topo
@@ -338,23 +321,4 @@ impl Job {
         }
         s
     }
-}
-
-/// Adds one document's statistics to the totals.
-pub(crate) fn add(total: &mut Stats, s: &Stats) {
-    total.lines += s.lines;
-    total.rings += s.rings;
-    total.arcs += s.arcs;
-    total.shared_arcs += s.shared_arcs;
-    total.closed_arcs += s.closed_arcs;
-    total.positions_in += s.positions_in;
-    total.positions_out += s.positions_out;
-    total.refined_legs += s.refined_legs;
-    total.straight_legs += s.straight_legs;
-    total.rounds = total.rounds.max(s.rounds);
-    total.input_conflicts += s.input_conflicts;
-    total.kept_pieces += s.kept_pieces;
-    total.area_in += s.area_in;
-    total.area_out += s.area_out;
-    total.tolerance = s.tolerance;
 }
