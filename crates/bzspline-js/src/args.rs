@@ -6,7 +6,7 @@
     allow(dead_code)
 )]
 
-use bzspline::Alphas;
+use bzspline::AlphaChoice;
 use js_sys::{Array, Float64Array, Reflect};
 use wasm_bindgen::{JsCast, JsValue};
 
@@ -183,16 +183,16 @@ impl Options {
 
     /// The shape parameters: `alpha` (one number) or `alphas` (one per
     /// interval), not both.
-    pub fn alphas(&self) -> Result<AlphaArg, JsValue> {
+    pub fn alphas(&self) -> Result<AlphaChoice, JsValue> {
         let one = match self.get("alpha") {
             None => None,
             Some(v) => Some(alpha_value(&v)?),
         };
         match (one, self.get("alphas")) {
             (Some(_), Some(_)) => Err(type_error("give alpha or alphas, not both")),
-            (Some(a), None) => Ok(AlphaArg::One(a)),
-            (None, Some(v)) => Ok(AlphaArg::Each(numbers(&v, "alphas")?)),
-            (None, None) => Ok(AlphaArg::One(bzspline::DEFAULT_ALPHA)),
+            (Some(a), None) => Ok(AlphaChoice::One(a)),
+            (None, Some(v)) => Ok(AlphaChoice::Each(numbers(&v, "alphas")?)),
+            (None, None) => Ok(AlphaChoice::default()),
         }
     }
 }
@@ -223,23 +223,5 @@ pub fn param_of(o: &Options) -> Result<bzspline::Param, JsValue> {
                 kind(&v)
             ))),
         },
-    }
-}
-
-/// One alpha for every interval, or one each.
-pub enum AlphaArg {
-    /// The same alpha everywhere.
-    One(f64),
-    /// One per interval.
-    Each(Vec<f64>),
-}
-
-impl AlphaArg {
-    /// As the library takes it.
-    pub fn choice(&self) -> Alphas<'_> {
-        match self {
-            AlphaArg::One(a) => Alphas::Uniform(*a),
-            AlphaArg::Each(v) => Alphas::PerInterval(v),
-        }
     }
 }

@@ -33,7 +33,7 @@ impl Curve {
         let inner = bzspline::CurveBuilder::new(&flat, dim.max(1))
             .closed(o.flag("closed", false)?)
             .param(param)
-            .alpha_choice(alphas.choice())
+            .alpha_choice(alphas.as_alphas())
             .through(o.flag("through", false)?)
             .build()
             .map_err(lib_error)?;

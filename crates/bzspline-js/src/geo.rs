@@ -74,8 +74,8 @@ impl AlphaOne {
             return Ok(AlphaOne(None));
         }
         match o.alphas()? {
-            crate::args::AlphaArg::One(a) => Ok(AlphaOne(Some(a))),
-            crate::args::AlphaArg::Each(_) => Err(type_error("smooth takes one alpha")),
+            bzspline::AlphaChoice::One(a) => Ok(AlphaOne(Some(a))),
+            bzspline::AlphaChoice::Each(_) => Err(type_error("smooth takes one alpha")),
         }
     }
 }

@@ -69,15 +69,11 @@ pub fn curve_pieces(
 }
 
 /// An alpha for the d3 curve factories, checked at once: as
-/// `alpha_value`, and a number in [1/3, 2/3].
+/// `alpha_value`, and by [`bzspline::check_alpha`].
 #[wasm_bindgen(js_name = checkAlpha)]
 pub fn check_alpha(v: &JsValue) -> Result<f64, JsValue> {
     let a = alpha_value(v)?;
-    if (bzspline::ALPHA_MIN..=bzspline::ALPHA_MAX).contains(&a) {
-        Ok(a)
-    } else {
-        Err(range_error(format!("alpha = {a} is outside [1/3, 2/3]")))
-    }
+    bzspline::check_alpha(a).map_err(|_| range_error(format!("alpha = {a} is outside [1/3, 2/3]")))
 }
 
 /// A parametrisation's name for the d3 curve factories, checked at once by

@@ -32,7 +32,7 @@ pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object,
     let o = Options::new(options)?;
     let alphas = o.alphas()?;
     let (w, how) = o.smoothing()?;
-    let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.choice(), how)
+    let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.as_alphas(), how)
         .map_err(lib_error)?;
     let out = Object::new();
     set(&out, "x", Float64Array::from(x.as_slice()).into());
@@ -59,7 +59,7 @@ pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     let (w, how) = o.smoothing()?;
     let mut b = bzspline::CurveBuilder::new(&flat, dim.max(1))
         .param(param)
-        .alpha_choice(alphas.choice())
+        .alpha_choice(alphas.as_alphas())
         .smoothing(how);
     if let Some(w) = &w {
         b = b.weights(w);

@@ -10,17 +10,6 @@ use wasm_bindgen::prelude::*;
 
 use crate::args::{kind, lib_error, numbers, range_error, set, type_error, Options};
 
-/// What a spline does outside its knots.
-#[derive(Clone, Copy, PartialEq)]
-enum Outside {
-    /// Continue the end cubics (the default, as scipy).
-    Extend,
-    /// NaN (scipy's `extrapolate=False`).
-    Nan,
-    /// Hold the end values.
-    Clamp,
-}
-
 /// The third-degree Bezier-type spline y = S(x) of Stelia, Potapenko and
 /// Sirenko: C1, through the first and last points, touching every leg of
 /// the control polygon, within the range of y; every piece one cubic Bezier
@@ -28,34 +17,29 @@ enum Outside {
 #[wasm_bindgen]
 pub struct Spline {
     inner: Rc<bzspline::Spline>,
-    outside: Outside,
+    /// Outside the knots (`Nan` for `extrapolate: false`); the spline
+    /// evaluates by it too.
+    outside: Extrapolate,
     /// The derivative order this object evaluates (from `derivative`).
     nu: u32,
 }
 
-/// The `extrapolate` option: true (extend, the default), false (NaN) or
-/// `"clamp"`.
-fn outside_of(o: &Options) -> Result<Outside, JsValue> {
+/// The `extrapolate` option: true (extend, the default), false (NaN, as
+/// scipy) or a policy by name (`"clamp"`, `"extend"`, `"nan"`, `"error"`):
+/// [`Extrapolate`]'s own conversions.
+fn outside_of(o: &Options) -> Result<Extrapolate, JsValue> {
     match o.get("extrapolate") {
-        None => Ok(Outside::Extend),
-        Some(v) => match (v.as_bool(), v.as_string().as_deref()) {
-            (Some(true), _) => Ok(Outside::Extend),
-            (Some(false), _) => Ok(Outside::Nan),
-            (_, Some("clamp")) => Ok(Outside::Clamp),
+        None => Ok(Extrapolate::Extend),
+        Some(v) => match (v.as_bool(), v.as_string()) {
+            (Some(b), _) => Ok(Extrapolate::from(b)),
+            (_, Some(name)) => name
+                .parse()
+                .map_err(|e| type_error(format!("extrapolate {e}, true nor false"))),
             _ => Err(type_error(format!(
                 "extrapolate must be true, false or \"clamp\" (found {})",
                 kind(&v)
             ))),
         },
-    }
-}
-
-impl Outside {
-    fn policy(self) -> Extrapolate {
-        match self {
-            Outside::Clamp => Extrapolate::Clamp,
-            Outside::Extend | Outside::Nan => Extrapolate::Extend,
-        }
     }
 }
 
@@ -75,13 +59,13 @@ impl Spline {
         let through = o.flag("through", false)?;
         let outside = outside_of(&o)?;
         let built = if through {
-            bzspline::Spline::through(&x, &y, alphas.choice())
+            bzspline::Spline::through(&x, &y, alphas.as_alphas())
         } else {
-            bzspline::Spline::build(&x, &y, alphas.choice())
+            bzspline::Spline::build(&x, &y, alphas.as_alphas())
         }
         .map_err(lib_error)?;
         Ok(Spline {
-            inner: Rc::new(built.with_extrapolation(outside.policy())),
+            inner: Rc::new(built.with_extrapolation(outside)),
             outside,
             nu: 0,
         })
@@ -123,7 +107,7 @@ impl Spline {
         }
         let (lo, hi) = self.inner.domain();
         let inside = |v: f64| (lo..=hi).contains(&v);
-        if self.outside == Outside::Nan && !(inside(a) && inside(b)) {
+        if self.outside == Extrapolate::Nan && !(inside(a) && inside(b)) {
             return Ok(f64::NAN);
         }
         self.inner.integral(a, b).map_err(lib_error)
@@ -219,7 +203,7 @@ impl Spline {
 impl Spline {
     fn outside_nan(&self, v: f64) -> bool {
         let (a, b) = self.inner.domain();
-        v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v))
+        v.is_nan() || (self.outside == Extrapolate::Nan && !(a..=b).contains(&v))
     }
 
     fn value(&self, v: f64) -> f64 {
@@ -257,7 +241,7 @@ impl Spline {
 
     fn values(&self, xs: &[f64], out: &mut [f64]) -> Result<(), JsValue> {
         if self.nu <= 3 && self.inner.deriv_many(xs, self.nu, out).is_ok() {
-            if self.outside == Outside::Nan {
+            if self.outside == Extrapolate::Nan {
                 for (o, &v) in out.iter_mut().zip(xs) {
                     if self.outside_nan(v) {
                         *o = f64::NAN;

@@ -50,6 +50,18 @@ test("GeoJSON coverages: the command's output, bit for bit, with each option", (
   }
 });
 
+test("keepAngle with z keeps the corners, as the command does", () => {
+  // Right-angled corners with z rising along the line: the turning angle is
+  // planar, z is carried along (the command writes a note on standard error).
+  const file = join(fixtures, "z_corners.geojson");
+  const ours = same(file, { keepAngle: 30 }, ["--keep-angle", "30"]);
+  const has = (line, p) => line.some((q) => q.length === p.length && q.every((v, i) => v === p[i]));
+  for (const corner of JSON.parse(readFileSync(file, "utf8")).coordinates) {
+    assert.ok(has(ours.coordinates, corner), `corner ${corner} is not kept`);
+  }
+  assert.ok(!has(smooth(JSON.parse(readFileSync(file, "utf8")), {}).coordinates, [1, 1, 3]));
+});
+
 test("TopoJSON in gives TopoJSON out, as the command writes it", () => {
   const dir = mkdtempSync(join(tmpdir(), "bzspline-"));
   const topo = join(dir, "mosaic.topojson");

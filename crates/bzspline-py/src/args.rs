@@ -9,7 +9,7 @@ use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 
-use bzspline::{Alphas, Param};
+use bzspline::{AlphaChoice, Extrapolate, Param};
 
 /// A library error as Python's `ValueError`, with the library's message
 /// (which names the index or field at fault).
@@ -73,12 +73,6 @@ pub(crate) fn alphas_arg<'py>(py: Python<'py>, alphas: &[f64]) -> PyResult<Bound
     }
 }
 
-/// One alpha or one per interval.
-pub(crate) enum AlphaArg {
-    One(f64),
-    Each(Vec<f64>),
-}
-
 /// Points as an `(n, d)` array: the numbers flat and `d`.
 pub(crate) fn rows_arg(points: &Bound<'_, PyAny>) -> PyResult<(Vec<f64>, usize)> {
     let (pts, shape) = floats(points, "points")?;
@@ -91,12 +85,12 @@ pub(crate) fn rows_arg(points: &Bound<'_, PyAny>) -> PyResult<(Vec<f64>, usize)>
 }
 
 /// `alpha=`: one alpha or one per interval; absent, the default 1/2.
-pub(crate) fn alpha_arg(alpha: Option<&Bound<'_, PyAny>>) -> PyResult<AlphaArg> {
+pub(crate) fn alpha_arg(alpha: Option<&Bound<'_, PyAny>>) -> PyResult<AlphaChoice> {
     let Some(alpha) = alpha else {
-        return Ok(AlphaArg::One(bzspline::DEFAULT_ALPHA));
+        return Ok(AlphaChoice::default());
     };
     if let Ok(a) = alpha.extract::<f64>() {
-        return Ok(AlphaArg::One(a));
+        return Ok(AlphaChoice::One(a));
     }
     let (v, shape) = floats(alpha, "alpha")?;
     if shape.len() != 1 {
@@ -104,50 +98,27 @@ pub(crate) fn alpha_arg(alpha: Option<&Bound<'_, PyAny>>) -> PyResult<AlphaArg> 
             "alpha must be a number or a 1-D array of one alpha per interval",
         ));
     }
-    Ok(AlphaArg::Each(v))
+    Ok(AlphaChoice::Each(v))
 }
 
-impl AlphaArg {
-    pub(crate) fn choice(&self) -> Alphas<'_> {
-        match self {
-            AlphaArg::One(a) => Alphas::Uniform(*a),
-            AlphaArg::Each(v) => Alphas::PerInterval(v),
-        }
-    }
-}
-
-/// What a spline does outside its knots: `True` extends the end cubics,
-/// `False` gives NaN (as scipy), `'clamp'` holds the end values.
-#[derive(Clone, Copy, PartialEq)]
-pub(crate) enum Outside {
-    Extend,
-    Nan,
-    Clamp,
-}
-
-/// `extrapolate=`; absent, `True`.
-pub(crate) fn outside_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Outside> {
+/// `extrapolate=`: `True` (the default) extends the end cubics, `False`
+/// gives NaN outside the knots (as scipy), or a policy by name (`'clamp'`,
+/// `'extend'`, `'nan'`, `'error'`): [`bzspline::Extrapolate`]'s own
+/// conversions.
+pub(crate) fn extrapolate_arg(v: Option<&Bound<'_, PyAny>>) -> PyResult<Extrapolate> {
     let Some(v) = v else {
-        return Ok(Outside::Extend);
+        return Ok(Extrapolate::Extend);
     };
     if let Ok(b) = v.extract::<bool>() {
-        return Ok(if b { Outside::Extend } else { Outside::Nan });
+        return Ok(Extrapolate::from(b));
     }
-    match v.extract::<String>().as_deref() {
-        Ok("clamp") => Ok(Outside::Clamp),
-        _ => Err(PyValueError::new_err(
+    match v.extract::<String>() {
+        Ok(name) => name
+            .parse()
+            .map_err(|e| PyValueError::new_err(format!("extrapolate {e}, True nor False"))),
+        Err(_) => Err(PyValueError::new_err(
             "extrapolate must be True, False or 'clamp'",
         )),
-    }
-}
-
-impl Outside {
-    /// The library's policy: NaN outside is applied here, over extension.
-    pub(crate) fn policy(self) -> bzspline::Extrapolate {
-        match self {
-            Outside::Extend | Outside::Nan => bzspline::Extrapolate::Extend,
-            Outside::Clamp => bzspline::Extrapolate::Clamp,
-        }
     }
 }
 

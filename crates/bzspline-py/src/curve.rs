@@ -92,7 +92,7 @@ impl Curve {
                 bzspline::CurveBuilder::new(&pts, dim)
                     .closed(closed)
                     .param(param)
-                    .alpha_choice(alpha.choice())
+                    .alpha_choice(alpha.as_alphas())
                     .through(through)
                     .build()
             });
@@ -472,7 +472,7 @@ pub(crate) fn smoothing_curve(
             .allow_threads(|| {
                 let mut b = bzspline::CurveBuilder::new(&pts, dim)
                     .param(param)
-                    .alpha_choice(alpha.choice())
+                    .alpha_choice(alpha.as_alphas())
                     .smoothing(how);
                 if let Some(w) = &w {
                     b = b.weights(w);

@@ -351,6 +351,22 @@ fn extent_tuple(r: Option<Rect<f64>>) -> Option<[f64; 4]> {
     r.map(|r| [r.min().x, r.min().y, r.max().x, r.max().y])
 }
 
+/// `bzspline.geo.smooth`'s keyword arguments as the library's options,
+/// checked by the library ([`SmoothOptions::validate`]).
+fn smooth_options(
+    tolerance: Option<f64>,
+    through: bool,
+    keep_angle: Option<f64>,
+    alpha: f64,
+) -> PyResult<SmoothOptions> {
+    let mut opts = SmoothOptions::default().alpha(alpha).through(through);
+    opts.tolerance = tolerance;
+    opts.keep_angle = keep_angle;
+    opts.validate()
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(opts)
+}
+
 /// Smooths the geometries of ragged arrays (lines and polygons in one
 /// coverage: shared borders smoothed once), or each geometry on its own;
 /// with `nodes` (and `extent`) as one part of a larger coverage; with `snap`,
@@ -377,13 +393,7 @@ pub fn _smooth_ragged<'py>(
     crate::guard(|| {
         let (geoms, index) = gather(&groups)?;
         let nodes = given_nodes(nodes, extent)?;
-        let mut opts = SmoothOptions::default().alpha(alpha).through(through);
-        if let Some(t) = tolerance {
-            opts = opts.tolerance(t);
-        }
-        if let Some(k) = keep_angle {
-            opts = opts.keep_angle(k);
-        }
+        let opts = smooth_options(tolerance, through, keep_angle, alpha)?;
         let start = match levels {
             Some(l) => levels_from(l)?,
             None => Levels::default(),
@@ -688,7 +698,7 @@ type PySpans<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>);
 /// for rings), `owner` each one's geometry in the caller's array (for
 /// errors). Returns the new coordinates and spans.
 #[pyfunction]
-#[pyo3(signature = (coords, spans, owner, closed, tolerance, through=false, alpha=0.5))]
+#[pyo3(signature = (coords, spans, owner, closed, tolerance=None, through=false, keep_angle=None, alpha=0.5))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_spans<'py>(
     py: Python<'py>,
@@ -696,8 +706,9 @@ pub fn _smooth_spans<'py>(
     spans: PyReadonlyArray1<'py, i64>,
     owner: PyReadonlyArray1<'py, i64>,
     closed: bool,
-    tolerance: f64,
+    tolerance: Option<f64>,
     through: bool,
+    keep_angle: Option<f64>,
     alpha: f64,
 ) -> PyResult<PySpans<'py>> {
     crate::guard(|| {
@@ -710,16 +721,11 @@ pub fn _smooth_spans<'py>(
         if owner.len() != ranges.len() {
             return Err(PyValueError::new_err("one owner per line or ring"));
         }
-        let opts = SmoothOptions::default().alpha(alpha).through(through);
-        if !(tolerance.is_finite() && tolerance > 0.0) {
-            return Err(PyValueError::new_err(format!(
-                "invalid tolerance (must be a positive number): {tolerance}"
-            )));
-        }
+        let opts = smooth_options(tolerance, through, keep_angle, alpha)?;
         let out = py.allow_threads(|| -> Result<(Vec<f64>, Vec<i64>), Fault> {
             let (mut out, mut ends) = (Vec::with_capacity(flat.len() * 4), vec![0i64]);
             for (j, &(a, b)) in ranges.iter().enumerate() {
-                let s = smooth_line(&flat[a * dim..b * dim], dim, closed, tolerance, &opts)
+                let s = smooth_line(&flat[a * dim..b * dim], dim, closed, &opts)
                     .map_err(|e| Fault::of(owner[j], format!("geometry {}: {e}", owner[j])))?;
                 out.extend_from_slice(&s);
                 ends.push((out.len() / dim.max(1)) as i64);

@@ -2,7 +2,7 @@
 //! scipy's conventions (calling, `derivative`, `antiderivative`,
 //! `integrate`, pickling).
 
-use bzspline::ParamCurve;
+use bzspline::{AlphaChoice, Extrapolate, ParamCurve};
 use std::sync::Arc;
 
 use numpy::ndarray::IxDyn;
@@ -35,9 +35,9 @@ use crate::args::*;
 /// through : bool, default False
 ///     Pass through every (x, y) instead (the interpolating variant: the control
 ///     values are solved for).
-/// extrapolate : {True, False, 'clamp'}, default True
+/// extrapolate : {True, False, 'clamp', 'extend', 'nan', 'error'}, default True
 ///     Outside [x[0], x[-1]]: extend the end cubics, give NaN (as scipy), or
-///     hold the end values.
+///     hold the end values; by name, also raise ``ValueError`` (``'error'``).
 ///
 /// Attributes
 /// ----------
@@ -67,7 +67,9 @@ pub(crate) struct Spline {
     /// solved); empty otherwise, where the control values are the data.
     y: Vec<f64>,
     through: bool,
-    outside: Outside,
+    /// Outside the knots (`Nan` for scipy's `extrapolate=False`); the
+    /// spline evaluates by it too.
+    outside: Extrapolate,
     /// The derivative order this object evaluates: from `derivative`, or -1
     /// for the antiderivative.
     nu: i32,
@@ -121,7 +123,7 @@ impl Spline {
                 .as_ref()
                 .ok_or_else(|| PyRuntimeError::new_err("the antiderivative is missing"))?;
             for (o, &v) in out.iter_mut().zip(x) {
-                *o = if v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v)) {
+                *o = if v.is_nan() || (self.outside == Extrapolate::Nan && !(a..=b).contains(&v)) {
                     f64::NAN
                 } else {
                     anti.eval(v).map_err(value_error)?
@@ -131,7 +133,7 @@ impl Spline {
         };
         if order > 3 {
             for (o, &v) in out.iter_mut().zip(x) {
-                *o = if v.is_nan() || (self.outside == Outside::Nan && !(a..=b).contains(&v)) {
+                *o = if v.is_nan() || (self.outside == Extrapolate::Nan && !(a..=b).contains(&v)) {
                     f64::NAN
                 } else {
                     0.0
@@ -150,7 +152,7 @@ impl Spline {
                 };
             }
         }
-        if self.outside == Outside::Nan {
+        if self.outside == Extrapolate::Nan {
             for (o, &v) in out.iter_mut().zip(x) {
                 if !(a..=b).contains(&v) {
                     *o = f64::NAN;
@@ -164,20 +166,19 @@ impl Spline {
 fn build_spline(
     x: &[f64],
     y: &[f64],
-    alpha: &AlphaArg,
+    alpha: &AlphaChoice,
     through: bool,
-    outside: Outside,
+    outside: Extrapolate,
     py: Python<'_>,
 ) -> PyResult<bzspline::Spline> {
-    let policy = outside.policy();
     let built = py.allow_threads(|| {
         if through {
-            bzspline::Spline::through(x, y, alpha.choice())
+            bzspline::Spline::through(x, y, alpha.as_alphas())
         } else {
-            bzspline::Spline::build(x, y, alpha.choice())
+            bzspline::Spline::build(x, y, alpha.as_alphas())
         }
     });
-    Ok(built.map_err(value_error)?.with_extrapolation(policy))
+    Ok(built.map_err(value_error)?.with_extrapolation(outside))
 }
 
 #[pymethods]
@@ -216,7 +217,7 @@ impl Spline {
                 }
             };
             let alpha = alpha_arg(alpha)?;
-            let outside = outside_arg(extrapolate)?;
+            let outside = extrapolate_arg(extrapolate)?;
             let inner = build_spline(x, y, &alpha, through, outside, py)?;
             Ok(Spline {
                 inner: Arc::new(inner),
@@ -392,7 +393,7 @@ impl Spline {
             ));
         }
         let (lo, hi) = self.inner.domain();
-        if self.outside == Outside::Nan && (a < lo || b > hi || b < lo || a > hi) {
+        if self.outside == Extrapolate::Nan && (a < lo || b > hi || b < lo || a > hi) {
             return Ok(f64::NAN);
         }
         let v = self.inner.integral(a, b).map_err(value_error)?;
@@ -505,17 +506,20 @@ impl Spline {
         }
     }
 
-    /// `extrapolate` as given: True, False or 'clamp'.
+    /// `extrapolate`: True (extend), False (NaN) or the policy's name.
     #[getter]
     fn extrapolate(&self, py: Python<'_>) -> PyObject {
         match self.outside {
-            Outside::Extend => true
+            Extrapolate::Extend => true
                 .into_pyobject(py)
                 .map(|b| b.to_owned().into_any().unbind()),
-            Outside::Nan => false
+            Extrapolate::Nan => false
                 .into_pyobject(py)
                 .map(|b| b.to_owned().into_any().unbind()),
-            Outside::Clamp => "clamp".into_pyobject(py).map(|s| s.into_any().unbind()),
+            other => other
+                .name()
+                .into_pyobject(py)
+                .map(|s| s.into_any().unbind()),
         }
         .unwrap_or_else(|_| py.None())
     }
@@ -702,15 +706,15 @@ pub(crate) fn smoothing_spline(
         let (x, y) = (vector(x, "x")?, vector(y, "y")?);
         let w = w.map(|w| vector(w, "w")).transpose()?;
         let alpha = alpha_arg(alpha)?;
-        let outside = outside_arg(extrapolate)?;
+        let outside = extrapolate_arg(extrapolate)?;
         let how = lam.map_or(bzspline::Smoothing::Gcv, bzspline::Smoothing::Lambda);
         let fit = py
             .allow_threads(|| {
-                bzspline::Spline::smoothing(&x, &y, w.as_deref(), alpha.choice(), how)
+                bzspline::Spline::smoothing(&x, &y, w.as_deref(), alpha.as_alphas(), how)
             })
             .map_err(value_error)?;
         Ok(Spline {
-            inner: Arc::new(fit.fit.with_extrapolation(outside.policy())),
+            inner: Arc::new(fit.fit.with_extrapolation(outside)),
             y: Vec::new(),
             through: false,
             outside,

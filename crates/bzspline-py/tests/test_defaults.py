@@ -75,3 +75,27 @@ def test_each_geometry_on_its_own_is_the_commands_independent():
     # And differently from one coverage: the shared borders part.
     assert not all(np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b))
                    for a, b in zip(ours, bzspline.geo.smooth(geoms)))
+
+
+def test_keep_angle_with_z_keeps_the_corners_as_the_command_does():
+    # The same line through the command and Python: right-angled corners, z
+    # rising along it; the turning angle is planar, z is carried along.
+    import shapely
+    from shapely.geometry import shape
+
+    import bzspline.geo
+
+    path = ROOT / "crates/bzspline-cli/tests/fixtures/z_corners.geojson"
+    line = shape(json.loads(path.read_text()))
+    with pytest.warns(UserWarning, match="z"):
+        ours = bzspline.geo.smooth(line, keep_angle=30)
+    out = subprocess.run([command(), "smooth", str(path), "--keep-angle", "30"],
+                         capture_output=True, text=True, check=True)
+    theirs = np.array(json.loads(out.stdout)["coordinates"], dtype=float)
+    got = shapely.get_coordinates(ours, include_z=True)
+    assert np.array_equal(got, theirs)
+    for corner in shapely.get_coordinates(line, include_z=True):
+        assert (got == corner).all(axis=1).any(), corner
+    with pytest.warns(UserWarning):
+        cut = shapely.get_coordinates(bzspline.geo.smooth(line), include_z=True)
+    assert not (cut == [1.0, 1.0, 3.0]).all(axis=1).any()

@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _core
 from .errors import GeometryError
-from .geo import Nodes, _groups, _like, _smooth_array, _smoothable, _values
+from ._arrays import Nodes, _groups, _like, _smooth_array, _smoothable, _values
 
 
 def nodes(d):
