@@ -15,10 +15,9 @@ use bzspline::{ALPHA_MAX, ALPHA_MIN};
 pub use bzspline_io::{api as serve_api, input, model, time, topojson};
 
 /// The checks of smoothed coverages that do not use the code under test
-/// (validity from `geo`, crossings by brute force, shared borders), compiled
-/// from the coverage tests' source file.
-#[path = "../../crates/bzspline-geo/tests/common/mod.rs"]
-pub mod judge;
+/// (validity from `geo`, crossings by brute force, shared borders), as the
+/// coverage tests use them.
+pub use bzspline_testing as judge;
 
 pub mod document;
 pub mod mosaic;

@@ -1,8 +1,9 @@
 //! The command on public coverages: US states and counties (us-atlas) and
 //! world countries (world-atlas), as TopoJSON and as the GeoJSON that
 //! topojson-client's `topo2geo` makes of them. The folder named by
-//! `BZSPLINE_ATLAS` holds them (`.ci/run` installs the packages and fills
-//! it); without it the test says so and checks nothing.
+//! `BZSPLINE_ATLAS` holds them (`bash bench/atlas.sh` fills it, as `.ci/run`
+//! does); without it these tests are reported as ignored, with the reason
+//! (the build script sets `cfg(atlas)` when the variable is set).
 //!
 //! Checked with helpers independent of the code under test: every pair of
 //! features that shared an edge in the input shares one in the output;
@@ -10,8 +11,7 @@
 //! where the input had none; every polygon valid in the input is valid
 //! (geo's `Validation`); every ring is a ring.
 
-#[path = "../../bzspline-geo/tests/common/mod.rs"]
-mod common;
+use bzspline_testing as common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -101,24 +101,37 @@ fn check(dir: &Path, topo: &str, object: &str, geo: &str) {
     }
 }
 
-/// The folder named by `BZSPLINE_ATLAS`, or `None` (said on stderr).
-fn atlas() -> Option<PathBuf> {
-    let dir = std::env::var_os("BZSPLINE_ATLAS").map(PathBuf::from);
-    if dir.is_none() {
-        eprintln!("BZSPLINE_ATLAS is not set: no public coverage to check");
-    }
+/// The folder named by `BZSPLINE_ATLAS`; a test run without it (`--ignored`)
+/// fails rather than check nothing.
+fn atlas() -> PathBuf {
+    let dir = std::env::var_os("BZSPLINE_ATLAS")
+        .map(PathBuf::from)
+        .expect("BZSPLINE_ATLAS must name the folder of bash bench/atlas.sh");
+    assert!(
+        dir.is_dir(),
+        "BZSPLINE_ATLAS={} is not a folder",
+        dir.display()
+    );
     dir
 }
 
 #[test]
+#[cfg_attr(
+    not(atlas),
+    ignore = "needs the public coverages: BZSPLINE_ATLAS=$(bash bench/atlas.sh)"
+)]
 fn us_states_keep_their_borders() {
-    let Some(dir) = atlas() else { return };
+    let dir = atlas();
     check(&dir, "us-atlas/states-10m.json", "states", "states.geojson");
 }
 
 #[test]
+#[cfg_attr(
+    not(atlas),
+    ignore = "needs the public coverages: BZSPLINE_ATLAS=$(bash bench/atlas.sh)"
+)]
 fn us_counties_keep_their_borders() {
-    let Some(dir) = atlas() else { return };
+    let dir = atlas();
     check(
         &dir,
         "us-atlas/counties-10m.json",
@@ -128,26 +141,34 @@ fn us_counties_keep_their_borders() {
 }
 
 #[test]
-fn readme_shows_the_counties_summary() {
-    let Some(dir) = atlas() else { return };
+#[cfg_attr(
+    not(atlas),
+    ignore = "needs the public coverages: BZSPLINE_ATLAS=$(bash bench/atlas.sh)"
+)]
+fn the_guide_shows_the_counties_summary() {
+    let dir = atlas();
     let out = std::env::temp_dir().join(format!("bzspline-readme-{}.geojson", std::process::id()));
     let stats = smooth(
         &dir.join("us-atlas/counties-10m.json"),
         &out,
         &["--object", "counties"],
     );
-    let readme =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+    let maps =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/maps.md"))
             .unwrap();
     assert!(
-        readme.contains(&stats),
-        "README's smooth summary is stale:\n{stats}"
+        maps.contains(&stats),
+        "docs/maps.md's smooth summary is stale:\n{stats}"
     );
 }
 
 #[test]
+#[cfg_attr(
+    not(atlas),
+    ignore = "needs the public coverages: BZSPLINE_ATLAS=$(bash bench/atlas.sh)"
+)]
 fn world_countries_keep_their_borders() {
-    let Some(dir) = atlas() else { return };
+    let dir = atlas();
     check(
         &dir,
         "world-atlas/countries-50m.json",

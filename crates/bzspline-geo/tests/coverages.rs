@@ -2,10 +2,8 @@
 //! the code under test: shared borders, crossings by brute force, validity
 //! from `geo`.
 
-mod common;
-
 use bzspline_geo::{Coverage, SmoothOptions};
-use common::*;
+use bzspline_testing::*;
 use geo::Relate;
 use geo_types::{Geometry, LineString};
 use proptest::prelude::*;

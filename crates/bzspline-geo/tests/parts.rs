@@ -2,12 +2,10 @@
 //! (`bzspline_geo::parts`), against the whole coverage smoothed at once:
 //! every feature must come out the same, bit for bit.
 
-mod common;
-
 use bzspline_geo::parts::{across, chains_extent, meetings};
 use bzspline_geo::Nodes;
 use bzspline_geo::{coverage_chains, parts, Coverage, SmoothOptions, Stats};
-use common::*;
+use bzspline_testing::*;
 use geo_types::{Geometry, LineString};
 use proptest::prelude::*;
 
