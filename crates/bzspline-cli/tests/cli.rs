@@ -459,7 +459,7 @@ fn a_closed_pipe_is_not_an_error() {
     );
 }
 
-/// The README's "library in ten lines", kept compiling and true.
+/// The README's Rust start (and `docs/library.md`'s), kept compiling and true.
 #[test]
 fn readme_library_snippet_holds() -> Result<(), bzspline::Error> {
     let tau: Vec<f64> = (1..=11).map(f64::from).collect();
@@ -472,7 +472,8 @@ fn readme_library_snippet_holds() -> Result<(), bzspline::Error> {
     Ok(())
 }
 
-/// The README's tour shows this output; keep it true.
+/// The guide's tour (`docs/command.md`) and maps page show this output;
+/// keep it true.
 #[test]
 fn readme_tour_output_is_current() {
     let dir = tempfile::tempdir().unwrap();
@@ -487,13 +488,11 @@ fn readme_tour_output_is_current() {
         ok(&["sample", p, "--n", "5", "--format", "json"]),
         "{\n  \"x\": [0,1,2,3,4],\n  \"y\": [0,1.722972972972973,1.2297297297297298,2,3]\n}\n"
     );
-    let readme =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
-            .unwrap();
+    let readme = common::guide();
     let fit = ok(&["fit", p]);
     assert!(
         readme.contains(&fit),
-        "README's fit output is stale:\n{fit}"
+        "the guide's fit output is stale:\n{fit}"
     );
     for args in [
         &["fit", "square.csv", "--closed", "--format", "svg"][..],
@@ -511,7 +510,7 @@ fn readme_tour_output_is_current() {
         let out = ok(args);
         assert!(
             readme.contains(&out),
-            "README's output of {args:?} is stale:\n{out}"
+            "the guide's output of {args:?} is stale:\n{out}"
         );
     }
     for args in [
@@ -530,7 +529,7 @@ fn readme_tour_output_is_current() {
             .collect();
         assert!(
             readme.contains(&tail),
-            "README's output of {args:?} is stale:\n{tail}"
+            "the guide's output of {args:?} is stale:\n{tail}"
         );
     }
     let road = dir.path().join("road.geojson");
@@ -542,7 +541,7 @@ fn readme_tour_output_is_current() {
     let out = ok(&["smooth", road.to_str().unwrap(), "--tolerance", "0.1"]);
     assert!(
         readme.contains(&out),
-        "README's smooth output is stale:\n{out}"
+        "the guide's smooth output is stale:\n{out}"
     );
 }
 
@@ -1326,7 +1325,7 @@ fn json_dates_and_fit_output_read_back() {
     );
 }
 
-/// The README's dated series shows this output; keep it true.
+/// The guide's dated series (`docs/command.md`) shows this output; keep it true.
 #[test]
 fn readme_dated_series_output_is_current() {
     let visitors = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/visitors.csv");

@@ -3,6 +3,8 @@ examples run."""
 
 import doctest
 import inspect
+import pathlib
+import re
 
 import pytest
 
@@ -33,3 +35,20 @@ def test_examples_run(module):
     assert runner.failures == 0
     if module is not bzspline.geo:
         assert runner.tries > 0
+
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/python.md", "crates/bzspline-py/README.md"])
+def test_the_guides_python_runs(page, monkeypatch):
+    # Every ```python block of the page, in order, in one namespace, from the
+    # repository's top folder (the paths the page names are relative to it).
+    blocks = re.findall(r"```python\n(.*?)```", (ROOT / page).read_text(), re.S)
+    assert blocks, f"{page} shows no Python"
+    monkeypatch.chdir(ROOT)
+    namespace = {}
+    for block in blocks:
+        if "dask_geopandas" in block:
+            pytest.importorskip("dask_geopandas")
+        exec(compile(block, page, "exec"), namespace)  # noqa: S102

@@ -164,5 +164,12 @@ def test_geometries_with_z_are_smoothed_in_space():
     assert shapely.get_type_id(out[1]) == 3
     # The planar cells are still one coverage.
     assert out[2].intersection(out[3]).length > 0 and out[2].intersection(out[3]).area < 1e-12
-    with pytest.raises(ValueError, match="keep_angle"):
-        bzspline.geo.smooth(line, keep_angle=30)
+    # keep_angle applies in space as in the plane: the ring's right-angled
+    # corners stay, and a keep-angle out of range is refused by the library.
+    with pytest.warns(UserWarning, match="with z"):
+        kept = bzspline.geo.smooth(ring, tolerance=1e-3, keep_angle=45)
+    k = shapely.get_coordinates(kept.exterior, include_z=True)
+    for corner in shapely.get_coordinates(ring.exterior, include_z=True):
+        assert (k == corner).all(axis=1).any(), corner
+    with pytest.raises(ValueError, match="keep-angle"), pytest.warns(UserWarning):
+        bzspline.geo.smooth(line, keep_angle=200)

@@ -83,3 +83,20 @@ pub fn assert_data_error(args: &[&str], stdin: Option<&[u8]>, wants: &[&str]) {
         "{args:?}: a temporary file was left behind"
     );
 }
+
+/// The README and every page of the guide in `docs/`, one after another: the
+/// text the tests that keep printed outputs true search.
+pub fn guide() -> String {
+    let top = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut text = std::fs::read_to_string(top.join("README.md")).unwrap();
+    let mut pages: Vec<_> = std::fs::read_dir(top.join("docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    pages.sort();
+    for page in pages {
+        text += &std::fs::read_to_string(page).unwrap();
+    }
+    text
+}
