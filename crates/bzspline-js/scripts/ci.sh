@@ -54,8 +54,12 @@ else
 fi
 
 # The package as a user gets it: npm pack, installed into a folder of its own.
+# A fresh checkout has no wasm/ (it is built, not committed): the prepack
+# script must build it into the tarball.
+rm -rf wasm
 smoke=$(mktemp -d)
-if tarball=$(npm pack --silent --pack-destination "$smoke") &&
+# (The build's own output may come first; npm prints the tarball's name last.)
+if tarball=$(npm pack --silent --pack-destination "$smoke" | tail -n 1) &&
     (cd "$smoke" && npm init -y >/dev/null && npm install --no-audit --no-fund --loglevel=error "./$tarball" d3-shape@3) &&
     cp "$here/test/smoke.mjs" "$smoke/" && (cd "$smoke" && node smoke.mjs); then
     echo "pack smoke: ok ($tarball, $(du -k "$smoke/$tarball" | cut -f1) kB)"
