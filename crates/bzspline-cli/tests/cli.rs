@@ -4,7 +4,6 @@
 use bzspline::Arclen;
 use bzspline::Flatten;
 use std::io::Read;
-use std::path::Path;
 use std::process::{Command, Stdio};
 
 use bzspline::Spline;
