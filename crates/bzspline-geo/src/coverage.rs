@@ -7,7 +7,8 @@ use geo_types::{MultiPolygon, Polygon};
 use crate::error::Error;
 use crate::levels::Levels;
 use crate::nodes::Nodes;
-use crate::smooth::{SmoothOptions, Stats};
+use crate::options::SmoothOptions;
+use crate::smooth::Stats;
 use crate::topology::{snap, ChainKind, Topology};
 
 /// Where a chain came from: the geometry, the member of a multi-geometry or

@@ -81,6 +81,7 @@ mod graph;
 mod levels;
 mod line;
 mod nodes;
+mod options;
 pub mod parts;
 mod piece;
 mod smooth;
@@ -91,9 +92,10 @@ pub use coverage::{coverage_chains, Coverage, CoverageBuilder, Location};
 pub use error::Error;
 pub use line::smooth_line;
 pub use nodes::Nodes;
-pub use smooth::{
-    check_keep_angle, check_tolerance, default_tolerance_of, SmoothOptions, Smoothed, Stats,
-    DEFAULT_TOLERANCE_FRACTION, MAX_LEVEL,
+pub use options::{
+    check_keep_angle, check_snap, check_tolerance, default_tolerance_of, SmoothOptions,
+    DEFAULT_TOLERANCE_FRACTION,
 };
+pub use smooth::{Smoothed, Stats, MAX_LEVEL};
 pub use smoothing::Smooth;
-pub use topology::{check_snap, snap, ArcRef, Chain, ChainKind, Topology};
+pub use topology::{snap, ArcRef, Chain, ChainKind, Topology};

@@ -2,8 +2,8 @@
 
 use bzspline::Error;
 
+use crate::options::{default_tolerance_of, SmoothOptions};
 use crate::piece;
-use crate::smooth::{default_tolerance_of, SmoothOptions};
 
 /// The smoothed positions of one line (`closed` false) or ring, `dim`
 /// numbers a position, flattened to within the options' tolerance: the

@@ -6,7 +6,7 @@
 
 use bzspline::{Curve, CurveBuilder, Flatten};
 
-use crate::smooth::SmoothOptions;
+use crate::options::SmoothOptions;
 
 /// The curve of the control points `ctrl` (`dim` numbers a point; `closed`
 /// for a ring's curve) with the options' alpha, parametrisation and

@@ -2,7 +2,6 @@
 //! conflict search (the crate docs say how); one arc's smoothing in
 //! [`arc`], the checks of rings in [`rings`].
 
-use bzspline::Param;
 use geo_types::{Coord, Rect};
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -10,6 +9,7 @@ use crate::crossings::{Lines, SegId};
 use crate::error::Error;
 use crate::graph::key;
 use crate::levels::{arc_key, Levels};
+use crate::options::{default_tolerance_of, SmoothOptions};
 use crate::topology::{ChainKind, Topology};
 
 mod arc;
@@ -18,10 +18,6 @@ mod rings;
 pub(crate) use arc::turning_degrees;
 use arc::{is_closed, smooth_arc, Plan, Seg};
 use rings::{holes_inside, RingFacts, Shoelace};
-
-/// The default flattening tolerance as a fraction of the diagonal of the
-/// data's bounding box.
-pub const DEFAULT_TOLERANCE_FRACTION: f64 = 1e-4;
 
 /// The most times a leg is halved to resolve a conflict (into `2^MAX_LEVEL`
 /// parts); one more conflict keeps the leg as the original edge.
@@ -33,138 +29,6 @@ const STRAIGHT: u8 = MAX_LEVEL + 1;
 /// Rounds of refinement after which every leg still in conflict is kept as
 /// its original edge at once.
 const MAX_ROUNDS: usize = 3 * MAX_LEVEL as usize;
-
-/// How to smooth.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct SmoothOptions {
-    /// Largest distance between the smooth curve and the output polyline;
-    /// `None`: [`DEFAULT_TOLERANCE_FRACTION`] of the data's bounding-box
-    /// diagonal.
-    pub tolerance: Option<f64>,
-    /// The shape parameter of every interval, in `[1/3, 2/3]`.
-    pub alpha: f64,
-    /// How the curve's parameters follow the positions.
-    pub param: Param,
-    /// Positions where the polyline turns by more than this many degrees stay
-    /// where they are, as corners.
-    pub keep_angle: Option<f64>,
-    /// Pass through every position (the interpolating variant,
-    /// `docs/method.md` §11) instead of cutting the corners: the output keeps
-    /// every position of the input.
-    pub through: bool,
-}
-
-impl Default for SmoothOptions {
-    fn default() -> Self {
-        SmoothOptions {
-            tolerance: None,
-            alpha: bzspline::DEFAULT_ALPHA,
-            param: Param::Centripetal,
-            keep_angle: None,
-            through: false,
-        }
-    }
-}
-
-impl SmoothOptions {
-    /// Sets the flattening tolerance.
-    #[must_use]
-    pub fn tolerance(mut self, tolerance: f64) -> Self {
-        self.tolerance = Some(tolerance);
-        self
-    }
-
-    /// Sets the shape parameter.
-    #[must_use]
-    pub fn alpha(mut self, alpha: f64) -> Self {
-        self.alpha = alpha;
-        self
-    }
-
-    /// Sets the parametrisation.
-    #[must_use]
-    pub fn param(mut self, param: Param) -> Self {
-        self.param = param;
-        self
-    }
-
-    /// Passes through every position (`true`) or cuts the corners (`false`, the
-    /// default).
-    #[must_use]
-    pub fn through(mut self, through: bool) -> Self {
-        self.through = through;
-        self
-    }
-
-    /// Keeps corners sharper than `degrees`.
-    #[must_use]
-    pub fn keep_angle(mut self, degrees: f64) -> Self {
-        self.keep_angle = Some(degrees);
-        self
-    }
-
-    /// Checks every option's range: alpha in `[1/3, 2/3]`
-    /// ([`bzspline::check_alpha`]), a tolerance positive and finite, a
-    /// keep-angle from 0 to 180 degrees. Smoothing checks them first; the
-    /// command, its server and the bindings check them here too, before
-    /// reading any data. The keep-angle is a turning angle in the plane (x,
-    /// y) everywhere, positions with z included.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::InvalidOption`] naming the first option at fault.
-    pub fn validate(&self) -> Result<(), Error> {
-        if bzspline::check_alpha(self.alpha).is_err() {
-            return Err(Error::InvalidOption {
-                option: "alpha",
-                rule: "must be in [1/3, 2/3]",
-                value: self.alpha,
-            });
-        }
-        if let Some(t) = self.tolerance {
-            check_tolerance(t)?;
-        }
-        if let Some(a) = self.keep_angle {
-            check_keep_angle(a)?;
-        }
-        Ok(())
-    }
-}
-
-/// A flattening tolerance: a positive finite number.
-///
-/// # Errors
-///
-/// [`Error::InvalidOption`] otherwise.
-pub fn check_tolerance(tolerance: f64) -> Result<f64, Error> {
-    if tolerance.is_finite() && tolerance > 0.0 {
-        Ok(tolerance)
-    } else {
-        Err(Error::InvalidOption {
-            option: "tolerance",
-            rule: "must be a positive number",
-            value: tolerance,
-        })
-    }
-}
-
-/// A keep-angle: degrees from 0 to 180, the turning angle in the plane.
-///
-/// # Errors
-///
-/// [`Error::InvalidOption`] otherwise (NaN included).
-pub fn check_keep_angle(degrees: f64) -> Result<f64, Error> {
-    if (0.0..=180.0).contains(&degrees) {
-        Ok(degrees)
-    } else {
-        Err(Error::InvalidOption {
-            option: "keep-angle",
-            rule: "must be an angle from 0 to 180 degrees",
-            value: degrees,
-        })
-    }
-}
 
 /// What smoothing did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -645,19 +509,4 @@ fn bounds(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> ([f64; 2], [f64; 2]
 fn default_tolerance(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> f64 {
     let (lo, hi) = bounds(arcs, extent);
     default_tolerance_of(lo, hi)
-}
-
-/// The flattening tolerance smoothing takes when none is given: the
-/// fraction [`DEFAULT_TOLERANCE_FRACTION`] of the diagonal of the box from
-/// `lo` to `hi` (the data's extent, `[x, y]`), or 1 when that diagonal is zero
-/// or not finite (a single position, no positions). Every entry point (the
-/// command, ring by ring too, and the bindings) takes its default from here.
-#[must_use]
-pub fn default_tolerance_of(lo: [f64; 2], hi: [f64; 2]) -> f64 {
-    let diag = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
-    if diag.is_finite() && diag > 0.0 {
-        diag * DEFAULT_TOLERANCE_FRACTION
-    } else {
-        1.0
-    }
 }

@@ -15,7 +15,7 @@ use geo_types::{
 
 use crate::coverage::Coverage;
 use crate::error::Error;
-use crate::smooth::SmoothOptions;
+use crate::options::SmoothOptions;
 
 /// Geometries smoothed with the method's curves, each as a coverage of its
 /// own (see the crate docs).

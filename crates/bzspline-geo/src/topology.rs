@@ -396,24 +396,6 @@ impl Builder {
     }
 }
 
-/// A snap distance ([`snap`], [`crate::CoverageBuilder::snap`]): a finite
-/// number of at least 0.
-///
-/// # Errors
-///
-/// [`Error::InvalidOption`] otherwise.
-pub fn check_snap(eps: f64) -> Result<f64, Error> {
-    if eps.is_finite() && eps >= 0.0 {
-        Ok(eps)
-    } else {
-        Err(Error::InvalidOption {
-            option: "snap",
-            rule: "must be a number of at least 0",
-            value: eps,
-        })
-    }
-}
-
 /// Moves every position to the first one met within `eps` of it (Euclidean
 /// distance, in the order of the chains and their positions), then puts every
 /// position that lies within `eps` of another line's or ring's edge into that
@@ -431,9 +413,9 @@ pub fn check_snap(eps: f64) -> Result<f64, Error> {
 ///
 /// [`Error::NonFinite`] for a coordinate that is not finite;
 /// [`Error::InvalidOption`] for `eps` that is not a finite non-negative number
-/// ([`check_snap`]).
+/// ([`crate::check_snap`]).
 pub fn snap(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> Result<(), Error> {
-    check_snap(eps)?;
+    crate::options::check_snap(eps)?;
     let mut reps: RTree<GeomWithData<[f64; 2], ()>> = RTree::new();
     let eps2 = eps * eps;
     for (ci, (_, coords)) in chains.iter_mut().enumerate() {

@@ -4,9 +4,10 @@
 
 use geo_types::Coord;
 
-use super::{SmoothOptions, MAX_LEVEL, STRAIGHT};
+use super::{MAX_LEVEL, STRAIGHT};
 use crate::error::Error;
 use crate::graph::key;
+use crate::options::SmoothOptions;
 use crate::piece::{self, Flat};
 
 /// Which original legs one output segment lies along, and whether it is an
