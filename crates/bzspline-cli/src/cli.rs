@@ -19,7 +19,8 @@ use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
 /// Where the control points come from.
 #[derive(Debug, Clone, Args)]
 pub struct InputArgs {
-    /// Input file (CSV, TSV, JSON or GeoJSON); `-` or nothing reads standard input.
+    /// Input file: a table (CSV, TSV, whitespace), JSON points, GeoJSON (or newline-delimited),
+    /// or for `smooth` TopoJSON; `-` or nothing reads standard input.
     #[arg(value_name = "FILE", conflicts_with = "example")]
     pub file: Option<PathBuf>,
     /// Use the paper's Example 1 (11 points on [1, 11]) or Example 2 (a semicircle).
@@ -200,15 +201,16 @@ pub enum FitFormat {
     Svg,
 }
 
-/// What evaluation does outside the data's span.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ExtrapolateArg {
-    /// Refuse queries outside the span.
-    Error,
-    /// Hold the end values (derivatives 0).
-    Clamp,
-    /// Continue the end pieces' cubics.
-    Extend,
+/// `--extrapolate`: the library's policies by their names
+/// ([`bzspline::Extrapolate::name`]), but for `nan`: the command writes no
+/// NaN.
+fn extrapolate_parser() -> impl clap::builder::TypedValueParser<Value = bzspline::Extrapolate> {
+    use bzspline::Extrapolate;
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(
+        [Extrapolate::Error, Extrapolate::Clamp, Extrapolate::Extend].map(Extrapolate::name),
+    )
+    .map(|s| s.parse().unwrap_or_default())
 }
 
 /// Table formats of `eval` and `sample`.
@@ -249,8 +251,8 @@ pub struct EvalArgs {
           value_parser = clap::value_parser!(u32).range(1..=3))]
     pub derivative: Vec<u32>,
     /// Outside the span: error, clamp to the end values, or extend the end cubics.
-    #[arg(long, value_enum, default_value_t = ExtrapolateArg::Error)]
-    pub extrapolate: ExtrapolateArg,
+    #[arg(long, value_name = "POLICY", default_value = "error", value_parser = extrapolate_parser())]
+    pub extrapolate: bzspline::Extrapolate,
     /// Output format.
     #[arg(long, value_enum, default_value_t = TableFormat::Csv)]
     pub format: TableFormat,
@@ -473,16 +475,6 @@ pub fn check_alpha(name: &str, a: f64) -> Result<()> {
         usage!("{name} = {a} is not a finite number");
     }
     Ok(())
-}
-
-impl From<ExtrapolateArg> for bzspline::Extrapolate {
-    fn from(e: ExtrapolateArg) -> Self {
-        match e {
-            ExtrapolateArg::Error => bzspline::Extrapolate::Error,
-            ExtrapolateArg::Clamp => bzspline::Extrapolate::Clamp,
-            ExtrapolateArg::Extend => bzspline::Extrapolate::Extend,
-        }
-    }
 }
 
 #[cfg(test)]

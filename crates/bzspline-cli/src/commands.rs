@@ -9,8 +9,7 @@ use clap::{Parser, Subcommand};
 use serde_json::{json, Value};
 
 use crate::cli::{
-    usage, Abscissa, EvalArgs, ExtrapolateArg, FitArgs, FitFormat, SampleArgs, SmoothArgs,
-    TableFormat,
+    usage, Abscissa, EvalArgs, FitArgs, FitFormat, SampleArgs, SmoothArgs, TableFormat,
 };
 use crate::fit::{fit_points, fit_points_reported};
 use crate::input;
@@ -250,7 +249,7 @@ fn row_at(
 
 fn eval(a: &EvalArgs) -> Result<()> {
     let shape = a.shape.validate()?;
-    if shape.mode == Mode::Curve && a.extrapolate != ExtrapolateArg::Error {
+    if shape.mode == Mode::Curve && a.extrapolate != bzspline::Extrapolate::Error {
         usage!("--extrapolate applies to y(x) only (a closed curve is periodic)");
     }
     let (given, qpos): (Vec<Abscissa>, Vec<String>) = match (&a.at, &a.at_file) {
@@ -278,7 +277,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
     };
     let points = a.input.load()?;
     let fitted = match fit_points(&points, &shape)? {
-        Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate.into())),
+        Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate)),
         other => other,
     };
     // Dates for data whose x holds dates, numbers otherwise.
@@ -370,19 +369,8 @@ fn params_by_step(f: &Fitted, step: f64) -> std::result::Result<Vec<f64>, bzspli
 }
 
 fn sample(a: &SampleArgs) -> Result<()> {
+    // --n, --step and --tolerance are checked as clap parses them.
     let shape = a.shape.validate()?;
-    if let Some(n) = a.n {
-        if n < 2 {
-            usage!("--n must be at least 2 (got {n})");
-        }
-    }
-    for (name, v) in [("--tolerance", a.tolerance), ("--step", a.step)] {
-        if let Some(v) = v {
-            if !(v.is_finite() && v > 0.0) {
-                usage!("{name} must be a positive number (got {v})");
-            }
-        }
-    }
     let points = a.input.load()?;
     let fitted = fit_points(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
