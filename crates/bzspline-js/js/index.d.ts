@@ -14,7 +14,7 @@ export interface SplineOptions {
   /** Pass through every (x, y): the interpolating variant. */
   through?: boolean;
   /** Outside the knots: extend the end cubics (true, the default), NaN (false) or hold the end values. */
-  extrapolate?: boolean | "clamp";
+  extrapolate?: boolean | "clamp" | "extend" | "nan";
 }
 
 export interface Extremum {

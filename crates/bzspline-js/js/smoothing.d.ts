@@ -21,7 +21,7 @@ export interface SmoothingOptions {
   /** One shape parameter per interval (n - 1 of them); not with `alpha`. */
   alphas?: Numbers;
   /** Outside the knots, as for `new Spline`. */
-  extrapolate?: boolean | "clamp";
+  extrapolate?: boolean | "clamp" | "extend" | "nan";
 }
 
 export interface CurveSmoothingOptions {

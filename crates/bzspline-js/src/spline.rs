@@ -25,16 +25,20 @@ pub struct Spline {
 }
 
 /// The `extrapolate` option: true (extend, the default), false (NaN, as
-/// scipy) or a policy by name (`"clamp"`, `"extend"`, `"nan"`, `"error"`):
-/// [`Extrapolate`]'s own conversions.
+/// scipy) or a policy by name (`"clamp"`, `"extend"`, `"nan"`):
+/// [`Extrapolate`]'s own conversions. Not `"error"`: a value outside the
+/// knots is a number here, never an exception.
 fn outside_of(o: &Options) -> Result<Extrapolate, JsValue> {
     match o.get("extrapolate") {
         None => Ok(Extrapolate::Extend),
         Some(v) => match (v.as_bool(), v.as_string()) {
             (Some(b), _) => Ok(Extrapolate::from(b)),
-            (_, Some(name)) => name
-                .parse()
-                .map_err(|e| type_error(format!("extrapolate {e}, true nor false"))),
+            (_, Some(name)) => match name.parse() {
+                Ok(Extrapolate::Error) | Err(_) => Err(type_error(format!(
+                    "extrapolate must be true, false, \"clamp\", \"extend\" or \"nan\" (found \"{name}\")"
+                ))),
+                Ok(e) => Ok(e),
+            },
             _ => Err(type_error(format!(
                 "extrapolate must be true, false or \"clamp\" (found {})",
                 kind(&v)

@@ -78,6 +78,10 @@ test("through passes through every point; extrapolate as scipy", () => {
   assert.ok(Number.isFinite(s.at(x[0] - 1)));
   assert.ok(Number.isNaN(new Spline(x, y, { extrapolate: false }).at(x[0] - 1)));
   assert.equal(new Spline(x, y, { extrapolate: "clamp" }).at(x.at(-1) + 5), y.at(-1));
+  // The library's names: "nan" is false, "extend" is true.
+  const q = Float64Array.of(x[0] - 1, x[1], x.at(-1) + 2);
+  assert.deepEqual(new Spline(x, y, { extrapolate: "nan" }).at(q), new Spline(x, y, { extrapolate: false }).at(q));
+  assert.deepEqual(new Spline(x, y, { extrapolate: "extend" }).at(q), new Spline(x, y).at(q));
   assert.ok(Number.isNaN(s.at(NaN)));
 });
 
@@ -130,6 +134,7 @@ test("bad input throws RangeError or TypeError naming the index", () => {
     [() => new Spline([0, 1, 2], [0, 1, 2], { alpha: "1/3" }), TypeError, /alpha must be a number, such as 1\/3 \(found the string "1\/3"\)/],
     [() => new Spline([0, 1, 2], [0, 1, 2], { alphas: [0.5] }), RangeError, /alpha/],
     [() => new Spline([0, 1, 2], [0, 1, 2], { extrapolate: "yes" }), TypeError, /extrapolate/],
+    [() => new Spline([0, 1, 2], [0, 1, 2], { extrapolate: "error" }), TypeError, /extrapolate must be true, false, "clamp"/],
     [() => new Spline([0, 1, 2], [0, 1, 2], 5), TypeError, /options/],
     [() => new Curve([[0, 0], [1, 1], [1, 1]]), RangeError, /2/],
     [() => new Curve([[0, 0], [1]]), RangeError, /points\[1\]/],

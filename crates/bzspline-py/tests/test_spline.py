@@ -86,6 +86,15 @@ def test_extrapolation_as_scipy():
     c = bzspline.Spline(TAU, F, extrapolate="clamp")
     assert c(0.0) == 1.0 and c(20.0) == 1.5 and c(20.0, nu=1) == 0.0
     assert np.isnan(s(np.nan))
+    # The library's names: 'nan' is False, 'extend' True, 'error' raises.
+    q = np.array([0.0, 5.0, 12.0])
+    assert np.array_equal(bzspline.Spline(TAU, F, extrapolate="nan")(q), n(q), equal_nan=True)
+    assert np.array_equal(bzspline.Spline(TAU, F, extrapolate="extend")(q), s(q))
+    e = bzspline.Spline(TAU, F, extrapolate="error")
+    assert e(5.0) == s(5.0) and e.extrapolate == "error"
+    with pytest.raises(ValueError):
+        e(12.0)
+    assert n.extrapolate is False and c.extrapolate == "clamp"
 
 
 def test_scipy_pieces_are_the_same():
