@@ -11,6 +11,7 @@
 //!   as decimals or fractions).
 //! - [`time`]: ISO 8601 dates and date-times as numbers and back.
 //! - [`topojson`]: TopoJSON Topologies in (quantized or not) and out.
+//! - `shp` (feature `shapefile`): ESRI Shapefiles in and out.
 //! - [`smooth`]: a GeoJSON document smoothed as one coverage or ring by ring.
 //! - [`api`]: the editor's `POST /api/fit` request and response.
 //!
@@ -21,6 +22,8 @@ pub mod api;
 pub mod input;
 pub mod model;
 pub mod options;
+#[cfg(feature = "shapefile")]
+pub mod shp;
 pub mod smooth;
 pub mod time;
 pub mod topojson;

@@ -53,6 +53,9 @@ pub enum InputFormat {
     Geojsonseq,
     /// A TopoJSON Topology (`smooth` only; recognised by its content too).
     Topojson,
+    /// An ESRI Shapefile: the `.shp`, with its `.shx` and `.dbf` beside it
+    /// (recognised by its content too).
+    Shapefile,
 }
 
 /// Where control points come from and how much of them to take: what
@@ -351,17 +354,23 @@ fn format_by_extension(file: Option<&Path>) -> Option<InputFormat> {
         Some("json") => Some(InputFormat::Json),
         Some("geojson") => Some(InputFormat::Geojson),
         Some("topojson") => Some(InputFormat::Topojson),
+        Some("shp") => Some(InputFormat::Shapefile),
         Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => Some(InputFormat::Geojsonseq),
         _ => None,
     }
 }
 
 /// The format of data that no option or extension names (standard input, a
-/// `.txt` file): a record separator starts newline-delimited GeoJSON; `{` or
+/// `.txt` file): a Shapefile's file code starts a `.shp`; a record separator
+/// starts newline-delimited GeoJSON; `{` or
 /// `[` starts JSON, which is GeoJSON or TopoJSON when a `"type"` of theirs
 /// appears in its first 64 KiB; anything else is a table.
 #[must_use]
 pub fn sniff(bytes: &[u8]) -> InputFormat {
+    // A .shp starts with its file code, 9994, big-endian.
+    if bytes.starts_with(&[0, 0, 0x27, 0x0a]) {
+        return InputFormat::Shapefile;
+    }
     let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     let Some(&first) = text.iter().find(|b| !b.is_ascii_whitespace()) else {
         return InputFormat::Csv;
@@ -383,6 +392,29 @@ pub fn sniff(bytes: &[u8]) -> InputFormat {
             }
         }
         _ => InputFormat::Csv,
+    }
+}
+
+/// The first line, ring or run of points of a Shapefile's features, as
+/// from the same features in GeoJSON.
+fn shapefile_points(file: Option<&Path>, max: usize) -> Result<Points> {
+    let Some(path) = file.filter(|p| *p != Path::new("-")) else {
+        bail!("a Shapefile is read from its files (.shp, .shx, .dbf), not from standard input");
+    };
+    #[cfg(feature = "shapefile")]
+    {
+        let name = path.display().to_string();
+        let layer = crate::shp::read(path)?;
+        let bytes = serde_json::to_vec(&layer.features).context("formatting GeoJSON")?;
+        parse_geojson_points(&name, &bytes, max)
+    }
+    #[cfg(not(feature = "shapefile"))]
+    {
+        let _ = max;
+        bail!(
+            "{}: this build reads no Shapefiles (the `shapefile` feature)",
+            path.display()
+        )
     }
 }
 
@@ -410,12 +442,18 @@ pub fn load(args: &Source) -> Result<Points> {
     }
     let file = args.file.as_deref();
     let limits = args.limits;
-    let (name, bytes) = read_source(file, limits.max_bytes)?;
     let max = limits.max_points;
+    if args.format.or_else(|| format_by_extension(file)) == Some(InputFormat::Shapefile) {
+        return shapefile_points(file, max);
+    }
+    let (name, bytes) = read_source(file, limits.max_bytes)?;
     let format = args
         .format
         .or_else(|| format_by_extension(file))
         .unwrap_or_else(|| sniff(&bytes));
+    if format == InputFormat::Shapefile {
+        return shapefile_points(file, max);
+    }
     let select = Select {
         x: args.x.as_deref().map(Col::parse),
         y: args.y.as_deref().map(Col::parse),
@@ -434,8 +472,9 @@ pub fn load(args: &Source) -> Result<Points> {
         InputFormat::Json => parse_json(&name, &bytes, max),
         InputFormat::Geojson => parse_geojson_points(&name, &bytes, max),
         InputFormat::Topojson => {
-            bail!("{name}: TopoJSON holds a coverage: `bzspline smooth` reads it; fit, eval, sample and plot take a table, JSON or GeoJSON")
+            bail!("{name}: TopoJSON holds a coverage: `bzspline smooth` reads it; fit, eval, sample and plot take a table, JSON, GeoJSON or a Shapefile")
         }
+        InputFormat::Shapefile => unreachable!("read above"),
         InputFormat::Geojsonseq => {
             // The first feature of the stream.
             let text = utf8(&name, &bytes)?;

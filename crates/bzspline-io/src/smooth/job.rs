@@ -23,6 +23,9 @@ pub enum Output {
     Geojson,
     /// A TopoJSON Topology with the smoothed arcs.
     Topojson,
+    /// An ESRI Shapefile: the job gives the GeoJSON features, which
+    /// `shp::write` (feature `shapefile`) writes as the layer's files.
+    Shapefile,
 }
 
 /// Everything a job is asked to do.
@@ -236,7 +239,9 @@ impl Job {
         )?;
         self.total += &s.stats;
         match self.settings.output {
-            Output::Geojson => serde_json::to_value(&s.doc).context("formatting GeoJSON"),
+            Output::Geojson | Output::Shapefile => {
+                serde_json::to_value(&s.doc).context("formatting GeoJSON")
+            }
             Output::Topojson => Ok(topojson::from_features(
                 self.object_name(),
                 &coverage::features(&s.doc),
@@ -273,7 +278,7 @@ impl Job {
         self.total += &s.stats;
         match self.settings.output {
             Output::Topojson => Ok(topo.to_topojson(&s.arcs)),
-            Output::Geojson => topo
+            Output::Geojson | Output::Shapefile => topo
                 .to_geojson(&s.arcs, object.as_deref())
                 .map_err(|e| anyhow!("{name}: {e}")),
         }

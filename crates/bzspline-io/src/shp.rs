@@ -1,0 +1,983 @@
+//! ESRI Shapefiles in and out: a layer's `.shp`, `.shx` and `.dbf` read into
+//! a GeoJSON FeatureCollection (attributes as properties, in the table's
+//! field order) that the smoothing and the point readers take, and written
+//! back from one, with the input's fields (names, types, widths) and its
+//! `.prj` kept. Written files are built in memory and renamed into place
+//! only when every one of them is complete.
+//!
+//! Shapes map to GeoJSON as GDAL maps them: a Polyline of one part is a
+//! LineString, of several a MultiLineString; a Polygon's outer rings
+//! (clockwise) each take the inner rings that lie in them, one outer ring
+//! making a Polygon and several a MultiPolygon; a ring left open is
+//! closed; Z is the third coordinate and M is dropped. Multipatch shapes are
+//! refused.
+
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, bail, Context, Result};
+use serde_json::{json, Map, Value};
+use shapefile::dbase::{self, FieldName, FieldType, FieldValue, TableInfo, TableWriterBuilder};
+use shapefile::{
+    Multipoint, MultipointZ, Point, PointZ, Polygon, PolygonRing, PolygonZ, Polyline, PolylineZ,
+    Shape, NO_DATA,
+};
+
+/// The `.prj` of RFC 7946's coordinates (WGS 84 longitude and latitude), as
+/// ESRI writes it: what a Shapefile written from GeoJSON carries.
+pub const WGS84_PRJ: &str = "GEOGCS[\"GCS_WGS_1984\",DATUM[\"D_WGS_1984\",SPHEROID[\"WGS_1984\",6378137.0,298.257223563]],PRIMEM[\"Greenwich\",0.0],UNIT[\"Degree\",0.0174532925199433]]";
+
+/// What a Shapefile holds besides its features, kept to write the layer
+/// back the same way: the `.dbf`'s fields (names, types, widths, decimals)
+/// and the `.prj`.
+#[derive(Clone)]
+pub struct Schema {
+    /// The fields, in order.
+    fields: Vec<Field>,
+    /// The table's layout, as the writer takes it.
+    table: TableInfo,
+    /// The `.prj` (the coordinate system as WKT), when there is one.
+    pub prj: Option<String>,
+}
+
+impl std::fmt::Debug for Schema {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Schema")
+            .field("fields", &self.fields)
+            .field("prj", &self.prj)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Schema {
+    /// The fields' names, in order.
+    pub fn field_names(&self) -> impl Iterator<Item = &str> {
+        self.fields.iter().map(|f| f.name.as_str())
+    }
+}
+
+/// One field of a table: what a record's value is checked against.
+#[derive(Clone, Debug)]
+struct Field {
+    name: String,
+    kind: FieldType,
+    /// Bytes a value may take (text).
+    width: usize,
+}
+
+/// A layer read: its features and its schema.
+#[derive(Clone, Debug)]
+pub struct Layer {
+    /// A GeoJSON FeatureCollection: one feature per shape, in order, its
+    /// properties the record's fields.
+    pub features: Value,
+    /// The fields and the coordinate system.
+    pub schema: Schema,
+}
+
+/// The files of one Shapefile: `x.shp`, `x.shx`, `x.dbf`, `x.prj`, `x.cpg`
+/// beside each other (the extension's case follows the `.shp`'s).
+fn sibling(shp: &Path, ext: &str) -> PathBuf {
+    let upper = shp
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.chars().all(|c| c.is_ascii_uppercase()));
+    shp.with_extension(if upper {
+        ext.to_ascii_uppercase()
+    } else {
+        ext.to_owned()
+    })
+}
+
+/// Reads the Shapefile whose `.shp` is `path`, with its `.shx` and `.dbf`
+/// (both required) and its `.prj` and `.cpg` when there are ([`read_parts`]
+/// says how the `.cpg` is used).
+///
+/// # Errors
+///
+/// One line naming the file at fault: a missing `.shx` or `.dbf`, a
+/// truncated or malformed file, as many records as shapes not, a
+/// Multipatch, a coordinate that is not finite (`x.shp: shape 4: ...`).
+pub fn read(path: &Path) -> Result<Layer> {
+    let name = path.display().to_string();
+    let open = |p: &Path, what: &str| -> Result<Vec<u8>> {
+        std::fs::read(p).map_err(|e| {
+            if e.kind() == std::io::ErrorKind::NotFound && what != "shp" {
+                anyhow!(
+                    "{name}: its .{what} ({}) is missing: a Shapefile needs its .shp, .shx and .dbf",
+                    p.display()
+                )
+            } else {
+                anyhow!("reading {}: {e}", p.display())
+            }
+        })
+    };
+    let shp = open(path, "shp")?;
+    let shx = open(&sibling(path, "shx"), "shx")?;
+    let dbf = open(&sibling(path, "dbf"), "dbf")?;
+    let prj_path = sibling(path, "prj");
+    let prj = match std::fs::read(&prj_path) {
+        Ok(b) => Some(String::from_utf8_lossy(&b).trim().to_owned()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+        Err(e) => bail!("reading {}: {e}", prj_path.display()),
+    };
+    let cpg = match std::fs::read(sibling(path, "cpg")) {
+        Ok(b) => Some(String::from_utf8_lossy(&b).trim().to_owned()),
+        Err(_) => None,
+    };
+    let mut layer = read_parts(&name, &shp, &shx, &dbf, cpg.as_deref())?;
+    layer.schema.prj = prj;
+    Ok(layer)
+}
+
+/// Reads a Shapefile from the bytes of its `.shp`, `.shx` and `.dbf`, the
+/// table's text in the code page `cpg` names (a `.cpg`'s content: `UTF-8`,
+/// `1252`, ...), else in the one its header names, else as UTF-8 (bytes
+/// that are not become U+FFFD); errors start with `name`.
+///
+/// # Errors
+///
+/// As [`read`].
+pub fn read_parts(
+    name: &str,
+    shp: &[u8],
+    shx: &[u8],
+    dbf: &[u8],
+    cpg: Option<&str>,
+) -> Result<Layer> {
+    let bounds = check_records(name, shp)?;
+    let count = bounds.len();
+    let shx_name = sibling(Path::new(name), "shx").display().to_string();
+    if shx.len() != 100 + 8 * count || !shx.starts_with(&[0, 0, 0x27, 0x0a]) {
+        bail!("{shx_name}: not the index of {name} ({count} shapes)");
+    }
+    let dbf_name = sibling(Path::new(name), "dbf").display().to_string();
+    let mut builder = dbase::ReaderBuilder::new();
+    if let Some(code_page) = cpg.and_then(dbase::encoding::DynEncoding::from_name) {
+        builder = builder.with_encoding(code_page);
+    }
+    let mut table = builder
+        .build(Cursor::new(dbf))
+        .map_err(|e| anyhow!("{dbf_name}: not a dBASE table: {}", one_line(&e)))?;
+    let fields: Vec<Field> = table
+        .fields()
+        .iter()
+        .map(|f| Field {
+            name: f.name().to_owned(),
+            kind: f.field_type(),
+            width: usize::from(f.length()),
+        })
+        .collect();
+    let records = table.header().num_records as usize;
+    if count != records {
+        bail!("{name}: {count} shapes but {records} records in {dbf_name}: the files do not belong together");
+    }
+    let mut features = Vec::with_capacity(count);
+    let mut rows = table.iter_records();
+    for (i, &(start, end)) in bounds.iter().enumerate() {
+        // Each record on its own: the reader cannot run past it.
+        let size =
+            i32::try_from(end - start).map_err(|_| anyhow!("{name}: shape {i}: too large"))?;
+        let shape = <Shape as shapefile::ReadableShape>::read_from(
+            &mut Cursor::new(&shp[start..end]),
+            size,
+        )
+        .map_err(|e| anyhow!("{name}: shape {i}: {}", one_line(&e)))?;
+        let record = rows
+            .next()
+            .ok_or_else(|| anyhow!("{dbf_name}: record {i} is missing"))?
+            .map_err(|e| anyhow!("{dbf_name}: record {i}: {}", one_line(&e)))?;
+        let geometry = geometry(shape).map_err(|e| anyhow!("{name}: shape {i}: {e}"))?;
+        let mut properties = Map::new();
+        for f in &fields {
+            let v = record.get(&f.name).map_or(Value::Null, field_json);
+            properties.insert(f.name.clone(), v);
+        }
+        features.push(json!({"type": "Feature", "properties": properties, "geometry": geometry}));
+    }
+    Ok(Layer {
+        features: json!({"type": "FeatureCollection", "features": features}),
+        schema: Schema {
+            fields,
+            table: table.into_table_info(),
+            prj: None,
+        },
+    })
+}
+
+/// Another crate's error as one line: control characters (a bad byte it
+/// quotes) written as `\u{..}` escapes.
+fn one_line(e: &dyn std::fmt::Display) -> String {
+    e.to_string()
+        .chars()
+        .map(|c| {
+            if c.is_control() {
+                format!("\\u{{{:x}}}", u32::from(c))
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// Walks the records of a `.shp` and gives where each one's content lies,
+/// checking that each lies within the file and that the parts and points it
+/// declares fit in it (so that no reader allocates for more than the file
+/// holds).
+fn check_records(name: &str, shp: &[u8]) -> Result<Vec<(usize, usize)>> {
+    if shp.len() < 100 || !shp.starts_with(&[0, 0, 0x27, 0x0a]) {
+        bail!("{name}: not a Shapefile (no .shp header)");
+    }
+    let be = |at: usize| i32::from_be_bytes([shp[at], shp[at + 1], shp[at + 2], shp[at + 3]]);
+    let le = |at: usize| i32::from_le_bytes([shp[at], shp[at + 1], shp[at + 2], shp[at + 3]]);
+    let (mut at, mut n) = (100usize, 0usize);
+    let mut bounds = Vec::new();
+    while at < shp.len() {
+        let bad = |what: &str| anyhow!("{name}: shape {n}: {what}");
+        if at + 8 > shp.len() {
+            return Err(bad("the file ends inside its record header"));
+        }
+        let words = usize::try_from(be(at + 4)).map_err(|_| bad("a negative record length"))?;
+        let (start, len) = (at + 8, 2 * words);
+        let end = start
+            .checked_add(len)
+            .filter(|&e| e <= shp.len())
+            .ok_or_else(|| bad("the record runs past the end of the file"))?;
+        if len >= 4 {
+            let count = |at: usize| usize::try_from(le(at)).map_err(|_| bad("a negative count"));
+            let need = match le(start) {
+                // Polylines, polygons and multipatches: parts, then points.
+                3 | 5 | 13 | 15 | 23 | 25 | 31 if len >= 44 => {
+                    let (parts, points) = (count(start + 36)?, count(start + 40)?);
+                    let need = 44u64 + 4 * parts as u64 + 16 * points as u64;
+                    if need <= len as u64 {
+                        // Each part starts within the points, in order.
+                        let mut prev = 0;
+                        for k in 0..parts {
+                            let first = count(start + 44 + 4 * k)?;
+                            if first < prev || first > points {
+                                return Err(bad("its parts do not index its points in order"));
+                            }
+                            prev = first;
+                        }
+                    }
+                    need
+                }
+                // Multipoints: points.
+                8 | 18 | 28 if len >= 40 => 40 + 16 * count(start + 36)? as u64,
+                3 | 5 | 13 | 15 | 23 | 25 | 31 | 8 | 18 | 28 => u64::MAX,
+                _ => 0,
+            };
+            if need > len as u64 {
+                return Err(bad("its parts and points do not fit in its record"));
+            }
+        }
+        bounds.push((start, end));
+        at = end;
+        n += 1;
+    }
+    Ok(bounds)
+}
+
+/// A shape as a GeoJSON geometry (`null` for a null shape).
+fn geometry(shape: Shape) -> Result<Value> {
+    fn xy(p: &Point) -> Result<Value> {
+        finite(&[p.x, p.y])?;
+        Ok(json!([p.x, p.y]))
+    }
+    fn xyz(p: &PointZ) -> Result<Value> {
+        finite(&[p.x, p.y, p.z])?;
+        Ok(json!([p.x, p.y, p.z]))
+    }
+    fn line<P>(pts: &[P], f: fn(&P) -> Result<Value>) -> Result<Value> {
+        pts.iter()
+            .map(f)
+            .collect::<Result<Vec<_>>>()
+            .map(Value::from)
+    }
+    fn lines<P>(parts: &[Vec<P>], f: fn(&P) -> Result<Value>) -> Result<Value> {
+        Ok(match parts {
+            [one] => json!({"type": "LineString", "coordinates": line(one, f)?}),
+            _ => json!({"type": "MultiLineString", "coordinates":
+                parts.iter().map(|p| line(p, f)).collect::<Result<Vec<_>>>()?}),
+        })
+    }
+    fn polygons<P: shapefile::record::traits::HasXY>(
+        rings: &[PolygonRing<P>],
+        f: fn(&P) -> Result<Value>,
+    ) -> Result<Value> {
+        // Each inner ring goes to the last outer ring before it that holds
+        // its first point, else to the last outer ring before it.
+        let mut polys: Vec<(Vec<[f64; 2]>, Vec<Value>)> = Vec::new();
+        for ring in rings {
+            let pts = ring.points();
+            let mut coords = line(pts, f)?;
+            // A ring left open in the file is closed, as its writer would.
+            if let Some(a) = coords.as_array_mut() {
+                if a.len() > 1 && a.first() != a.last() {
+                    a.push(a[0].clone());
+                }
+            }
+            match ring {
+                PolygonRing::Outer(_) => {
+                    let flat = pts.iter().map(|p| [p.x(), p.y()]).collect();
+                    polys.push((flat, vec![coords]));
+                }
+                PolygonRing::Inner(_) => {
+                    let first = pts.first().map(|p| [p.x(), p.y()]);
+                    let home = polys
+                        .iter()
+                        .rposition(|(outer, _)| first.is_some_and(|q| contains(outer, q)))
+                        .or(polys.len().checked_sub(1));
+                    match home {
+                        Some(k) => polys[k].1.push(coords),
+                        None => polys.push((Vec::new(), vec![coords])),
+                    }
+                }
+            }
+        }
+        Ok(match polys.len() {
+            1 => json!({"type": "Polygon", "coordinates": polys.pop().map(|p| p.1)}),
+            _ => json!({"type": "MultiPolygon", "coordinates":
+                polys.into_iter().map(|p| p.1).collect::<Vec<_>>()}),
+        })
+    }
+    let m_xy = |p: &shapefile::PointM| Point::new(p.x, p.y);
+    Ok(match shape {
+        Shape::NullShape => Value::Null,
+        Shape::Point(p) => json!({"type": "Point", "coordinates": xy(&p)?}),
+        Shape::PointM(p) => json!({"type": "Point", "coordinates": xy(&m_xy(&p))?}),
+        Shape::PointZ(p) => json!({"type": "Point", "coordinates": xyz(&p)?}),
+        Shape::Multipoint(m) => json!({"type": "MultiPoint", "coordinates": line(m.points(), xy)?}),
+        Shape::MultipointM(m) => {
+            let pts: Vec<Point> = m.points().iter().map(m_xy).collect();
+            json!({"type": "MultiPoint", "coordinates": line(&pts, xy)?})
+        }
+        Shape::MultipointZ(m) => {
+            json!({"type": "MultiPoint", "coordinates": line(m.points(), xyz)?})
+        }
+        Shape::Polyline(l) => lines(l.parts(), xy)?,
+        Shape::PolylineM(l) => {
+            let parts: Vec<Vec<Point>> = l
+                .parts()
+                .iter()
+                .map(|p| p.iter().map(m_xy).collect())
+                .collect();
+            lines(&parts, xy)?
+        }
+        Shape::PolylineZ(l) => lines(l.parts(), xyz)?,
+        Shape::Polygon(p) => polygons(p.rings(), xy)?,
+        Shape::PolygonM(p) => {
+            let rings: Vec<PolygonRing<Point>> = p
+                .rings()
+                .iter()
+                .map(|r| {
+                    let pts = r.points().iter().map(m_xy).collect();
+                    match r {
+                        PolygonRing::Outer(_) => PolygonRing::Outer(pts),
+                        PolygonRing::Inner(_) => PolygonRing::Inner(pts),
+                    }
+                })
+                .collect();
+            polygons(&rings, xy)?
+        }
+        Shape::PolygonZ(p) => polygons(p.rings(), xyz)?,
+        Shape::Multipatch(_) => bail!("a Multipatch (3D surface) is not supported"),
+    })
+}
+
+fn finite(v: &[f64]) -> Result<()> {
+    match v.iter().find(|c| !c.is_finite()) {
+        Some(c) => bail!("a coordinate is {c}, not a finite number"),
+        None => Ok(()),
+    }
+}
+
+/// Whether the ring (closed or not) holds `p`, by the even-odd rule.
+fn contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let mut inside = false;
+    let n = ring.len();
+    for i in 0..n {
+        let (a, b) = (ring[i], ring[(i + n - 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0]
+        {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// A field's value as JSON: numbers as numbers (whole ones of a field
+/// without decimals as integers), dates as `YYYY-MM-DD`, empty as `null`.
+fn field_json(v: &FieldValue) -> Value {
+    let number = |x: f64| {
+        if x.fract() == 0.0 && x.abs() < 9.0e15 {
+            json!(x as i64)
+        } else {
+            json!(x)
+        }
+    };
+    match v {
+        FieldValue::Character(s) => s.clone().map_or(Value::Null, Value::from),
+        FieldValue::Memo(s) => Value::from(s.clone()),
+        FieldValue::Numeric(x) => x.map_or(Value::Null, number),
+        // The float's own shortest decimal, not its binary expansion.
+        FieldValue::Float(x) => x.map_or(Value::Null, |f| {
+            number(f.to_string().parse::<f64>().unwrap_or(f64::from(f)))
+        }),
+        FieldValue::Logical(b) => b.map_or(Value::Null, Value::from),
+        FieldValue::Date(d) => d.map_or(Value::Null, |d| {
+            json!(format!("{:04}-{:02}-{:02}", d.year(), d.month(), d.day()))
+        }),
+        FieldValue::Integer(i) => json!(i),
+        FieldValue::Currency(x) | FieldValue::Double(x) => json!(x),
+        FieldValue::DateTime(t) => {
+            let (d, tm) = (t.date(), t.time());
+            json!(format!(
+                "{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z",
+                d.year(),
+                d.month(),
+                d.day(),
+                tm.hours(),
+                tm.minutes(),
+                tm.seconds()
+            ))
+        }
+    }
+}
+
+/// The files of a Shapefile written: `.shp`, `.shx`, `.dbf`, `.prj` and
+/// `.cpg` (UTF-8), as bytes by extension.
+pub type Files = Vec<(&'static str, Vec<u8>)>;
+
+/// Writes the features of a GeoJSON FeatureCollection as the files of a
+/// Shapefile, in memory: with `schema`'s fields and `.prj` when given (the
+/// layer read), else with fields found from the properties (names cut to
+/// the 10 characters a `.dbf` allows; numbers, text and booleans) and the
+/// `.prj` of WGS 84, GeoJSON's coordinates. Every feature must be of one
+/// kind (points, multipoints, lines or polygons), all with z or none.
+///
+/// # Errors
+///
+/// A feature of another kind, without geometry, a property that its field
+/// cannot hold (naming the feature and field), no feature at all.
+pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
+    let features = fc
+        .get("features")
+        .and_then(Value::as_array)
+        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as a Shapefile"))?;
+    if features.is_empty() {
+        bail!("no features to write as a Shapefile");
+    }
+    let geoms: Vec<&Value> = features.iter().map(|f| &f["geometry"]).collect();
+    let kind = layer_kind(&geoms)?;
+    if let Some(f) = schema.and_then(|s| s.fields.iter().find(|f| f.name.len() > 11)) {
+        // Read from a table whose name bytes were not UTF-8 (each became
+        // U+FFFD): a .dbf holds 11 bytes of a name.
+        bail!(
+            "the field name {:?} is longer than a .dbf holds (11 bytes)",
+            f.name
+        );
+    }
+    let (fields, builder) = match schema {
+        Some(s) => (
+            s.fields.clone(),
+            // Text is written as UTF-8, whatever the table read held.
+            TableWriterBuilder::from_table_info(s.table.clone())
+                .set_encoding(dbase::encoding::UnicodeLossy),
+        ),
+        None => infer_fields(features)?,
+    };
+    let prj = schema.map_or(Some(WGS84_PRJ.to_owned()), |s| s.prj.clone());
+    let (mut shp, mut shx, mut dbf) = (
+        Cursor::new(Vec::new()),
+        Cursor::new(Vec::new()),
+        Cursor::new(Vec::new()),
+    );
+    {
+        let table = builder.build_with_dest(&mut dbf);
+        let shapes = shapefile::ShapeWriter::with_shx(&mut shp, &mut shx);
+        let mut writer = shapefile::Writer::new(shapes, table);
+        for (i, f) in features.iter().enumerate() {
+            let record =
+                record(&f["properties"], &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
+            let g = &f["geometry"];
+            let r: Result<(), shapefile::Error> = (|| -> Result<Result<(), shapefile::Error>> {
+                Ok(match kind {
+                    Kind::Points(false) => writer.write_shape_and_record(&point(g)?, &record),
+                    Kind::Points(true) => writer.write_shape_and_record(&point_z(g)?, &record),
+                    Kind::MultiPoints(false) => {
+                        writer.write_shape_and_record(&Multipoint::new(points(g, xy_of)?), &record)
+                    }
+                    Kind::MultiPoints(true) => writer
+                        .write_shape_and_record(&MultipointZ::new(points(g, xyz_of)?), &record),
+                    Kind::Lines(false) => writer
+                        .write_shape_and_record(&Polyline::with_parts(parts(g, xy_of)?), &record),
+                    Kind::Lines(true) => writer
+                        .write_shape_and_record(&PolylineZ::with_parts(parts(g, xyz_of)?), &record),
+                    Kind::Polygons(false) => writer
+                        .write_shape_and_record(&Polygon::with_rings(rings(g, xy_of)?), &record),
+                    Kind::Polygons(true) => writer
+                        .write_shape_and_record(&PolygonZ::with_rings(rings(g, xyz_of)?), &record),
+                })
+            })()
+            .map_err(|e| anyhow!("feature {i}: {e}"))?;
+            r.map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
+        }
+    }
+    let mut files: Files = vec![
+        ("shp", shp.into_inner()),
+        ("shx", shx.into_inner()),
+        ("dbf", dbf.into_inner()),
+    ];
+    if let Some(p) = prj {
+        files.push(("prj", p.into_bytes()));
+    }
+    files.push(("cpg", b"UTF-8".to_vec()));
+    Ok(files)
+}
+
+/// Writes `files` beside each other as `path` (the `.shp`) and its
+/// siblings: each is written to a temporary file in the same folder first,
+/// and all are renamed into place only when every one was written; a
+/// sibling of an earlier layer that this one has not (a `.prj`) is removed.
+///
+/// # Errors
+///
+/// When a file cannot be created, written or renamed.
+pub fn save(path: &Path, files: &Files) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut done = Vec::new();
+    for (ext, bytes) in files {
+        let mut tmp = tempfile::Builder::new()
+            .prefix(".bzspline-")
+            .tempfile_in(dir)
+            .with_context(|| format!("creating a file in {}", dir.display()))?;
+        std::io::Write::write_all(&mut tmp, bytes)
+            .with_context(|| format!("writing {}", sibling(path, ext).display()))?;
+        done.push((tmp, sibling(path, ext)));
+    }
+    for (tmp, dest) in done {
+        tmp.persist(&dest)
+            .map_err(|e| e.error)
+            .with_context(|| format!("writing {}", dest.display()))?;
+    }
+    for ext in ["prj", "cpg"] {
+        if !files.iter().any(|(e, _)| *e == ext) {
+            let stale = sibling(path, ext);
+            if stale.exists() {
+                std::fs::remove_file(&stale)
+                    .with_context(|| format!("removing {}", stale.display()))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// What one layer holds, and whether with z.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kind {
+    Points(bool),
+    MultiPoints(bool),
+    Lines(bool),
+    Polygons(bool),
+}
+
+fn layer_kind(geoms: &[&Value]) -> Result<Kind> {
+    let mut kind: Option<(usize, &str)> = None;
+    let mut z = false;
+    for (i, g) in geoms.iter().enumerate() {
+        let Some(t) = g["type"].as_str() else {
+            bail!("feature {i} has no geometry: a Shapefile of this writer holds a geometry for every record");
+        };
+        let family = match t {
+            "Point" => "points",
+            "MultiPoint" => "multipoints",
+            "LineString" | "MultiLineString" => "lines",
+            "Polygon" | "MultiPolygon" => "polygons",
+            other => bail!("feature {i}: a {other} cannot be written to a Shapefile"),
+        };
+        match kind {
+            None => kind = Some((i, family)),
+            Some((j, f)) if f != family => bail!(
+                "feature {i} holds {family} and feature {j} {f}: a Shapefile holds one kind of geometry"
+            ),
+            _ => {}
+        }
+        z |= has_z(&g["coordinates"]);
+    }
+    Ok(match kind.map(|k| k.1) {
+        Some("points") => Kind::Points(z),
+        Some("multipoints") => Kind::MultiPoints(z),
+        Some("lines") => Kind::Lines(z),
+        _ => Kind::Polygons(z),
+    })
+}
+
+fn has_z(c: &Value) -> bool {
+    match c.as_array() {
+        Some(a) if a.first().is_some_and(Value::is_number) => a.len() >= 3,
+        Some(a) => a.iter().any(has_z),
+        None => false,
+    }
+}
+
+fn num(v: &Value) -> Result<f64> {
+    v.as_f64()
+        .ok_or_else(|| anyhow!("a coordinate is not a number"))
+}
+
+fn xy_of(p: &Value) -> Result<Point> {
+    Ok(Point::new(num(&p[0])?, num(&p[1])?))
+}
+
+fn xyz_of(p: &Value) -> Result<PointZ> {
+    let z = if p.get(2).is_some() { num(&p[2])? } else { 0.0 };
+    Ok(PointZ::new(num(&p[0])?, num(&p[1])?, z, NO_DATA))
+}
+
+fn point(g: &Value) -> Result<Point> {
+    xy_of(&g["coordinates"])
+}
+
+fn point_z(g: &Value) -> Result<PointZ> {
+    xyz_of(&g["coordinates"])
+}
+
+/// Refuses an empty list: the Shapefile writer needs a point for its box.
+fn some<T>(v: Vec<T>, what: &str) -> Result<Vec<T>> {
+    if v.is_empty() {
+        bail!("an empty {what} cannot be written to a Shapefile");
+    }
+    Ok(v)
+}
+
+/// Refuses a line of fewer than two positions, which a Shapefile's
+/// polyline cannot hold.
+fn two<T>(v: Vec<T>) -> Result<Vec<T>> {
+    if v.len() < 2 {
+        bail!(
+            "a line of {} positions cannot be written to a Shapefile",
+            v.len()
+        );
+    }
+    Ok(v)
+}
+
+fn points<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<P>> {
+    let pts = g["coordinates"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(f)
+        .collect::<Result<_>>()?;
+    some(pts, "multipoint")
+}
+
+fn parts<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<Vec<P>>> {
+    let c = &g["coordinates"];
+    let list: Vec<&Value> = if g["type"] == "LineString" {
+        vec![c]
+    } else {
+        c.as_array().into_iter().flatten().collect()
+    };
+    let parts = list
+        .into_iter()
+        .map(|l| {
+            two(l
+                .as_array()
+                .into_iter()
+                .flatten()
+                .map(f)
+                .collect::<Result<_>>()?)
+        })
+        .collect::<Result<_>>()?;
+    some(parts, "line")
+}
+
+fn rings<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<PolygonRing<P>>> {
+    let c = &g["coordinates"];
+    let polys: Vec<&Value> = if g["type"] == "Polygon" {
+        vec![c]
+    } else {
+        c.as_array().into_iter().flatten().collect()
+    };
+    let mut out = Vec::new();
+    for p in polys {
+        for (k, r) in p.as_array().into_iter().flatten().enumerate() {
+            let pts = some(
+                r.as_array()
+                    .into_iter()
+                    .flatten()
+                    .map(f)
+                    .collect::<Result<Vec<P>>>()?,
+                "ring",
+            )?;
+            out.push(if k == 0 {
+                PolygonRing::Outer(pts)
+            } else {
+                PolygonRing::Inner(pts)
+            });
+        }
+    }
+    some(out, "polygon")
+}
+
+/// Fields for properties that come with no table: each property's name
+/// (cut to 10 bytes) and a type that holds every value it takes.
+fn infer_fields(features: &[Value]) -> Result<(Vec<Field>, TableWriterBuilder)> {
+    #[derive(Default)]
+    struct Seen {
+        text: usize,
+        whole: bool,
+        fraction: bool,
+        boolean: bool,
+        other: bool,
+    }
+    let mut order: Vec<(String, Seen)> = Vec::new();
+    for f in features {
+        let Some(props) = f["properties"].as_object() else {
+            continue;
+        };
+        for (k, v) in props {
+            let at = match order.iter().position(|(n, _)| n == k) {
+                Some(at) => at,
+                None => {
+                    order.push((k.clone(), Seen::default()));
+                    order.len() - 1
+                }
+            };
+            let s = &mut order[at].1;
+            match v {
+                Value::Null => {}
+                Value::Bool(_) => s.boolean = true,
+                Value::Number(n) if n.is_i64() || n.is_u64() => s.whole = true,
+                Value::Number(_) => s.fraction = true,
+                Value::String(t) => s.text = s.text.max(t.len()),
+                _ => s.other = true,
+            }
+        }
+    }
+    let mut builder = TableWriterBuilder::new();
+    let mut names: Vec<Field> = Vec::new();
+    for (k, s) in &order {
+        let cut: String = k
+            .char_indices()
+            .take_while(|&(i, c)| i + c.len_utf8() <= 10)
+            .map(|(_, c)| c)
+            .collect();
+        if names.iter().any(|f| f.name == cut) {
+            bail!("properties {k:?} and another both become the field {cut:?} (a .dbf field name has at most 10 bytes)");
+        }
+        let name = FieldName::try_from(cut.as_str()).map_err(|e| anyhow!("property {k:?}: {e}"))?;
+        let numeric = s.whole || s.fraction;
+        let mixed = [s.text > 0 || s.other, numeric, s.boolean]
+            .iter()
+            .filter(|&&b| b)
+            .count()
+            > 1;
+        let (b, kind, width) = if mixed || s.text > 0 || s.other {
+            (
+                builder.add_character_field(name, 254),
+                FieldType::Character,
+                254,
+            )
+        } else if s.boolean {
+            (builder.add_logical_field(name), FieldType::Logical, 1)
+        } else if s.fraction {
+            (
+                builder.add_numeric_field(name, 24, 15),
+                FieldType::Numeric,
+                24,
+            )
+        } else if s.whole {
+            (
+                builder.add_numeric_field(name, 18, 0),
+                FieldType::Numeric,
+                18,
+            )
+        } else {
+            (
+                builder.add_character_field(name, 1),
+                FieldType::Character,
+                1,
+            )
+        };
+        builder = b;
+        names.push(Field {
+            name: cut,
+            kind,
+            width,
+        });
+    }
+    Ok((names, builder))
+}
+
+/// A feature's properties as the table's record.
+fn record(props: &Value, fields: &[Field]) -> Result<dbase::Record> {
+    let mut r = dbase::Record::default();
+    for Field { name, kind, width } in fields {
+        let v = props.get(name).unwrap_or(&Value::Null);
+        let bad = || anyhow!("field {name:?}: {v} does not fit a {kind:?} field");
+        let text = |t: String| -> Result<FieldValue> {
+            if t.len() > *width {
+                bail!(
+                    "field {name:?}: {} bytes of text do not fit its width of {width}",
+                    t.len()
+                );
+            }
+            Ok(FieldValue::Character(Some(t)))
+        };
+        let value = match (*kind, v) {
+            (FieldType::Character | FieldType::Memo, Value::Null) => FieldValue::Character(None),
+            (FieldType::Character | FieldType::Memo, Value::String(s)) => text(s.clone())?,
+            (FieldType::Character | FieldType::Memo, other) => text(other.to_string())?,
+            (FieldType::Numeric, Value::Null) => FieldValue::Numeric(None),
+            (FieldType::Numeric, Value::Number(n)) => FieldValue::Numeric(n.as_f64()),
+            (FieldType::Float, Value::Null) => FieldValue::Float(None),
+            #[allow(clippy::cast_possible_truncation)] // a Float field holds an f32
+            (FieldType::Float, Value::Number(n)) => FieldValue::Float(n.as_f64().map(|x| x as f32)),
+            (FieldType::Logical, Value::Null) => FieldValue::Logical(None),
+            (FieldType::Logical, Value::Bool(b)) => FieldValue::Logical(Some(*b)),
+            (FieldType::Date, Value::Null) => FieldValue::Date(None),
+            (FieldType::Date, Value::String(s)) => FieldValue::Date(Some(date(s).ok_or_else(bad)?)),
+            (FieldType::Integer, Value::Number(n)) => FieldValue::Integer(
+                n.as_i64()
+                    .and_then(|i| i32::try_from(i).ok())
+                    .ok_or_else(bad)?,
+            ),
+            (FieldType::Integer, Value::Null) => FieldValue::Integer(0),
+            (FieldType::Double, Value::Number(n)) => {
+                FieldValue::Double(n.as_f64().ok_or_else(bad)?)
+            }
+            (FieldType::Double, Value::Null) => FieldValue::Double(0.0),
+            (FieldType::Currency, Value::Number(n)) => {
+                FieldValue::Currency(n.as_f64().ok_or_else(bad)?)
+            }
+            (FieldType::Currency, Value::Null) => FieldValue::Currency(0.0),
+            _ => return Err(bad()),
+        };
+        r.insert(name.clone(), value);
+    }
+    Ok(r)
+}
+
+/// `YYYY-MM-DD` as a table's date.
+fn date(s: &str) -> Option<dbase::Date> {
+    let mut it = s.split('-');
+    let (y, m, d) = (
+        it.next()?.parse().ok()?,
+        it.next()?.parse().ok()?,
+        it.next()?.parse().ok()?,
+    );
+    if it.next().is_some() {
+        return None;
+    }
+    dbase::Date::new(d, m, y).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fc(features: Value) -> Value {
+        json!({"type": "FeatureCollection", "features": features})
+    }
+
+    fn back(files: &Files) -> Layer {
+        let get = |ext: &str| &files.iter().find(|(e, _)| *e == ext).unwrap().1;
+        read_parts("t.shp", get("shp"), get("shx"), get("dbf"), None).unwrap()
+    }
+
+    #[test]
+    fn polygons_with_holes_and_properties_round_trip() {
+        // Outer rings clockwise and holes counter-clockwise, as a Shapefile
+        // keeps them, so that the positions come back in their order.
+        let square = json!([[0.0, 0.0], [0.0, 4.0], [4.0, 4.0], [4.0, 0.0], [0.0, 0.0]]);
+        let hole = json!([[1.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0], [1.0, 1.0]]);
+        let far = json!([[10.0, 0.0], [10.0, 1.5], [11.25, 1.0], [10.0, 0.0]]);
+        let input = fc(json!([
+            {"type": "Feature", "properties": {"name": "lake", "depth": 3, "area": 12.5, "wet": true},
+             "geometry": {"type": "Polygon", "coordinates": [square, hole]}},
+            {"type": "Feature", "properties": {"name": "isles", "depth": null, "area": 0.1, "wet": false},
+             "geometry": {"type": "MultiPolygon", "coordinates": [[square], [far]]}},
+        ]));
+        let files = write(&input, None).unwrap();
+        let layer = back(&files);
+        assert_eq!(layer.features, input, "read back differs");
+        assert_eq!(
+            layer.schema.field_names().collect::<Vec<_>>(),
+            ["name", "depth", "area", "wet"]
+        );
+        // Written again with the schema it was read with: the same bytes.
+        let again = write(&layer.features, Some(&layer.schema)).unwrap();
+        assert_eq!(again[0], files[0]);
+        assert_eq!(again[1], files[1]);
+    }
+
+    #[test]
+    fn lines_with_z_round_trip_and_kinds_may_not_mix() {
+        let input = fc(json!([
+            {"type": "Feature", "properties": {"id": 1},
+             "geometry": {"type": "LineString", "coordinates": [[0.0, 0.0, 5.0], [1.0, 2.0, 6.5]]}},
+            {"type": "Feature", "properties": {"id": 2},
+             "geometry": {"type": "MultiLineString", "coordinates": [[[3.0, 3.0, 1.0], [4.0, 3.0, 2.0]], [[5.0, 5.0, 0.0], [6.0, 6.0, 0.0]]]}},
+        ]));
+        assert_eq!(back(&write(&input, None).unwrap()).features, input);
+        let mixed = fc(json!([
+            {"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0.0, 0.0], [1.0, 1.0]]}},
+            {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [0.0, 0.0]}},
+        ]));
+        let e = write(&mixed, None).unwrap_err().to_string();
+        assert!(
+            e.contains("feature 1 holds points and feature 0 lines"),
+            "{e}"
+        );
+        let empty = fc(json!([]));
+        assert!(write(&empty, None).is_err());
+    }
+
+    #[test]
+    fn bad_files_name_what_is_wrong() {
+        let input = fc(json!([
+            {"type": "Feature", "properties": {"n": 1}, "geometry": {"type": "Point", "coordinates": [1.0, 2.0]}},
+            {"type": "Feature", "properties": {"n": 2}, "geometry": {"type": "Point", "coordinates": [3.0, 4.0]}},
+        ]));
+        let files = write(&input, None).unwrap();
+        let (shp, shx, dbf) = (&files[0].1, &files[1].1, &files[2].1);
+        let one = fc(json!([input["features"][0].clone()]));
+        let dbf1 = &write(&one, None).unwrap()[2].1;
+        let e = read_parts("t.shp", shp, shx, dbf1, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("2 shapes but 1 records in t.dbf"), "{e}");
+        for cut in [0, 50, 99, shp.len() - 4] {
+            let e = read_parts("t.shp", &shp[..cut], shx, dbf, None);
+            assert!(e.is_err(), "a .shp cut to {cut} bytes was read");
+        }
+        assert!(read_parts("t.shp", shp, shx, &dbf[..20], None).is_err());
+    }
+
+    #[test]
+    fn properties_that_do_not_fit_their_field_are_named() {
+        let input = fc(json!([
+            {"type": "Feature", "properties": {"when": "2024-03-01"}, "geometry": {"type": "Point", "coordinates": [1.0, 2.0]}},
+        ]));
+        let layer = back(&write(&input, None).unwrap());
+        let bad = fc(json!([
+            {"type": "Feature", "properties": {"when": "yesterday"}, "geometry": {"type": "Point", "coordinates": [1.0, 2.0]}},
+        ]));
+        // A text field takes any text; a number where a logical field is not.
+        assert!(write(&bad, Some(&layer.schema)).is_ok());
+        let flags = back(&write(&fc(json!([{"type": "Feature", "properties": {"ok": true}, "geometry": {"type": "Point", "coordinates": [0.0, 0.0]}}])), None).unwrap());
+        let wrong = fc(
+            json!([{"type": "Feature", "properties": {"ok": 7}, "geometry": {"type": "Point", "coordinates": [0.0, 0.0]}}]),
+        );
+        let e = write(&wrong, Some(&flags.schema)).unwrap_err().to_string();
+        assert!(e.contains("feature 0: field \"ok\""), "{e}");
+    }
+}
