@@ -174,7 +174,7 @@ const CASES: &[(&[&str], &str)] = &[
         "--snap",
     ),
     (
-        &["smooth", "shapes.geojson", "--output-format", "shapefile"],
+        &["smooth", "shapes.geojson", "--output-format", "kml"],
         "--output-format",
     ),
     // No such command or option.

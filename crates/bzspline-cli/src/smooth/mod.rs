@@ -21,6 +21,7 @@ use serde_json::Value;
 use crate::cli::{InputFormat, SmoothArgs, UsageError};
 use crate::input;
 use crate::output::Sink;
+use bzspline_io::shp;
 
 /// Runs `smooth`.
 ///
@@ -39,6 +40,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     let output = a.output_format.unwrap_or_else(|| {
         match out_path.and_then(Path::extension).and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("topojson") => Output::Topojson,
+            Some(e) if e.eq_ignore_ascii_case("shp") => Output::Shapefile,
             _ => Output::Geojson,
         }
     });
@@ -47,7 +49,10 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         (Some(_), _) => InputFormat::Csv,
         (None, Some(f)) => f,
         (None, None) => match input::format_of(file, None) {
-            f @ (InputFormat::Geojsonseq | InputFormat::Tsv | InputFormat::Topojson) => f,
+            f @ (InputFormat::Geojsonseq
+            | InputFormat::Tsv
+            | InputFormat::Topojson
+            | InputFormat::Shapefile) => f,
             InputFormat::Csv
                 if file.is_some_and(|f| f != Path::new("-") && has_table_extension(f)) =>
             {
@@ -77,26 +82,63 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         )
         .into());
     }
+    let shp_out =
+        match (output, out_path) {
+            (Output::Shapefile, _) if format == InputFormat::Geojsonseq => {
+                return Err(UsageError::new(
+                    "newline-delimited GeoJSON is streamed and cannot be written as a Shapefile",
+                )
+                .into())
+            }
+            (Output::Shapefile, Some(p)) if p != Path::new("-") => Some(p),
+            (Output::Shapefile, _) => return Err(UsageError::new(
+                "a Shapefile is written as files (.shp, .shx, .dbf, .prj, .cpg): give -o NAME.shp",
+            )
+            .into()),
+            _ => None,
+        };
     let mut job = Job::new(settings);
-    let mut sink = Sink::create(out_path)?;
-    match format {
-        InputFormat::Geojsonseq => stream(&mut job, file, &mut sink)?,
-        InputFormat::Csv | InputFormat::Tsv => {
-            let out = job.table(&a.input.load()?)?;
-            write_line(&mut sink, &out)?;
-        }
-        InputFormat::Json | InputFormat::Geojson | InputFormat::Topojson => {
-            let max_bytes = job.settings().limits.max_bytes;
-            let (name, bytes) = input::read_source(file, max_bytes)?;
-            let text = input::utf8(&name, &bytes)?;
-            let value: Value = serde_json::from_str(text)
-                .map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))?;
-            drop(bytes);
-            let out = job.document(&name, value)?;
-            write_line(&mut sink, &out)?;
+    if format == InputFormat::Geojsonseq {
+        let mut sink = Sink::create(out_path)?;
+        stream(&mut job, file, &mut sink)?;
+        sink.finish()?;
+    } else {
+        let (out, schema) = match format {
+            InputFormat::Csv | InputFormat::Tsv => (job.table(&a.input.load()?)?, None),
+            InputFormat::Shapefile => {
+                let Some(path) = file.filter(|f| *f != Path::new("-")) else {
+                    return Err(UsageError::new(
+                        "a Shapefile is read from its files (.shp, .shx, .dbf), not from standard input",
+                    )
+                    .into());
+                };
+                let layer = shp::read(path)?;
+                let name = path.display().to_string();
+                (job.document(&name, layer.features)?, Some(layer.schema))
+            }
+            _ => {
+                let max_bytes = job.settings().limits.max_bytes;
+                let (name, bytes) = input::read_source(file, max_bytes)?;
+                let text = input::utf8(&name, &bytes)?;
+                let value: Value = serde_json::from_str(text)
+                    .map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))?;
+                drop(bytes);
+                (job.document(&name, value)?, None)
+            }
+        };
+        match shp_out {
+            Some(path) => {
+                let files = shp::write(&out, schema.as_ref())
+                    .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+                shp::save(path, &files)?;
+            }
+            None => {
+                let mut sink = Sink::create(out_path)?;
+                write_line(&mut sink, &out)?;
+                sink.finish()?;
+            }
         }
     }
-    sink.finish()?;
     for note in job.notes() {
         eprintln!("note: {note}");
     }

@@ -1,0 +1,341 @@
+//! `bzspline smooth` (and `fit`) on ESRI Shapefiles: smoothing a Shapefile
+//! gives what smoothing the same features as GeoJSON gives, with the fields
+//! and the coordinate system kept; every file the command writes is read by
+//! GDAL (`ogrinfo`, `ogr2ogr`: the outside judge, from Debian's `gdal-bin`);
+//! bad layers are refused with one line naming the file, and nothing is
+//! written. The tests that need GDAL are ignored without it.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use common::run;
+use serde_json::Value;
+
+const NEEDS_GDAL: &str = "needs GDAL's ogr2ogr and ogrinfo (apt-get install gdal-bin)";
+
+fn fixture(name: &str) -> String {
+    common::fixture(name).display().to_string()
+}
+
+fn path(dir: &Path, name: &str) -> String {
+    dir.join(name).display().to_string()
+}
+
+/// Runs a GDAL tool and gives its standard output.
+fn gdal(tool: &str, args: &[&str]) -> String {
+    let o = Command::new(tool)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("{tool}: {e} ({NEEDS_GDAL})"));
+    assert!(
+        o.status.success(),
+        "{tool} {args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// The features of a vector file as GDAL reads them, as GeoJSON with every
+/// double written in 17 significant digits (so each reads back the same).
+fn gdal_features(file: &str) -> Vec<Value> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = path(dir.path(), "read.geojson");
+    gdal(
+        "ogr2ogr",
+        &[
+            "-f",
+            "GeoJSON",
+            "-lco",
+            "SIGNIFICANT_FIGURES=17",
+            &out,
+            file,
+        ],
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    v["features"].as_array().unwrap().clone()
+}
+
+/// The polygons of a fixture (a Shapefile holds one kind of geometry), as a
+/// GeoJSON file in `dir`.
+fn polygons_of(dir: &Path, name: &str) -> String {
+    let mut v: Value = serde_json::from_str(
+        &std::fs::read_to_string(fixture(&format!("{name}.geojson"))).unwrap(),
+    )
+    .unwrap();
+    v["features"].as_array_mut().unwrap().retain(|f| {
+        f["geometry"]["type"]
+            .as_str()
+            .is_some_and(|t| t.ends_with("Polygon"))
+    });
+    let out = path(dir, &format!("{name}-polygons.geojson"));
+    std::fs::write(&out, v.to_string()).unwrap();
+    out
+}
+
+/// Every number of a JSON value, in order (so that `0` and `0.0` agree).
+fn numbers(v: &Value) -> Vec<f64> {
+    match v {
+        Value::Number(n) => vec![n.as_f64().unwrap()],
+        Value::Array(a) => a.iter().flat_map(numbers).collect(),
+        _ => vec![],
+    }
+}
+
+/// GDAL prints coordinates in decimal (its GeoJSON writer rounds some in the
+/// last digit), so its reading is compared to within 1e-12.
+fn close(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(1.0))
+}
+
+fn smooth_ok(args: &[&str]) -> String {
+    let o = run(args, None);
+    assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
+    o.stdout
+}
+
+#[test]
+#[cfg_attr(
+    not(gdal),
+    ignore = "needs GDAL's ogr2ogr and ogrinfo (apt-get install gdal-bin)"
+)]
+fn a_shapefile_smooths_as_its_geojson_and_gdal_reads_the_result() {
+    for name in ["mosaic", "countries"] {
+        let dir = tempfile::tempdir().unwrap();
+        // GDAL makes the Shapefile, and the GeoJSON of exactly its rings.
+        let shp = path(dir.path(), &format!("{name}.shp"));
+        gdal(
+            "ogr2ogr",
+            &["-f", "ESRI Shapefile", &shp, &polygons_of(dir.path(), name)],
+        );
+        let geojson = path(dir.path(), &format!("{name}.geojson"));
+        gdal(
+            "ogr2ogr",
+            &[
+                "-f",
+                "GeoJSON",
+                "-lco",
+                "SIGNIFICANT_FIGURES=17",
+                &geojson,
+                &shp,
+            ],
+        );
+        let out = path(dir.path(), "out.shp");
+        smooth_ok(&["smooth", &shp, "--tolerance", "0.01", "-o", &out]);
+        let ours: Value =
+            serde_json::from_str(&smooth_ok(&["smooth", &geojson, "--tolerance", "0.01"])).unwrap();
+        let ours = ours["features"].as_array().unwrap();
+        let theirs = gdal_features(&out);
+        let bits = bzspline_io::shp::read(Path::new(&out)).unwrap().features;
+        let bits = bits["features"].as_array().unwrap();
+        assert_eq!(theirs.len(), ours.len(), "{name}: feature count");
+        for (i, a) in ours.iter().enumerate() {
+            let want = numbers(&a["geometry"]["coordinates"]);
+            // Bit for bit, through our reader; and GDAL reads the same.
+            assert_eq!(
+                numbers(&bits[i]["geometry"]["coordinates"]),
+                want,
+                "{name}: feature {i}"
+            );
+            assert!(
+                close(&numbers(&theirs[i]["geometry"]["coordinates"]), &want),
+                "{name}: GDAL reads feature {i} otherwise"
+            );
+            assert_eq!(
+                a["geometry"]["type"], theirs[i]["geometry"]["type"],
+                "{name}: feature {i}'s type"
+            );
+            assert_eq!(
+                a["properties"], theirs[i]["properties"],
+                "{name}: feature {i}'s fields"
+            );
+        }
+        // The fields and the coordinate system are the input's.
+        let info = |f: &str| gdal("ogrinfo", &["-ro", "-so", "-al", f]);
+        let (before, after) = (info(&shp), info(&out));
+        let fields = |s: &str| -> Vec<String> {
+            s.lines()
+                .filter(|l| {
+                    l.contains(": ")
+                        && l.contains(" (")
+                        && !l.starts_with("Layer")
+                        && !l.starts_with("Extent")
+                })
+                .map(str::to_owned)
+                .collect()
+        };
+        assert_eq!(fields(&before), fields(&after), "{name}: fields changed");
+        assert!(after.contains("WGS 84"), "{name}: no CRS in\n{after}");
+        assert!(
+            after.contains(&format!("Feature Count: {}", ours.len())),
+            "{after}"
+        );
+    }
+}
+
+#[test]
+#[cfg_attr(
+    not(gdal),
+    ignore = "needs GDAL's ogr2ogr and ogrinfo (apt-get install gdal-bin)"
+)]
+fn geojson_written_as_a_shapefile_is_read_by_gdal() {
+    let dir = tempfile::tempdir().unwrap();
+    let cells = polygons_of(dir.path(), "mosaic");
+    let out = path(dir.path(), "shapes.shp");
+    smooth_ok(&["smooth", &cells, "--output-format", "shapefile", "-o", &out]);
+    let info = gdal("ogrinfo", &["-ro", "-so", "-al", &out]);
+    let input: Value = serde_json::from_str(&std::fs::read_to_string(&cells).unwrap()).unwrap();
+    let n = input["features"].as_array().unwrap().len();
+    assert!(info.contains(&format!("Feature Count: {n}")), "{info}");
+    assert!(info.contains("Geometry: Polygon"), "{info}");
+    assert!(info.contains("WGS 84"), "{info}");
+    let ours: Value = serde_json::from_str(&smooth_ok(&["smooth", &cells])).unwrap();
+    for (i, (a, b)) in ours["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(gdal_features(&out))
+        .enumerate()
+    {
+        // A Shapefile turns outer rings clockwise: the same positions, maybe
+        // in the other direction, so compared in order of x, then y.
+        let ring = |g: &Value| -> Vec<[f64; 2]> {
+            let mut r: Vec<[f64; 2]> = numbers(&g["coordinates"][0])
+                .chunks(2)
+                .map(|p| [p[0], p[1]])
+                .collect();
+            r.sort_by(|p, q| p.partial_cmp(q).unwrap());
+            r
+        };
+        let (ra, rb) = (ring(&a["geometry"]), ring(&b["geometry"]));
+        assert!(close(ra.as_flattened(), rb.as_flattened()), "feature {i}");
+    }
+}
+
+#[test]
+fn fit_reads_the_first_line_of_a_shapefile() {
+    let dir = tempfile::tempdir().unwrap();
+    let doc = r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"road"},"geometry":{"type":"LineString","coordinates":[[0,0],[1,2],[3,2],[4,0]]}}]}"#;
+    let geojson = path(dir.path(), "road.geojson");
+    std::fs::write(&geojson, doc).unwrap();
+    let shp = path(dir.path(), "road.shp");
+    // Through the identity: a line's smoothing with --through keeps every
+    // vertex, so write it with a tolerance that adds none between.
+    smooth_ok(&[
+        "smooth",
+        &geojson,
+        "--through",
+        "--tolerance",
+        "1e9",
+        "-o",
+        &shp,
+    ]);
+    assert_eq!(
+        smooth_ok(&["fit", &shp, "--curve"]),
+        smooth_ok(&["fit", &geojson, "--curve"])
+    );
+}
+
+#[test]
+fn bad_layers_are_refused_naming_the_file_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let shp = path(dir.path(), "cells.shp");
+    smooth_ok(&["smooth", &polygons_of(dir.path(), "mosaic"), "-o", &shp]);
+    let out = path(dir.path(), "out.shp");
+    let refused = |args: &[&str], code: i32, want: &str| {
+        let o = run(args, None);
+        assert_eq!(o.code, code, "{args:?}: {}", o.stderr);
+        assert!(o.stderr.contains(want), "{args:?}: {}", o.stderr);
+        assert_eq!(o.stderr.trim().lines().count(), 1, "{}", o.stderr);
+        for ext in ["shp", "shx", "dbf", "prj", "cpg"] {
+            assert!(
+                !dir.path().join(format!("out.{ext}")).exists(),
+                "out.{ext} was written"
+            );
+        }
+    };
+    // A .dbf of another layer, with fewer records.
+    let other = path(dir.path(), "one.shp");
+    let one = r#"{"type":"Feature","properties":{"a":1},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}"#;
+    let one_path = path(dir.path(), "one.geojson");
+    std::fs::write(
+        &one_path,
+        format!(r#"{{"type":"FeatureCollection","features":[{one}]}}"#),
+    )
+    .unwrap();
+    smooth_ok(&["smooth", &one_path, "-o", &other]);
+    let mixed = path(dir.path(), "mixed.shp");
+    std::fs::copy(&shp, &mixed).unwrap();
+    std::fs::copy(dir.path().join("cells.shx"), dir.path().join("mixed.shx")).unwrap();
+    std::fs::copy(dir.path().join("one.dbf"), dir.path().join("mixed.dbf")).unwrap();
+    refused(&["smooth", &mixed, "-o", &out], 1, "records in");
+    // Without its .dbf.
+    std::fs::remove_file(dir.path().join("mixed.dbf")).unwrap();
+    refused(&["smooth", &mixed, "-o", &out], 1, "mixed.shp: its .dbf");
+    // Truncated.
+    let cut = path(dir.path(), "cut.shp");
+    let bytes = std::fs::read(&shp).unwrap();
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+    std::fs::copy(dir.path().join("cells.shx"), dir.path().join("cut.shx")).unwrap();
+    std::fs::copy(dir.path().join("cells.dbf"), dir.path().join("cut.dbf")).unwrap();
+    refused(&["smooth", &cut, "-o", &out], 1, "cut.shp");
+    // A Shapefile needs a name to be written to.
+    refused(
+        &["smooth", &shp, "--output-format", "shapefile"],
+        2,
+        "give -o NAME.shp",
+    );
+    // Lines and polygons in one layer cannot be written as one Shapefile.
+    refused(
+        &["smooth", &fixture("shapes.geojson"), "-o", &out],
+        1,
+        "a Shapefile holds one kind of geometry",
+    );
+}
+
+#[test]
+#[cfg_attr(
+    not(gdal),
+    ignore = "needs GDAL's ogr2ogr and ogrinfo (apt-get install gdal-bin)"
+)]
+fn a_latin_1_table_is_read_in_the_code_page_its_cpg_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let geojson = path(dir.path(), "towns.geojson");
+    std::fs::write(
+        &geojson,
+        r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"Zürich"},"geometry":{"type":"LineString","coordinates":[[8.5,47.3],[8.6,47.4],[8.55,47.45]]}}]}"#,
+    )
+    .unwrap();
+    let shp = path(dir.path(), "towns.shp");
+    gdal(
+        "ogr2ogr",
+        &[
+            "-f",
+            "ESRI Shapefile",
+            "-lco",
+            "ENCODING=ISO-8859-1",
+            &shp,
+            &geojson,
+        ],
+    );
+    let dbf = std::fs::read(dir.path().join("towns.dbf")).unwrap();
+    assert!(
+        dbf.windows(2).any(|w| w == b"Z\xfc"),
+        "GDAL did not write Latin-1"
+    );
+    let out: Value = serde_json::from_str(&smooth_ok(&["smooth", &shp])).unwrap();
+    assert_eq!(out["features"][0]["properties"]["name"], "Zürich");
+    // Written back as UTF-8, with a .cpg that says so; GDAL reads it.
+    let back = path(dir.path(), "back.shp");
+    smooth_ok(&["smooth", &shp, "-o", &back]);
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("back.cpg")).unwrap(),
+        "UTF-8"
+    );
+    let read = gdal_features(&back);
+    assert_eq!(read[0]["properties"]["name"], "Zürich");
+}
