@@ -130,7 +130,9 @@ fn a_shapefile_smooths_as_its_geojson_and_gdal_reads_the_result() {
             serde_json::from_str(&smooth_ok(&["smooth", &geojson, "--tolerance", "0.01"])).unwrap();
         let ours = ours["features"].as_array().unwrap();
         let theirs = gdal_features(&out);
-        let bits = bzspline_io::shp::read(Path::new(&out)).unwrap().features;
+        let bits = bzspline_io::shp::read(Path::new(&out), u64::MAX)
+            .unwrap()
+            .features;
         let bits = bits["features"].as_array().unwrap();
         assert_eq!(theirs.len(), ours.len(), "{name}: feature count");
         for (i, a) in ours.iter().enumerate() {
@@ -283,6 +285,12 @@ fn bad_layers_are_refused_naming_the_file_and_nothing_is_written() {
     std::fs::copy(dir.path().join("cells.shx"), dir.path().join("cut.shx")).unwrap();
     std::fs::copy(dir.path().join("cells.dbf"), dir.path().join("cut.dbf")).unwrap();
     refused(&["smooth", &cut, "-o", &out], 1, "cut.shp");
+    // Every file of the layer is bounded by --max-bytes.
+    refused(
+        &["smooth", &shp, "--max-bytes", "200", "-o", &out],
+        1,
+        "larger than 200 bytes (--max-bytes)",
+    );
     // A Shapefile needs a name to be written to.
     refused(
         &["smooth", &shp, "--output-format", "shapefile"],

@@ -91,17 +91,19 @@ fn sibling(shp: &Path, ext: &str) -> PathBuf {
 
 /// Reads the Shapefile whose `.shp` is `path`, with its `.shx` and `.dbf`
 /// (both required) and its `.prj` and `.cpg` when there are ([`read_parts`]
-/// says how the `.cpg` is used).
+/// says how the `.cpg` is used); no file may be larger than `max_bytes`.
 ///
 /// # Errors
 ///
-/// One line naming the file at fault: a missing `.shx` or `.dbf`, a
-/// truncated or malformed file, as many records as shapes not, a
-/// Multipatch, a coordinate that is not finite (`x.shp: shape 4: ...`).
-pub fn read(path: &Path) -> Result<Layer> {
+/// One line naming the file at fault: a missing `.shx` or `.dbf`, a file
+/// larger than `max_bytes`, a truncated or malformed file, as many records as
+/// shapes not, a Multipatch, a coordinate that is not finite (`x.shp: shape
+/// 4: ...`).
+pub fn read(path: &Path, max_bytes: u64) -> Result<Layer> {
+    use std::io::Read;
     let name = path.display().to_string();
     let open = |p: &Path, what: &str| -> Result<Vec<u8>> {
-        std::fs::read(p).map_err(|e| {
+        let file = std::fs::File::open(p).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound && what != "shp" {
                 anyhow!(
                     "{name}: its .{what} ({}) is missing: a Shapefile needs its .shp, .shx and .dbf",
@@ -110,7 +112,18 @@ pub fn read(path: &Path) -> Result<Layer> {
             } else {
                 anyhow!("reading {}: {e}", p.display())
             }
-        })
+        })?;
+        let mut bytes = Vec::new();
+        file.take(max_bytes.saturating_add(1))
+            .read_to_end(&mut bytes)
+            .with_context(|| format!("reading {}", p.display()))?;
+        if bytes.len() as u64 > max_bytes {
+            bail!(
+                "{}: larger than {max_bytes} bytes (--max-bytes); split the input or raise the limit",
+                p.display()
+            );
+        }
+        Ok(bytes)
     };
     let shp = open(path, "shp")?;
     let shx = open(&sibling(path, "shx"), "shx")?;

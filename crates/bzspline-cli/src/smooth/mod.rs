@@ -112,7 +112,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                     )
                     .into());
                 };
-                let layer = shp::read(path)?;
+                let layer = shp::read(path, job.settings().limits.max_bytes)?;
                 let name = path.display().to_string();
                 (job.document(&name, layer.features)?, Some(layer.schema))
             }

@@ -397,20 +397,20 @@ pub fn sniff(bytes: &[u8]) -> InputFormat {
 
 /// The first line, ring or run of points of a Shapefile's features, as
 /// from the same features in GeoJSON.
-fn shapefile_points(file: Option<&Path>, max: usize) -> Result<Points> {
+fn shapefile_points(file: Option<&Path>, limits: Limits) -> Result<Points> {
     let Some(path) = file.filter(|p| *p != Path::new("-")) else {
         bail!("a Shapefile is read from its files (.shp, .shx, .dbf), not from standard input");
     };
     #[cfg(feature = "shapefile")]
     {
         let name = path.display().to_string();
-        let layer = crate::shp::read(path)?;
+        let layer = crate::shp::read(path, limits.max_bytes)?;
         let bytes = serde_json::to_vec(&layer.features).context("formatting GeoJSON")?;
-        parse_geojson_points(&name, &bytes, max)
+        parse_geojson_points(&name, &bytes, limits.max_points)
     }
     #[cfg(not(feature = "shapefile"))]
     {
-        let _ = max;
+        let _ = limits;
         bail!(
             "{}: this build reads no Shapefiles (the `shapefile` feature)",
             path.display()
@@ -444,7 +444,7 @@ pub fn load(args: &Source) -> Result<Points> {
     let limits = args.limits;
     let max = limits.max_points;
     if args.format.or_else(|| format_by_extension(file)) == Some(InputFormat::Shapefile) {
-        return shapefile_points(file, max);
+        return shapefile_points(file, limits);
     }
     let (name, bytes) = read_source(file, limits.max_bytes)?;
     let format = args
@@ -452,7 +452,7 @@ pub fn load(args: &Source) -> Result<Points> {
         .or_else(|| format_by_extension(file))
         .unwrap_or_else(|| sniff(&bytes));
     if format == InputFormat::Shapefile {
-        return shapefile_points(file, max);
+        return shapefile_points(file, limits);
     }
     let select = Select {
         x: args.x.as_deref().map(Col::parse),
