@@ -516,27 +516,18 @@ pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
             let record =
                 record(&f["properties"], &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
             let g = &f["geometry"];
-            let r: Result<(), shapefile::Error> = (|| -> Result<Result<(), shapefile::Error>> {
-                Ok(match kind {
-                    Kind::Points(false) => writer.write_shape_and_record(&point(g)?, &record),
-                    Kind::Points(true) => writer.write_shape_and_record(&point_z(g)?, &record),
-                    Kind::MultiPoints(false) => {
-                        writer.write_shape_and_record(&Multipoint::new(points(g, xy_of)?), &record)
-                    }
-                    Kind::MultiPoints(true) => writer
-                        .write_shape_and_record(&MultipointZ::new(points(g, xyz_of)?), &record),
-                    Kind::Lines(false) => writer
-                        .write_shape_and_record(&Polyline::with_parts(parts(g, xy_of)?), &record),
-                    Kind::Lines(true) => writer
-                        .write_shape_and_record(&PolylineZ::with_parts(parts(g, xyz_of)?), &record),
-                    Kind::Polygons(false) => writer
-                        .write_shape_and_record(&Polygon::with_rings(rings(g, xy_of)?), &record),
-                    Kind::Polygons(true) => writer
-                        .write_shape_and_record(&PolygonZ::with_rings(rings(g, xyz_of)?), &record),
-                })
-            })()
+            let w = &mut writer;
+            match kind {
+                Kind::Points(false) => put(w, point(g), &record),
+                Kind::Points(true) => put(w, point_z(g), &record),
+                Kind::MultiPoints(false) => put(w, points(g, xy_of).map(Multipoint::new), &record),
+                Kind::MultiPoints(true) => put(w, points(g, xyz_of).map(MultipointZ::new), &record),
+                Kind::Lines(false) => put(w, parts(g, xy_of).map(Polyline::with_parts), &record),
+                Kind::Lines(true) => put(w, parts(g, xyz_of).map(PolylineZ::with_parts), &record),
+                Kind::Polygons(false) => put(w, rings(g, xy_of).map(Polygon::with_rings), &record),
+                Kind::Polygons(true) => put(w, rings(g, xyz_of).map(PolygonZ::with_rings), &record),
+            }
             .map_err(|e| anyhow!("feature {i}: {e}"))?;
-            r.map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
         }
     }
     let mut files: Files = vec![
@@ -681,55 +672,55 @@ fn two<T>(v: Vec<T>) -> Result<Vec<T>> {
     Ok(v)
 }
 
+/// Writes one feature's shape (or its conversion's error) and record.
+fn put<S: shapefile::record::EsriShape, W: std::io::Write + std::io::Seek>(
+    writer: &mut shapefile::Writer<W>,
+    shape: Result<S>,
+    record: &dbase::Record,
+) -> Result<()> {
+    writer
+        .write_shape_and_record(&shape?, record)
+        .map_err(|e| anyhow!("{}", one_line(&e)))
+}
+
+/// The members of a JSON array (none for anything else).
+fn items(v: &Value) -> impl Iterator<Item = &Value> {
+    v.as_array().into_iter().flatten()
+}
+
+/// The positions of a JSON array, converted by `f`.
+fn positions<P>(v: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<P>> {
+    items(v).map(f).collect()
+}
+
+/// The coordinates of each single geometry of `g`: its own for a geometry
+/// of type `single`, its members' for the multi-geometry.
+fn members<'a>(g: &'a Value, single: &str) -> Vec<&'a Value> {
+    let c = &g["coordinates"];
+    if g["type"] == single {
+        vec![c]
+    } else {
+        items(c).collect()
+    }
+}
+
 fn points<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<P>> {
-    let pts = g["coordinates"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .map(f)
-        .collect::<Result<_>>()?;
-    some(pts, "multipoint")
+    some(positions(&g["coordinates"], f)?, "multipoint")
 }
 
 fn parts<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<Vec<P>>> {
-    let c = &g["coordinates"];
-    let list: Vec<&Value> = if g["type"] == "LineString" {
-        vec![c]
-    } else {
-        c.as_array().into_iter().flatten().collect()
-    };
-    let parts = list
+    let parts = members(g, "LineString")
         .into_iter()
-        .map(|l| {
-            two(l
-                .as_array()
-                .into_iter()
-                .flatten()
-                .map(f)
-                .collect::<Result<_>>()?)
-        })
+        .map(|l| two(positions(l, f)?))
         .collect::<Result<_>>()?;
     some(parts, "line")
 }
 
 fn rings<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<PolygonRing<P>>> {
-    let c = &g["coordinates"];
-    let polys: Vec<&Value> = if g["type"] == "Polygon" {
-        vec![c]
-    } else {
-        c.as_array().into_iter().flatten().collect()
-    };
     let mut out = Vec::new();
-    for p in polys {
-        for (k, r) in p.as_array().into_iter().flatten().enumerate() {
-            let pts = some(
-                r.as_array()
-                    .into_iter()
-                    .flatten()
-                    .map(f)
-                    .collect::<Result<Vec<P>>>()?,
-                "ring",
-            )?;
+    for p in members(g, "Polygon") {
+        for (k, r) in items(p).enumerate() {
+            let pts = some(positions(r, f)?, "ring")?;
             out.push(if k == 0 {
                 PolygonRing::Outer(pts)
             } else {
