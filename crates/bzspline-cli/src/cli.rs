@@ -20,7 +20,8 @@ use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
 #[derive(Debug, Clone, Args)]
 pub struct InputArgs {
     /// Input file: a table (CSV, TSV, whitespace), JSON points, GeoJSON (or newline-delimited),
-    /// or for `smooth` TopoJSON; `-` or nothing reads standard input.
+    /// a Shapefile, GeoPackage or FlatGeobuf file, or for `smooth` TopoJSON; `-` or nothing
+    /// reads standard input.
     #[arg(value_name = "FILE", conflicts_with = "example")]
     pub file: Option<PathBuf>,
     /// Use the paper's Example 1 (11 points on [1, 11]) or Example 2 (a semicircle).
@@ -30,6 +31,9 @@ pub struct InputArgs {
     /// (`{` or `[` starts JSON, GeoJSON or TopoJSON, anything else is a table).
     #[arg(long, value_enum, value_name = "FORMAT")]
     pub input_format: Option<InputFormat>,
+    /// The layer of a GeoPackage to read (needed when it holds several).
+    #[arg(long, value_name = "NAME")]
+    pub layer: Option<String>,
     /// Refuse inputs with more than N control points (a table's rows, a line's
     /// positions). Fitting a table takes about 100 bytes per point for y(x) and
     /// 400 for a planar curve: at the default, 2 GB and 8 GB.
@@ -74,6 +78,7 @@ impl InputArgs {
             file: self.file.clone(),
             example: self.example,
             format: self.input_format,
+            layer: self.layer.clone(),
             limits: self.limits(),
             x: self.x.clone(),
             y: self.y.clone(),

@@ -8,88 +8,13 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 
+use common::gdal::{close, fields, gdal, gdal_features, info, numbers, path, polygons_of};
 use common::run;
 use serde_json::Value;
 
-const NEEDS_GDAL: &str = "needs GDAL's ogr2ogr and ogrinfo (apt-get install gdal-bin)";
-
 fn fixture(name: &str) -> String {
     common::fixture(name).display().to_string()
-}
-
-fn path(dir: &Path, name: &str) -> String {
-    dir.join(name).display().to_string()
-}
-
-/// Runs a GDAL tool and gives its standard output.
-fn gdal(tool: &str, args: &[&str]) -> String {
-    let o = Command::new(tool)
-        .args(args)
-        .output()
-        .unwrap_or_else(|e| panic!("{tool}: {e} ({NEEDS_GDAL})"));
-    assert!(
-        o.status.success(),
-        "{tool} {args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// The features of a vector file as GDAL reads them, as GeoJSON with every
-/// double written in 17 significant digits (so each reads back the same).
-fn gdal_features(file: &str) -> Vec<Value> {
-    let dir = tempfile::tempdir().unwrap();
-    let out = path(dir.path(), "read.geojson");
-    gdal(
-        "ogr2ogr",
-        &[
-            "-f",
-            "GeoJSON",
-            "-lco",
-            "SIGNIFICANT_FIGURES=17",
-            &out,
-            file,
-        ],
-    );
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
-    v["features"].as_array().unwrap().clone()
-}
-
-/// The polygons of a fixture (a Shapefile holds one kind of geometry), as a
-/// GeoJSON file in `dir`.
-fn polygons_of(dir: &Path, name: &str) -> String {
-    let mut v: Value = serde_json::from_str(
-        &std::fs::read_to_string(fixture(&format!("{name}.geojson"))).unwrap(),
-    )
-    .unwrap();
-    v["features"].as_array_mut().unwrap().retain(|f| {
-        f["geometry"]["type"]
-            .as_str()
-            .is_some_and(|t| t.ends_with("Polygon"))
-    });
-    let out = path(dir, &format!("{name}-polygons.geojson"));
-    std::fs::write(&out, v.to_string()).unwrap();
-    out
-}
-
-/// Every number of a JSON value, in order (so that `0` and `0.0` agree).
-fn numbers(v: &Value) -> Vec<f64> {
-    match v {
-        Value::Number(n) => vec![n.as_f64().unwrap()],
-        Value::Array(a) => a.iter().flat_map(numbers).collect(),
-        _ => vec![],
-    }
-}
-
-/// GDAL prints coordinates in decimal (its GeoJSON writer rounds some in the
-/// last digit), so its reading is compared to within 1e-12.
-fn close(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(1.0))
 }
 
 fn smooth_ok(args: &[&str]) -> String {
@@ -157,19 +82,7 @@ fn a_shapefile_smooths_as_its_geojson_and_gdal_reads_the_result() {
             );
         }
         // The fields and the coordinate system are the input's.
-        let info = |f: &str| gdal("ogrinfo", &["-ro", "-so", "-al", f]);
         let (before, after) = (info(&shp), info(&out));
-        let fields = |s: &str| -> Vec<String> {
-            s.lines()
-                .filter(|l| {
-                    l.contains(": ")
-                        && l.contains(" (")
-                        && !l.starts_with("Layer")
-                        && !l.starts_with("Extent")
-                })
-                .map(str::to_owned)
-                .collect()
-        };
         assert_eq!(fields(&before), fields(&after), "{name}: fields changed");
         assert!(after.contains("WGS 84"), "{name}: no CRS in\n{after}");
         assert!(
@@ -189,7 +102,7 @@ fn geojson_written_as_a_shapefile_is_read_by_gdal() {
     let cells = polygons_of(dir.path(), "mosaic");
     let out = path(dir.path(), "shapes.shp");
     smooth_ok(&["smooth", &cells, "--output-format", "shapefile", "-o", &out]);
-    let info = gdal("ogrinfo", &["-ro", "-so", "-al", &out]);
+    let info = info(&out);
     let input: Value = serde_json::from_str(&std::fs::read_to_string(&cells).unwrap()).unwrap();
     let n = input["features"].as_array().unwrap().len();
     assert!(info.contains(&format!("Feature Count: {n}")), "{info}");

@@ -11,7 +11,13 @@
 //!   as decimals or fractions).
 //! - [`time`]: ISO 8601 dates and date-times as numbers and back.
 //! - [`topojson`]: TopoJSON Topologies in (quantized or not) and out.
+//! - [`layer`]: a GIS layer's features and schema (fields, CRS), shared by
+//!   the file formats below so that a layer read from one is written to
+//!   another.
+//! - [`files`]: which reader and writer a layer file's format selects.
 //! - `shp` (feature `shapefile`): ESRI Shapefiles in and out.
+//! - `gpkg` (feature `geopackage`): GeoPackage feature layers in and out.
+//! - `fgb` (feature `flatgeobuf`): FlatGeobuf files in and out.
 //! - [`smooth`]: a GeoJSON document smoothed as one coverage or ring by ring.
 //! - [`api`]: the editor's `POST /api/fit` request and response.
 //!
@@ -19,7 +25,15 @@
 //! name (`pts.csv:4: ...`, `map.geojson: feature 2, coordinates[1]: ...`).
 
 pub mod api;
+#[cfg(feature = "flatgeobuf")]
+pub mod fgb;
+pub mod files;
+#[cfg(any(feature = "geopackage", feature = "flatgeobuf"))]
+pub mod geom;
+#[cfg(feature = "geopackage")]
+pub mod gpkg;
 pub mod input;
+pub mod layer;
 pub mod model;
 pub mod options;
 #[cfg(feature = "shapefile")]

@@ -17,62 +17,38 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context, Result};
 use serde_json::{json, Map, Value};
+
+use crate::layer::{self, Crs, FieldKind, Layer, Schema};
 use shapefile::dbase::{self, FieldName, FieldType, FieldValue, TableInfo, TableWriterBuilder};
 use shapefile::{
     Multipoint, MultipointZ, Point, PointZ, Polygon, PolygonRing, PolygonZ, Polyline, PolylineZ,
     Shape, NO_DATA,
 };
 
-/// The `.prj` of RFC 7946's coordinates (WGS 84 longitude and latitude), as
-/// ESRI writes it: what a Shapefile written from GeoJSON carries.
-pub const WGS84_PRJ: &str = "GEOGCS[\"GCS_WGS_1984\",DATUM[\"D_WGS_1984\",SPHEROID[\"WGS_1984\",6378137.0,298.257223563]],PRIMEM[\"Greenwich\",0.0],UNIT[\"Degree\",0.0174532925199433]]";
-
-/// What a Shapefile holds besides its features, kept to write the layer
-/// back the same way: the `.dbf`'s fields (names, types, widths, decimals)
-/// and the `.prj`.
-#[derive(Clone)]
-pub struct Schema {
-    /// The fields, in order.
-    fields: Vec<Field>,
-    /// The table's layout, as the writer takes it.
-    table: TableInfo,
-    /// The `.prj` (the coordinate system as WKT), when there is one.
-    pub prj: Option<String>,
-}
-
-impl std::fmt::Debug for Schema {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Schema")
-            .field("fields", &self.fields)
-            .field("prj", &self.prj)
-            .finish_non_exhaustive()
-    }
-}
-
-impl Schema {
-    /// The fields' names, in order.
-    pub fn field_names(&self) -> impl Iterator<Item = &str> {
-        self.fields.iter().map(|f| f.name.as_str())
-    }
-}
-
-/// One field of a table: what a record's value is checked against.
+/// One field of a `.dbf` as the writer fills it: the property it takes
+/// (`key`), its name in the table, its type and width.
 #[derive(Clone, Debug)]
-struct Field {
+pub(crate) struct Field {
+    key: String,
     name: String,
     kind: FieldType,
     /// Bytes a value may take (text).
     width: usize,
 }
 
-/// A layer read: its features and its schema.
-#[derive(Clone, Debug)]
-pub struct Layer {
-    /// A GeoJSON FeatureCollection: one feature per shape, in order, its
-    /// properties the record's fields.
-    pub features: Value,
-    /// The fields and the coordinate system.
-    pub schema: Schema,
+/// A `.dbf`'s layout as read, to write the table back the same way.
+#[derive(Clone)]
+pub(crate) struct Dbf {
+    table: TableInfo,
+    fields: Vec<Field>,
+}
+
+impl std::fmt::Debug for Dbf {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Dbf")
+            .field("fields", &self.fields)
+            .finish_non_exhaustive()
+    }
 }
 
 /// The files of one Shapefile: `x.shp`, `x.shx`, `x.dbf`, `x.prj`, `x.cpg`
@@ -139,7 +115,7 @@ pub fn read(path: &Path, max_bytes: u64) -> Result<Layer> {
         Err(_) => None,
     };
     let mut layer = read_parts(&name, &shp, &shx, &dbf, cpg.as_deref())?;
-    layer.schema.prj = prj;
+    layer.schema.crs = prj.as_deref().map(Crs::from_wkt);
     Ok(layer)
 }
 
@@ -176,9 +152,37 @@ pub fn read_parts(
         .fields()
         .iter()
         .map(|f| Field {
+            key: f.name().to_owned(),
             name: f.name().to_owned(),
             kind: f.field_type(),
             width: usize::from(f.length()),
+        })
+        .collect();
+    let neutral = table
+        .fields()
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            // A field descriptor's byte 17 holds its decimals.
+            let decimals = dbf.get(32 + 32 * i + 17).copied().map_or(0, u32::from);
+            let width = u32::from(f.length());
+            let kind = match f.field_type() {
+                FieldType::Numeric if decimals == 0 => FieldKind::Integer,
+                FieldType::Integer => FieldKind::Integer,
+                FieldType::Numeric | FieldType::Float | FieldType::Double | FieldType::Currency => {
+                    FieldKind::Real
+                }
+                FieldType::Logical => FieldKind::Boolean,
+                FieldType::Date => FieldKind::Date,
+                FieldType::DateTime => FieldKind::DateTime,
+                FieldType::Character | FieldType::Memo => FieldKind::Text,
+            };
+            layer::Field {
+                name: f.name().to_owned(),
+                kind,
+                width: Some(width),
+                decimals: Some(decimals),
+            }
         })
         .collect();
     let records = table.header().num_records as usize;
@@ -211,9 +215,16 @@ pub fn read_parts(
     Ok(Layer {
         features: json!({"type": "FeatureCollection", "features": features}),
         schema: Schema {
-            fields,
-            table: table.into_table_info(),
-            prj: None,
+            name: Path::new(name)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            fields: neutral,
+            crs: None,
+            dbf: Some(Dbf {
+                table: table.into_table_info(),
+                fields,
+            }),
         },
     })
 }
@@ -465,10 +476,12 @@ fn field_json(v: &FieldValue) -> Value {
 pub type Files = Vec<(&'static str, Vec<u8>)>;
 
 /// Writes the features of a GeoJSON FeatureCollection as the files of a
-/// Shapefile, in memory: with `schema`'s fields and `.prj` when given (the
-/// layer read), else with fields found from the properties (names cut to
-/// the 10 characters a `.dbf` allows; numbers, text and booleans) and the
-/// `.prj` of WGS 84, GeoJSON's coordinates. Every feature must be of one
+/// Shapefile, in memory: with `schema`'s fields and CRS when given (a
+/// Shapefile's table exactly as read; another format's fields as the `.dbf`
+/// types nearest them), else with fields found from the properties and the
+/// `.prj` of WGS 84, GeoJSON's coordinates. Names longer than the 10 bytes
+/// a `.dbf` allows are cut (and numbered where two would meet, as GDAL
+/// does); text fields without a width are as wide as their longest value. Every feature must be of one
 /// kind (points, multipoints, lines or polygons), all with z or none.
 ///
 /// # Errors
@@ -485,24 +498,30 @@ pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
     }
     let geoms: Vec<&Value> = features.iter().map(|f| &f["geometry"]).collect();
     let kind = layer_kind(&geoms)?;
-    if let Some(f) = schema.and_then(|s| s.fields.iter().find(|f| f.name.len() > 11)) {
-        // Read from a table whose name bytes were not UTF-8 (each became
-        // U+FFFD): a .dbf holds 11 bytes of a name.
-        bail!(
-            "the field name {:?} is longer than a .dbf holds (11 bytes)",
-            f.name
-        );
-    }
     let (fields, builder) = match schema {
-        Some(s) => (
-            s.fields.clone(),
-            // Text is written as UTF-8, whatever the table read held.
-            TableWriterBuilder::from_table_info(s.table.clone())
-                .set_encoding(dbase::encoding::UnicodeLossy),
-        ),
-        None => infer_fields(features)?,
+        Some(Schema { dbf: Some(dbf), .. }) => {
+            if let Some(f) = dbf.fields.iter().find(|f| f.name.len() > 11) {
+                // Read from a table whose name bytes were not UTF-8 (each
+                // became U+FFFD): a .dbf holds 11 bytes of a name.
+                bail!(
+                    "the field name {:?} is longer than a .dbf holds (11 bytes)",
+                    f.name
+                );
+            }
+            (
+                dbf.fields.clone(),
+                // Text is written as UTF-8, whatever the table read held.
+                TableWriterBuilder::from_table_info(dbf.table.clone())
+                    .set_encoding(dbase::encoding::UnicodeLossy),
+            )
+        }
+        Some(s) => table_for(&s.fields, features)?,
+        None => table_for(&layer::infer_fields(features), features)?,
     };
-    let prj = schema.map_or(Some(WGS84_PRJ.to_owned()), |s| s.prj.clone());
+    let prj = match schema {
+        None => Some(layer::ESRI_WGS84_PRJ.to_owned()),
+        Some(s) => s.crs.as_ref().and_then(Crs::prj),
+    };
     let (mut shp, mut shx, mut dbf) = (
         Cursor::new(Vec::new()),
         Cursor::new(Vec::new()),
@@ -557,9 +576,7 @@ pub fn save(path: &Path, files: &Files) -> Result<()> {
     };
     let mut done = Vec::new();
     for (ext, bytes) in files {
-        let mut tmp = tempfile::Builder::new()
-            .prefix(".bzspline-")
-            .tempfile_in(dir)
+        let mut tmp = layer::staging_file(dir, "")
             .with_context(|| format!("creating a file in {}", dir.display()))?;
         std::io::Write::write_all(&mut tmp, bytes)
             .with_context(|| format!("writing {}", sibling(path, ext).display()))?;
@@ -731,101 +748,107 @@ fn rings<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<PolygonRing<P>>
     some(out, "polygon")
 }
 
-/// Fields for properties that come with no table: each property's name
-/// (cut to 10 bytes) and a type that holds every value it takes.
-fn infer_fields(features: &[Value]) -> Result<(Vec<Field>, TableWriterBuilder)> {
-    #[derive(Default)]
-    struct Seen {
-        text: usize,
-        whole: bool,
-        fraction: bool,
-        boolean: bool,
-        other: bool,
-    }
-    let mut order: Vec<(String, Seen)> = Vec::new();
-    for f in features {
-        let Some(props) = f["properties"].as_object() else {
-            continue;
+/// A `.dbf` table for fields of another format (or found from GeoJSON
+/// properties): names cut to 10 bytes and made unique, each kind as the
+/// `.dbf` type nearest it, text as wide as its widest value (at most 254
+/// bytes) when no width is given.
+fn table_for(
+    fields: &[layer::Field],
+    features: &[Value],
+) -> Result<(Vec<Field>, TableWriterBuilder)> {
+    let mut builder = TableWriterBuilder::new().set_encoding(dbase::encoding::UnicodeLossy);
+    let mut out: Vec<Field> = Vec::new();
+    for f in fields {
+        let cut = |n: usize| -> String {
+            f.name
+                .char_indices()
+                .take_while(|&(i, c)| i + c.len_utf8() <= n)
+                .map(|(_, c)| c)
+                .collect()
         };
-        for (k, v) in props {
-            let at = match order.iter().position(|(n, _)| n == k) {
-                Some(at) => at,
-                None => {
-                    order.push((k.clone(), Seen::default()));
-                    order.len() - 1
-                }
-            };
-            let s = &mut order[at].1;
-            match v {
-                Value::Null => {}
-                Value::Bool(_) => s.boolean = true,
-                Value::Number(n) if n.is_i64() || n.is_u64() => s.whole = true,
-                Value::Number(_) => s.fraction = true,
-                Value::String(t) => s.text = s.text.max(t.len()),
-                _ => s.other = true,
+        let mut name = cut(10);
+        let mut k = 1;
+        while out.iter().any(|o| o.name.eq_ignore_ascii_case(&name)) {
+            let suffix = format!("_{k}");
+            name = cut(10 - suffix.len()) + &suffix;
+            k += 1;
+        }
+        let field_name =
+            FieldName::try_from(name.as_str()).map_err(|e| anyhow!("field {:?}: {e}", f.name))?;
+        let widest = || {
+            features
+                .iter()
+                .filter_map(|x| x["properties"].get(&f.name))
+                .filter_map(layer::as_text)
+                .map(|t| t.len())
+                .max()
+                .unwrap_or(1)
+                .clamp(1, 254)
+        };
+        let digits = |w: Option<u32>, default: u8| {
+            w.and_then(|w| u8::try_from(w).ok())
+                .filter(|w| (1..=20).contains(w))
+                .unwrap_or(default)
+        };
+        let (b, kind, width) = match f.kind {
+            FieldKind::Boolean => (builder.add_logical_field(field_name), FieldType::Logical, 1),
+            FieldKind::Integer => {
+                let w = digits(f.width, 18);
+                (
+                    builder.add_numeric_field(field_name, w, 0),
+                    FieldType::Numeric,
+                    usize::from(w),
+                )
             }
-        }
-    }
-    let mut builder = TableWriterBuilder::new();
-    let mut names: Vec<Field> = Vec::new();
-    for (k, s) in &order {
-        let cut: String = k
-            .char_indices()
-            .take_while(|&(i, c)| i + c.len_utf8() <= 10)
-            .map(|(_, c)| c)
-            .collect();
-        if names.iter().any(|f| f.name == cut) {
-            bail!("properties {k:?} and another both become the field {cut:?} (a .dbf field name has at most 10 bytes)");
-        }
-        let name = FieldName::try_from(cut.as_str()).map_err(|e| anyhow!("property {k:?}: {e}"))?;
-        let numeric = s.whole || s.fraction;
-        let mixed = [s.text > 0 || s.other, numeric, s.boolean]
-            .iter()
-            .filter(|&&b| b)
-            .count()
-            > 1;
-        let (b, kind, width) = if mixed || s.text > 0 || s.other {
-            (
-                builder.add_character_field(name, 254),
-                FieldType::Character,
-                254,
-            )
-        } else if s.boolean {
-            (builder.add_logical_field(name), FieldType::Logical, 1)
-        } else if s.fraction {
-            (
-                builder.add_numeric_field(name, 24, 15),
-                FieldType::Numeric,
-                24,
-            )
-        } else if s.whole {
-            (
-                builder.add_numeric_field(name, 18, 0),
-                FieldType::Numeric,
-                18,
-            )
-        } else {
-            (
-                builder.add_character_field(name, 1),
-                FieldType::Character,
-                1,
-            )
+            FieldKind::Real => {
+                let w = digits(f.width, 24);
+                let d = f
+                    .decimals
+                    .and_then(|d| u8::try_from(d).ok())
+                    .filter(|&d| d > 0 && d < w)
+                    .unwrap_or(15.min(w - 1));
+                (
+                    builder.add_numeric_field(field_name, w, d),
+                    FieldType::Numeric,
+                    usize::from(w),
+                )
+            }
+            FieldKind::Date => (builder.add_date_field(field_name), FieldType::Date, 8),
+            FieldKind::Text | FieldKind::DateTime | FieldKind::Binary => {
+                let w = match f.width {
+                    Some(w) if (1..=254).contains(&w) => w as usize,
+                    _ => widest(),
+                };
+                #[allow(clippy::cast_possible_truncation)] // at most 254
+                (
+                    builder.add_character_field(field_name, w as u8),
+                    FieldType::Character,
+                    w,
+                )
+            }
         };
         builder = b;
-        names.push(Field {
-            name: cut,
+        out.push(Field {
+            key: f.name.clone(),
+            name,
             kind,
             width,
         });
     }
-    Ok((names, builder))
+    Ok((out, builder))
 }
 
 /// A feature's properties as the table's record.
 fn record(props: &Value, fields: &[Field]) -> Result<dbase::Record> {
     let mut r = dbase::Record::default();
-    for Field { name, kind, width } in fields {
-        let v = props.get(name).unwrap_or(&Value::Null);
+    for Field {
+        key,
+        name,
+        kind,
+        width,
+    } in fields
+    {
+        let v = props.get(key).unwrap_or(&Value::Null);
         let bad = || anyhow!("field {name:?}: {v} does not fit a {kind:?} field");
         let text = |t: String| -> Result<FieldValue> {
             if t.len() > *width {

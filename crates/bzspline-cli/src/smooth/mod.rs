@@ -21,7 +21,18 @@ use serde_json::Value;
 use crate::cli::{InputFormat, SmoothArgs, UsageError};
 use crate::input;
 use crate::output::Sink;
-use bzspline_io::shp;
+use bzspline_io::files;
+
+/// What an output format is called in messages.
+fn out_name(output: Output) -> &'static str {
+    match output {
+        Output::Geopackage => "a GeoPackage",
+        Output::Flatgeobuf => "a FlatGeobuf file",
+        Output::Shapefile => "a Shapefile",
+        Output::Geojson => "GeoJSON",
+        Output::Topojson => "TopoJSON",
+    }
+}
 
 /// Runs `smooth`.
 ///
@@ -41,6 +52,8 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         match out_path.and_then(Path::extension).and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("topojson") => Output::Topojson,
             Some(e) if e.eq_ignore_ascii_case("shp") => Output::Shapefile,
+            Some(e) if e.eq_ignore_ascii_case("gpkg") => Output::Geopackage,
+            Some(e) if e.eq_ignore_ascii_case("fgb") => Output::Flatgeobuf,
             _ => Output::Geojson,
         }
     });
@@ -52,7 +65,9 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             f @ (InputFormat::Geojsonseq
             | InputFormat::Tsv
             | InputFormat::Topojson
-            | InputFormat::Shapefile) => f,
+            | InputFormat::Shapefile
+            | InputFormat::Geopackage
+            | InputFormat::Flatgeobuf) => f,
             InputFormat::Csv
                 if file.is_some_and(|f| f != Path::new("-") && has_table_extension(f)) =>
             {
@@ -82,21 +97,36 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         )
         .into());
     }
-    let shp_out =
-        match (output, out_path) {
-            (Output::Shapefile, _) if format == InputFormat::Geojsonseq => {
-                return Err(UsageError::new(
-                    "newline-delimited GeoJSON is streamed and cannot be written as a Shapefile",
-                )
-                .into())
-            }
-            (Output::Shapefile, Some(p)) if p != Path::new("-") => Some(p),
-            (Output::Shapefile, _) => return Err(UsageError::new(
-                "a Shapefile is written as files (.shp, .shx, .dbf, .prj, .cpg): give -o NAME.shp",
-            )
-            .into()),
-            _ => None,
-        };
+    let layer_out = match (files::writes_layer(output), out_path) {
+        (false, _) => None,
+        (true, _) if format == InputFormat::Geojsonseq => {
+            return Err(UsageError::new(&format!(
+                "newline-delimited GeoJSON is streamed and cannot be written as {}",
+                out_name(output)
+            ))
+            .into())
+        }
+        (true, Some(p)) if p != Path::new("-") => Some(p),
+        (true, _) => {
+            return Err(UsageError::new(&format!(
+                "{} is written as a file, not to standard output: give -o NAME.{}",
+                out_name(output),
+                match output {
+                    Output::Geopackage => "gpkg",
+                    Output::Flatgeobuf => "fgb",
+                    _ => "shp",
+                }
+            ))
+            .into())
+        }
+    };
+    if a.input.layer.is_some() && format != InputFormat::Geopackage {
+        return Err(UsageError::new(&format!(
+            "--layer chooses a layer of a GeoPackage; the input is {}",
+            files::format_name(format)
+        ))
+        .into());
+    }
     let mut job = Job::new(settings);
     if format == InputFormat::Geojsonseq {
         let mut sink = Sink::create(out_path)?;
@@ -105,14 +135,16 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     } else {
         let (out, schema) = match format {
             InputFormat::Csv | InputFormat::Tsv => (job.table(&a.input.load()?)?, None),
-            InputFormat::Shapefile => {
+            f if files::is_layer(f) => {
                 let Some(path) = file.filter(|f| *f != Path::new("-")) else {
-                    return Err(UsageError::new(
-                        "a Shapefile is read from its files (.shp, .shx, .dbf), not from standard input",
-                    )
+                    return Err(UsageError::new(&format!(
+                        "{} is read from its file, not from standard input",
+                        files::format_name(f)
+                    ))
                     .into());
                 };
-                let layer = shp::read(path, job.settings().limits.max_bytes)?;
+                let max_bytes = job.settings().limits.max_bytes;
+                let layer = files::read(path, f, a.input.layer.as_deref(), max_bytes)?;
                 let name = path.display().to_string();
                 (job.document(&name, layer.features)?, Some(layer.schema))
             }
@@ -126,12 +158,8 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                 (job.document(&name, value)?, None)
             }
         };
-        match shp_out {
-            Some(path) => {
-                let files = shp::write(&out, schema.as_ref())
-                    .map_err(|e| anyhow!("{}: {e}", path.display()))?;
-                shp::save(path, &files)?;
-            }
+        match layer_out {
+            Some(path) => files::write(path, output, &out, schema.as_ref())?,
             None => {
                 let mut sink = Sink::create(out_path)?;
                 write_line(&mut sink, &out)?;

@@ -2,6 +2,8 @@
 //! command's test files.
 #![allow(dead_code)] // each test file uses some of these
 
+pub mod gdal;
+
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};

@@ -56,6 +56,11 @@ pub enum InputFormat {
     /// An ESRI Shapefile: the `.shp`, with its `.shx` and `.dbf` beside it
     /// (recognised by its content too).
     Shapefile,
+    /// A GeoPackage (`--layer` chooses among several layers; recognised by
+    /// its content too).
+    Geopackage,
+    /// A FlatGeobuf file (recognised by its content too).
+    Flatgeobuf,
 }
 
 /// Where control points come from and how much of them to take: what
@@ -68,6 +73,8 @@ pub struct Source {
     pub example: Option<u8>,
     /// The format; by default from the extension, else from the content.
     pub format: Option<InputFormat>,
+    /// The layer of a GeoPackage to read (needed when it holds several).
+    pub layer: Option<String>,
     /// The most points (and bytes) to take.
     pub limits: Limits,
     /// A table's column of x, by header name or number (from 1).
@@ -84,6 +91,7 @@ impl Default for Source {
             file: None,
             example: None,
             format: None,
+            layer: None,
             limits: Limits::DEFAULT,
             x: None,
             y: None,
@@ -334,11 +342,23 @@ pub fn read_source(file: Option<&Path>, max_bytes: u64) -> Result<(String, Vec<u
     }
 }
 
-/// The format of `file`: the explicit one, else by extension, else CSV.
+/// The format of `file`: the explicit one, else by extension, else a layer
+/// file's by its first bytes (a Shapefile, a GeoPackage, FlatGeobuf), else
+/// CSV.
 #[must_use]
 pub fn format_of(file: Option<&Path>, explicit: Option<InputFormat>) -> InputFormat {
     explicit
         .or_else(|| format_by_extension(file))
+        .or_else(|| {
+            let path = file.filter(|p| *p != Path::new("-"))?;
+            let mut head = Vec::new();
+            std::fs::File::open(path)
+                .ok()?
+                .take(100)
+                .read_to_end(&mut head)
+                .ok()?;
+            Some(sniff(&head)).filter(|f| crate::files::is_layer(*f))
+        })
         .unwrap_or(InputFormat::Csv)
 }
 
@@ -355,6 +375,8 @@ fn format_by_extension(file: Option<&Path>) -> Option<InputFormat> {
         Some("geojson") => Some(InputFormat::Geojson),
         Some("topojson") => Some(InputFormat::Topojson),
         Some("shp") => Some(InputFormat::Shapefile),
+        Some("gpkg") => Some(InputFormat::Geopackage),
+        Some("fgb") => Some(InputFormat::Flatgeobuf),
         Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => Some(InputFormat::Geojsonseq),
         _ => None,
     }
@@ -370,6 +392,17 @@ pub fn sniff(bytes: &[u8]) -> InputFormat {
     // A .shp starts with its file code, 9994, big-endian.
     if bytes.starts_with(&[0, 0, 0x27, 0x0a]) {
         return InputFormat::Shapefile;
+    }
+    // An SQLite database whose application id is GeoPackage's.
+    if bytes.starts_with(b"SQLite format 3\0")
+        && bytes
+            .get(68..72)
+            .is_some_and(|id| id == b"GPKG" || id == b"GP10")
+    {
+        return InputFormat::Geopackage;
+    }
+    if bytes.starts_with(b"fgb\x03") {
+        return InputFormat::Flatgeobuf;
     }
     let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     let Some(&first) = text.iter().find(|b| !b.is_ascii_whitespace()) else {
@@ -395,27 +428,25 @@ pub fn sniff(bytes: &[u8]) -> InputFormat {
     }
 }
 
-/// The first line, ring or run of points of a Shapefile's features, as
-/// from the same features in GeoJSON.
-fn shapefile_points(file: Option<&Path>, limits: Limits) -> Result<Points> {
+/// The first line, ring or run of points of a layer file's features
+/// (Shapefile, GeoPackage, FlatGeobuf), as from the same features in
+/// GeoJSON.
+fn layer_points(
+    file: Option<&Path>,
+    format: InputFormat,
+    layer: Option<&str>,
+    limits: Limits,
+) -> Result<Points> {
     let Some(path) = file.filter(|p| *p != Path::new("-")) else {
-        bail!("a Shapefile is read from its files (.shp, .shx, .dbf), not from standard input");
-    };
-    #[cfg(feature = "shapefile")]
-    {
-        let name = path.display().to_string();
-        let layer = crate::shp::read(path, limits.max_bytes)?;
-        let bytes = serde_json::to_vec(&layer.features).context("formatting GeoJSON")?;
-        parse_geojson_points(&name, &bytes, limits.max_points)
-    }
-    #[cfg(not(feature = "shapefile"))]
-    {
-        let _ = limits;
         bail!(
-            "{}: this build reads no Shapefiles (the `shapefile` feature)",
-            path.display()
-        )
-    }
+            "{} is read from its file, not from standard input",
+            crate::files::format_name(format)
+        );
+    };
+    let name = path.display().to_string();
+    let read = crate::files::read(path, format, layer, limits.max_bytes)?;
+    let bytes = serde_json::to_vec(&read.features).context("formatting GeoJSON")?;
+    parse_geojson_points(&name, &bytes, limits.max_points)
 }
 
 /// The `type` values of GeoJSON objects.
@@ -443,16 +474,26 @@ pub fn load(args: &Source) -> Result<Points> {
     let file = args.file.as_deref();
     let limits = args.limits;
     let max = limits.max_points;
-    if args.format.or_else(|| format_by_extension(file)) == Some(InputFormat::Shapefile) {
-        return shapefile_points(file, limits);
+    if let Some(f) = args
+        .format
+        .or_else(|| format_by_extension(file))
+        .filter(|f| crate::files::is_layer(*f))
+    {
+        return layer_points(file, f, args.layer.as_deref(), limits);
     }
     let (name, bytes) = read_source(file, limits.max_bytes)?;
     let format = args
         .format
         .or_else(|| format_by_extension(file))
         .unwrap_or_else(|| sniff(&bytes));
-    if format == InputFormat::Shapefile {
-        return shapefile_points(file, limits);
+    if crate::files::is_layer(format) {
+        return layer_points(file, format, args.layer.as_deref(), limits);
+    }
+    if let Some(l) = &args.layer {
+        bail!(
+            "{name}: --layer {l:?} chooses a layer of a GeoPackage; this is {}",
+            crate::files::format_name(format)
+        );
     }
     let select = Select {
         x: args.x.as_deref().map(Col::parse),
@@ -472,9 +513,11 @@ pub fn load(args: &Source) -> Result<Points> {
         InputFormat::Json => parse_json(&name, &bytes, max),
         InputFormat::Geojson => parse_geojson_points(&name, &bytes, max),
         InputFormat::Topojson => {
-            bail!("{name}: TopoJSON holds a coverage: `bzspline smooth` reads it; fit, eval, sample and plot take a table, JSON, GeoJSON or a Shapefile")
+            bail!("{name}: TopoJSON holds a coverage: `bzspline smooth` reads it; fit, eval, sample and plot take a table, JSON, GeoJSON or a layer file")
         }
-        InputFormat::Shapefile => unreachable!("read above"),
+        InputFormat::Shapefile | InputFormat::Geopackage | InputFormat::Flatgeobuf => {
+            unreachable!("read above")
+        }
         InputFormat::Geojsonseq => {
             // The first feature of the stream.
             let text = utf8(&name, &bytes)?;

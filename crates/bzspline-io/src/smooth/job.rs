@@ -24,8 +24,13 @@ pub enum Output {
     /// A TopoJSON Topology with the smoothed arcs.
     Topojson,
     /// An ESRI Shapefile: the job gives the GeoJSON features, which
-    /// `shp::write` (feature `shapefile`) writes as the layer's files.
+    /// [`crate::files::write`] writes as the layer's files (as for the
+    /// formats below).
     Shapefile,
+    /// A GeoPackage of one layer.
+    Geopackage,
+    /// A FlatGeobuf file.
+    Flatgeobuf,
 }
 
 /// Everything a job is asked to do.
@@ -239,15 +244,13 @@ impl Job {
         )?;
         self.total += &s.stats;
         match self.settings.output {
-            Output::Geojson | Output::Shapefile => {
-                serde_json::to_value(&s.doc).context("formatting GeoJSON")
-            }
             Output::Topojson => Ok(topojson::from_features(
                 self.object_name(),
                 &coverage::features(&s.doc),
                 s.coverage.topology(),
                 &s.arcs,
             )),
+            _ => serde_json::to_value(&s.doc).context("formatting GeoJSON"),
         }
     }
 
@@ -278,7 +281,7 @@ impl Job {
         self.total += &s.stats;
         match self.settings.output {
             Output::Topojson => Ok(topo.to_topojson(&s.arcs)),
-            Output::Geojson | Output::Shapefile => topo
+            _ => topo
                 .to_geojson(&s.arcs, object.as_deref())
                 .map_err(|e| anyhow!("{name}: {e}")),
         }

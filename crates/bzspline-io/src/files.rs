@@ -1,0 +1,107 @@
+//! GIS layer files by format: the reader and the writer that a file's
+//! format selects (ESRI Shapefile, GeoPackage, FlatGeobuf), each behind its
+//! cargo feature, so that the command and the bindings choose in one place
+//! and a layer read from one format can be written to another.
+
+use std::path::Path;
+
+use anyhow::{bail, Result};
+use serde_json::Value;
+
+use crate::input::InputFormat;
+use crate::layer::{Layer, Schema};
+use crate::smooth::job::Output;
+
+/// Whether a format is a layer file read by [`read`] (rather than a text
+/// document).
+#[must_use]
+pub fn is_layer(format: InputFormat) -> bool {
+    matches!(
+        format,
+        InputFormat::Shapefile | InputFormat::Geopackage | InputFormat::Flatgeobuf
+    )
+}
+
+/// Whether an output is a layer file written by [`write`].
+#[must_use]
+pub fn writes_layer(output: Output) -> bool {
+    matches!(
+        output,
+        Output::Shapefile | Output::Geopackage | Output::Flatgeobuf
+    )
+}
+
+/// What a format is called in messages.
+#[must_use]
+pub fn format_name(format: InputFormat) -> &'static str {
+    match format {
+        InputFormat::Shapefile => "a Shapefile",
+        InputFormat::Geopackage => "a GeoPackage",
+        InputFormat::Flatgeobuf => "a FlatGeobuf file",
+        InputFormat::Csv | InputFormat::Tsv => "a table",
+        InputFormat::Json => "JSON",
+        InputFormat::Geojson | InputFormat::Geojsonseq => "GeoJSON",
+        InputFormat::Topojson => "TopoJSON",
+    }
+}
+
+/// Reads the layer file at `path` in `format` (`layer` chooses a
+/// GeoPackage's layer), no file larger than `max_bytes`.
+///
+/// # Errors
+///
+/// A format this build does not read (its cargo feature), `layer` for a
+/// format without layers, and the format's reader's errors.
+#[allow(unused_variables)]
+pub fn read(
+    path: &Path,
+    format: InputFormat,
+    layer: Option<&str>,
+    max_bytes: u64,
+) -> Result<Layer> {
+    let name = path.display();
+    if let (Some(l), false) = (layer, format == InputFormat::Geopackage) {
+        bail!(
+            "{name}: --layer {l:?} chooses a layer of a GeoPackage; this is {}",
+            format_name(format)
+        );
+    }
+    match format {
+        #[cfg(feature = "shapefile")]
+        InputFormat::Shapefile => crate::shp::read(path, max_bytes),
+        #[cfg(feature = "geopackage")]
+        InputFormat::Geopackage => crate::gpkg::read(path, layer, max_bytes),
+        #[cfg(feature = "flatgeobuf")]
+        InputFormat::Flatgeobuf => crate::fgb::read(path, max_bytes),
+        f if is_layer(f) => bail!(
+            "{name}: this build reads no {} (a cargo feature of bzspline-io)",
+            &format_name(f)[2..]
+        ),
+        f => bail!("{name}: {} is not a layer file", format_name(f)),
+    }
+}
+
+/// Writes a FeatureCollection as the layer file `path` in `output`'s
+/// format, with `schema` (the layer read) when given; every file is
+/// complete before it replaces what was at `path`.
+///
+/// # Errors
+///
+/// A format this build does not write, and the format's writer's errors.
+#[allow(unused_variables)]
+pub fn write(path: &Path, output: Output, fc: &Value, schema: Option<&Schema>) -> Result<()> {
+    let name = path.display();
+    match output {
+        #[cfg(feature = "shapefile")]
+        Output::Shapefile => {
+            let files =
+                crate::shp::write(fc, schema).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+            crate::shp::save(path, &files)
+        }
+        #[cfg(feature = "geopackage")]
+        Output::Geopackage => crate::gpkg::write(path, fc, schema),
+        #[cfg(feature = "flatgeobuf")]
+        Output::Flatgeobuf => crate::fgb::write(path, fc, schema),
+        o => bail!("{name}: this build writes no {o:?} (a cargo feature of bzspline-io)"),
+    }
+}
