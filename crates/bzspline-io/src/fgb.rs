@@ -15,15 +15,13 @@ use std::io::{BufReader, Read};
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Context, Result};
-use flatgeobuf::{
-    ColumnType, FallibleStreamingIterator, FgbCrs, FgbReader, FgbWriter, FgbWriterOptions,
-    Geometry, GeometryType,
-};
+use flatgeobuf::packed_r_tree::PackedRTree;
+use flatgeobuf::{ColumnType, FgbCrs, FgbWriter, FgbWriterOptions, Geometry, GeometryType};
 use geozero::{ColumnValue, GeozeroGeometry, PropertyProcessor};
 use serde_json::{json, Map, Value};
 
 use crate::geom;
-use crate::layer::{self, Crs, Field, FieldKind, Layer, Schema};
+use crate::layer::{self, one_line, Crs, Field, FieldKind, Layer, Schema};
 
 /// The first bytes of a FlatGeobuf file (`fgb`, version 3).
 #[must_use]
@@ -57,10 +55,25 @@ pub fn read(path: &Path, max_bytes: u64) -> Result<Layer> {
 /// # Errors
 ///
 /// As [`read`].
-pub fn read_from<R: Read>(name: &str, reader: R) -> Result<Layer> {
-    let fgb =
-        FgbReader::open(reader).map_err(|e| anyhow!("{name}: not a FlatGeobuf file ({e})"))?;
-    let header = fgb.header();
+pub fn read_from<R: Read>(name: &str, mut reader: R) -> Result<Layer> {
+    let mut magic = [0u8; 8];
+    if reader.read_exact(&mut magic).is_err() || !sniff(&magic) {
+        bail!("{name}: not a FlatGeobuf file (no fgb magic bytes)");
+    }
+    let header_buf = size_prefixed(&mut reader)
+        .map_err(|e| anyhow!("{name}: its header: {e}"))?
+        .ok_or_else(|| anyhow!("{name}: ends before its header"))?;
+    let header = flatgeobuf::size_prefixed_root_as_header(&header_buf)
+        .map_err(|e| anyhow!("{name}: its header: {}", one_line(&e)))?;
+    if header.index_node_size() == 1 {
+        bail!("{name}: its header declares index nodes of 1 item (at least 2, or 0 for none)");
+    }
+    if header.features_count() > 1 << 48 {
+        bail!(
+            "{name}: its header declares {} features, more than any file holds",
+            header.features_count()
+        );
+    }
     let layer_name = header.name().unwrap_or_default().to_owned();
     let z = header.has_z();
     let declared = header.geometry_type();
@@ -90,8 +103,8 @@ pub fn read_from<R: Read>(name: &str, reader: R) -> Result<Layer> {
         let width = match c.type_() {
             ColumnType::Byte | ColumnType::UByte => Some(3),
             ColumnType::Short | ColumnType::UShort => Some(5),
-            ColumnType::Int | ColumnType::UInt => Some(9),
-            ColumnType::Long | ColumnType::ULong => None,
+            ColumnType::Int => Some(9),
+            ColumnType::UInt | ColumnType::Long | ColumnType::ULong => None,
             _ => u32::try_from(c.width()).ok().filter(|&w| w > 0),
         };
         let decimals = u32::try_from(c.scale()).ok().filter(|&s| s > 0);
@@ -105,27 +118,39 @@ pub fn read_from<R: Read>(name: &str, reader: R) -> Result<Layer> {
             c.type_(),
         ));
     }
-    let mut iter = fgb.select_all_seq().map_err(|e| anyhow!("{name}: {e}"))?;
+    // The spatial index, skipped: features are read in the file's order.
+    let count = header.features_count();
+    if header.index_node_size() > 0 && count > 0 {
+        let size = PackedRTree::index_size(count as usize, header.index_node_size()) as u64;
+        let skipped = std::io::copy(&mut (&mut reader).take(size), &mut std::io::sink())
+            .map_err(|e| anyhow!("{name}: reading its index: {e}"))?;
+        if skipped < size {
+            bail!("{name}: ends inside its spatial index");
+        }
+    }
     let mut features = Vec::new();
     loop {
         let i = features.len();
         let here = format!("{name}: feature {i}");
-        let feature = match iter.next() {
-            Ok(Some(f)) => f,
-            Ok(None) => break,
-            Err(e) => bail!("{here}: {e}"),
+        let Some(buf) = size_prefixed(&mut reader).map_err(|e| anyhow!("{here}: {e}"))? else {
+            break;
         };
-        let fbs = feature.fbs_feature();
+        let fbs = flatgeobuf::size_prefixed_root_as_feature(&buf)
+            .map_err(|e| anyhow!("{here}: {}", one_line(&e)))?;
         let geometry = match fbs.geometry() {
             None => Value::Null,
             Some(g) => {
-                check_geometry(&g, 0).map_err(|e| anyhow!("{here}: {e}"))?;
+                check_geometry(&g, 0).map_err(|e| anyhow!("{here}: {}", one_line(&e)))?;
                 if g.xy().is_none_or(|v| v.is_empty()) && g.parts().is_none_or(|p| p.is_empty()) {
                     Value::Null
                 } else {
-                    let mut out = geom::ToJson::new(z);
+                    let mut out = if z {
+                        geom::ToJson::with_z_everywhere()
+                    } else {
+                        geom::ToJson::new(false)
+                    };
                     g.process(&mut out, declared)
-                        .map_err(|e| anyhow!("{here}: {e}"))?;
+                        .map_err(|e| anyhow!("{here}: {}", one_line(&e)))?;
                     out.finish()
                 }
             }
@@ -136,7 +161,7 @@ pub fn read_from<R: Read>(name: &str, reader: R) -> Result<Layer> {
         }
         if let Some(bytes) = fbs.properties() {
             read_properties(bytes.bytes(), &columns, &mut properties)
-                .map_err(|e| anyhow!("{here}: {e}"))?;
+                .map_err(|e| anyhow!("{here}: {}", one_line(&e)))?;
         }
         features.push(json!({"type": "Feature", "properties": properties, "geometry": geometry}));
     }
@@ -150,6 +175,30 @@ pub fn read_from<R: Read>(name: &str, reader: R) -> Result<Layer> {
             dbf: None,
         },
     })
+}
+
+/// The next size-prefixed buffer of a stream, with its 4-byte size: `None`
+/// at the end of the stream. The buffer grows as its bytes arrive, so a
+/// damaged size costs no more memory than the file holds.
+fn size_prefixed<R: Read>(reader: &mut R) -> Result<Option<Vec<u8>>> {
+    let mut size = [0u8; 4];
+    let mut got = 0;
+    while got < 4 {
+        match reader.read(&mut size[got..]) {
+            Ok(0) if got == 0 => return Ok(None),
+            Ok(0) => bail!("the file ends inside a size"),
+            Ok(n) => got += n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => bail!("{e}"),
+        }
+    }
+    let n = u64::from(u32::from_le_bytes(size));
+    let mut buf = size.to_vec();
+    let read = reader.take(n).read_to_end(&mut buf)?;
+    if (read as u64) < n {
+        bail!("the file ends {} bytes short of its {n}", n - read as u64);
+    }
+    Ok(Some(buf))
 }
 
 /// Checks that a geometry's arrays agree before the reader indexes them:
@@ -322,11 +371,10 @@ impl GeozeroGeometry for Json<'_> {
 /// A feature without geometry, a property its field cannot hold (naming
 /// the feature and field), I/O errors.
 pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
-    let features = fc
-        .get("features")
-        .and_then(Value::as_array)
-        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as FlatGeobuf"))?;
-    let bytes = to_bytes(path, features, schema).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    let stem = path
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    let bytes = to_bytes(fc, schema, &stem).map_err(|e| anyhow!("{}: {e}", path.display()))?;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -341,12 +389,20 @@ pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
     Ok(())
 }
 
-fn to_bytes(path: &Path, features: &[Value], schema: Option<&Schema>) -> Result<Vec<u8>> {
+/// The bytes of the FlatGeobuf file [`write`] writes, the layer named
+/// `name` when `schema` names none.
+///
+/// # Errors
+///
+/// As [`write`].
+pub fn to_bytes(fc: &Value, schema: Option<&Schema>, name: &str) -> Result<Vec<u8>> {
+    let features = fc
+        .get("features")
+        .and_then(Value::as_array)
+        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as FlatGeobuf"))?;
     let name = match schema {
         Some(s) if !s.name.is_empty() => s.name.clone(),
-        _ => path
-            .file_stem()
-            .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
+        _ => name.to_owned(),
     };
     let fields = match schema {
         Some(s) => s.fields.clone(),
@@ -380,7 +436,7 @@ fn to_bytes(path: &Path, features: &[Value], schema: Option<&Schema>) -> Result<
             ..FgbWriterOptions::default()
         },
     )
-    .map_err(|e| anyhow!("{e}"))?;
+    .map_err(|e| anyhow!("{}", one_line(&e)))?;
     for f in &fields {
         let t = match f.kind {
             FieldKind::Boolean => ColumnType::Bool,
@@ -405,7 +461,9 @@ fn to_bytes(path: &Path, features: &[Value], schema: Option<&Schema>) -> Result<
         let mut values = Vec::new();
         for (k, f) in fields.iter().enumerate() {
             let v = props.get(&f.name).unwrap_or(&Value::Null);
-            if let Some(v) = column_value(v, f).map_err(|e| anyhow!("feature {i}: {e}"))? {
+            if let Some(v) =
+                column_value(v, f).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?
+            {
                 values.push((k, v));
             }
         }
@@ -426,13 +484,14 @@ fn to_bytes(path: &Path, features: &[Value], schema: Option<&Schema>) -> Result<
                 }
             }
         })
-        .map_err(|e| anyhow!("feature {i}: {e}"))?;
+        .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
         if let Some(e) = failed {
-            bail!("feature {i}: {e}");
+            bail!("feature {i}: {}", one_line(&e));
         }
     }
     let mut out = Vec::new();
-    fgb.write(&mut out).map_err(|e| anyhow!("{e}"))?;
+    fgb.write(&mut out)
+        .map_err(|e| anyhow!("{}", one_line(&e)))?;
     Ok(out)
 }
 
@@ -523,6 +582,31 @@ mod tests {
         // Every prefix of the file fails cleanly.
         for cut in (0..bytes.len()).step_by(7) {
             let _ = read_from("t.fgb", &bytes[..cut]);
+        }
+    }
+
+    /// Found by fuzzing: a feature's size prefix was allocated before its
+    /// bytes were read (4 GB from a file of a few hundred bytes), and the
+    /// crate's verification messages ran over several lines.
+    #[test]
+    fn damaged_sizes_and_headers_give_one_line_errors() {
+        let input = fc(json!([
+            {"type": "Feature", "properties": {"n": 1}, "geometry": {"type": "Point", "coordinates": [1.0, 2.0]}},
+        ]));
+        let bytes = to_bytes(&input, None, "t").unwrap();
+        let header = u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize;
+        let first = 12 + header + PackedRTree::index_size(1, 16);
+        let mut big = bytes.clone();
+        big[first..first + 4].copy_from_slice(&0xffff_fff0_u32.to_le_bytes());
+        let e = read_from("t.fgb", big.as_slice()).unwrap_err().to_string();
+        assert!(e.starts_with("t.fgb: feature 0: the file ends"), "{e}");
+        for at in 12..12 + header {
+            let mut bad = bytes.clone();
+            bad[at] ^= 0xa5;
+            if let Err(e) = read_from("t.fgb", bad.as_slice()) {
+                let e = e.to_string();
+                assert!(e.starts_with("t.fgb") && !e.contains('\n'), "{e}");
+            }
         }
     }
 

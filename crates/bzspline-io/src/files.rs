@@ -81,7 +81,26 @@ pub fn read(
     }
 }
 
-/// Writes a FeatureCollection as the layer file `path` in `output`'s
+/// A document as a FeatureCollection: a Feature as the collection of it, a
+/// geometry as the collection of a feature without properties.
+#[must_use]
+pub fn as_collection(doc: &Value) -> std::borrow::Cow<'_, Value> {
+    use std::borrow::Cow;
+    match doc["type"].as_str() {
+        Some("FeatureCollection") | None => Cow::Borrowed(doc),
+        Some("Feature") => {
+            Cow::Owned(serde_json::json!({"type": "FeatureCollection", "features": [doc]}))
+        }
+        Some(_) => Cow::Owned(
+            serde_json::json!({"type": "FeatureCollection", "features": [
+                {"type": "Feature", "properties": {}, "geometry": doc}
+            ]}),
+        ),
+    }
+}
+
+/// Writes a GeoJSON document (a FeatureCollection, or a Feature or geometry
+/// as a layer of one feature) as the layer file `path` in `output`'s
 /// format, with `schema` (the layer read) when given; every file is
 /// complete before it replaces what was at `path`.
 ///
@@ -89,8 +108,9 @@ pub fn read(
 ///
 /// A format this build does not write, and the format's writer's errors.
 #[allow(unused_variables)]
-pub fn write(path: &Path, output: Output, fc: &Value, schema: Option<&Schema>) -> Result<()> {
+pub fn write(path: &Path, output: Output, doc: &Value, schema: Option<&Schema>) -> Result<()> {
     let name = path.display();
+    let fc = &*as_collection(doc);
     match output {
         #[cfg(feature = "shapefile")]
         Output::Shapefile => {

@@ -28,6 +28,9 @@ struct Frame {
 pub struct ToJson {
     /// Whether to keep z.
     z: bool,
+    /// Whether a position without z gets z = 0 (a format whose positions
+    /// have z for all or none).
+    fill_z: bool,
     stack: Vec<Frame>,
     done: Option<Value>,
 }
@@ -38,6 +41,16 @@ impl ToJson {
     pub fn new(z: bool) -> Self {
         ToJson {
             z,
+            ..ToJson::default()
+        }
+    }
+
+    /// A builder giving every position z: its own, else 0.
+    #[must_use]
+    pub fn with_z_everywhere() -> Self {
+        ToJson {
+            z: true,
+            fill_z: true,
             ..ToJson::default()
         }
     }
@@ -103,6 +116,7 @@ impl ToJson {
         }
         let p = match z {
             Some(z) if self.z => json!([x, y, z]),
+            None if self.fill_z => json!([x, y, 0.0]),
             _ => json!([x, y]),
         };
         match self.stack.last_mut() {

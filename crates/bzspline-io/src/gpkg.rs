@@ -14,7 +14,7 @@ use rusqlite::{params, Connection, OpenFlags};
 use serde_json::{json, Map, Value};
 
 use crate::geom;
-use crate::layer::{self, Crs, Field, FieldKind, Layer, Schema};
+use crate::layer::{self, one_line, Crs, Field, FieldKind, Layer, Schema};
 
 /// The `application_id` of a GeoPackage: `GPKG`.
 const APPLICATION_ID: i32 = 0x4750_4B47;
@@ -70,21 +70,26 @@ fn open(name: &str, path: &Path) -> Result<Connection> {
         path,
         OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
     )
-    .map_err(|e| anyhow!("{name}: cannot open as a GeoPackage: {e}"))?;
+    .map_err(|e| anyhow!("{name}: cannot open as a GeoPackage: {}", one_line(&e)))?;
     // The file's own views and triggers run nothing of ours.
     conn.execute_batch("PRAGMA trusted_schema = OFF;")
-        .map_err(|e| anyhow!("{name}: not a GeoPackage (SQLite: {e})"))?;
+        .map_err(|e| anyhow!("{name}: not a GeoPackage (SQLite: {})", one_line(&e)))?;
     Ok(conn)
 }
 
 fn feature_layers(name: &str, conn: &Connection) -> Result<Vec<String>> {
     let mut st = conn
         .prepare("SELECT table_name FROM gpkg_contents WHERE data_type = 'features' ORDER BY rowid")
-        .map_err(|e| anyhow!("{name}: not a GeoPackage (no gpkg_contents table: {e})"))?;
+        .map_err(|e| {
+            anyhow!(
+                "{name}: not a GeoPackage (no gpkg_contents table: {})",
+                one_line(&e)
+            )
+        })?;
     let names = st
         .query_map([], |r| r.get::<_, String>(0))
         .and_then(Iterator::collect::<rusqlite::Result<Vec<_>>>)
-        .map_err(|e| anyhow!("{name}: gpkg_contents: {e}"))?;
+        .map_err(|e| anyhow!("{name}: gpkg_contents: {}", one_line(&e)))?;
     Ok(names)
 }
 
@@ -152,7 +157,12 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
             [&table],
             |r| Ok((r.get(0)?, r.get(1)?)),
         )
-        .map_err(|e| anyhow!("{at}: no geometry column in gpkg_geometry_columns ({e})"))?;
+        .map_err(|e| {
+            anyhow!(
+                "{at}: no geometry column in gpkg_geometry_columns ({})",
+                one_line(&e)
+            )
+        })?;
     let crs = conn
         .query_row(
             "SELECT organization, organization_coordsys_id, definition FROM gpkg_spatial_ref_sys WHERE srs_id = ?1",
@@ -165,7 +175,7 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
                 ))
             },
         )
-        .map_err(|e| anyhow!("{at}: its srs_id {srs_id} is not in gpkg_spatial_ref_sys ({e})"))?;
+        .map_err(|e| anyhow!("{at}: its srs_id {srs_id} is not in gpkg_spatial_ref_sys ({})", one_line(&e)))?;
     let crs = match crs {
         _ if srs_id == 0 || srs_id == -1 => None,
         (org, code, wkt) => {
@@ -183,7 +193,7 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
     {
         let mut st = conn
             .prepare(&format!("PRAGMA table_info({})", quote(&table)))
-            .map_err(|e| anyhow!("{at}: {e}"))?;
+            .map_err(|e| anyhow!("{at}: {}", one_line(&e)))?;
         let rows = st
             .query_map([], |r| {
                 Ok((
@@ -192,9 +202,9 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
                     r.get::<_, i64>(5)? > 0,
                 ))
             })
-            .map_err(|e| anyhow!("{at}: {e}"))?;
+            .map_err(|e| anyhow!("{at}: {}", one_line(&e)))?;
         for row in rows {
-            columns.push(row.map_err(|e| anyhow!("{at}: {e}"))?);
+            columns.push(row.map_err(|e| anyhow!("{at}: {}", one_line(&e)))?);
         }
     }
     if columns.is_empty() {
@@ -227,28 +237,47 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
         select += &quote(&f.name);
     }
     select += &format!(" FROM {} ORDER BY {id_sql}", quote(&table));
-    let mut st = conn.prepare(&select).map_err(|e| anyhow!("{at}: {e}"))?;
-    let mut rows = st.query([]).map_err(|e| anyhow!("{at}: {e}"))?;
+    let mut st = conn
+        .prepare(&select)
+        .map_err(|e| anyhow!("{at}: {}", one_line(&e)))?;
+    let mut rows = st
+        .query([])
+        .map_err(|e| anyhow!("{at}: {}", one_line(&e)))?;
     let mut features = Vec::new();
-    while let Some(row) = rows.next().map_err(|e| anyhow!("{at}: {e}"))? {
+    while let Some(row) = rows.next().map_err(|e| anyhow!("{at}: {}", one_line(&e)))? {
         let id = match row.get_ref(0) {
             Ok(ValueRef::Integer(i)) => i,
             _ => features.len() as i64,
         };
         let here = format!("{at}, feature {id}");
-        let geometry = match row.get_ref(1).map_err(|e| anyhow!("{here}: {e}"))? {
+        let geometry = match row
+            .get_ref(1)
+            .map_err(|e| anyhow!("{here}: {}", one_line(&e)))?
+        {
             ValueRef::Null => Value::Null,
-            ValueRef::Blob(b) => geometry(b, srs_id).map_err(|e| anyhow!("{here}: {e}"))?,
+            ValueRef::Blob(b) => {
+                geometry(b, srs_id).map_err(|e| anyhow!("{here}: {}", one_line(&e)))?
+            }
             _ => bail!("{here}: its geometry is not a GeoPackage binary blob"),
         };
         let mut properties = Map::new();
         for (k, f) in fields.iter().enumerate() {
             let v = row
                 .get_ref(k + 2)
-                .map_err(|e| anyhow!("{here}, field {:?}: {e}", f.name))?;
+                .map_err(|e| anyhow!("{here}, field {:?}: {}", f.name, one_line(&e)))?;
+            // SQLite holds any value in any column: each is read as its
+            // field's kind holds it, where it can be.
+            let texty = matches!(
+                f.kind,
+                FieldKind::Text | FieldKind::Date | FieldKind::DateTime
+            );
             let v = match v {
                 ValueRef::Null => Value::Null,
                 ValueRef::Integer(i) if f.kind == FieldKind::Boolean => json!(i != 0),
+                ValueRef::Integer(i) if texty => Value::from(i.to_string()),
+                ValueRef::Real(x) if texty && x.is_finite() => Value::from(x.to_string()),
+                #[allow(clippy::cast_precision_loss)] // a REAL column's value
+                ValueRef::Integer(i) if f.kind == FieldKind::Real => json!(i as f64),
                 ValueRef::Integer(i) => json!(i),
                 ValueRef::Real(x) => {
                     if x.is_finite() {
@@ -277,9 +306,14 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
 }
 
 /// A GeoPackage binary geometry as GeoJSON: the header checked (magic,
-/// version, the srs_id its column declares), an empty geometry as `null`,
+/// version, the `srs_id` its column declares), an empty geometry as `null`,
 /// the WKB after the envelope read by geozero (z kept where it has z).
-fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
+///
+/// # Errors
+///
+/// A blob that is not GeoPackage binary, of another `srs_id`, of curved
+/// geometries or with a coordinate that is not finite.
+pub fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
     if blob.len() < 8 || &blob[..2] != b"GP" {
         bail!("its geometry is not GeoPackage binary (no GP header)");
     }
@@ -307,7 +341,10 @@ fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
         1 => 32,
         2 | 3 => 48,
         4 => 64,
-        e => bail!("its geometry header names envelope kind {e}, which does not exist"),
+        e => bail!(
+            "its geometry header names envelope kind {}, which does not exist",
+            one_line(&e)
+        ),
     };
     let wkb = blob
         .get(8 + envelope..)
@@ -317,7 +354,7 @@ fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
     }
     let mut out = geom::ToJson::new(true);
     geozero::wkb::process_wkb_geom(&mut &wkb[..], &mut out)
-        .map_err(|e| anyhow!("its geometry: {e}"))?;
+        .map_err(|e| anyhow!("its geometry: {}", one_line(&e)))?;
     Ok(out.finish())
 }
 
@@ -467,7 +504,7 @@ pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
         fill(&mut conn, &name, &fields, crs.as_ref(), features)
             .map_err(|e| anyhow!("{}: {e}", path.display()))?;
         conn.close()
-            .map_err(|(_, e)| anyhow!("writing {}: {e}", path.display()))?;
+            .map_err(|(_, e)| anyhow!("writing {}: {}", path.display(), one_line(&e)))?;
     }
     tmp.persist(path)
         .map_err(|e| e.error)
@@ -482,7 +519,7 @@ fn fill(
     crs: Option<&Crs>,
     features: &[Value],
 ) -> Result<()> {
-    let sql = |e: rusqlite::Error| anyhow!("SQLite: {e}");
+    let sql = |e: rusqlite::Error| anyhow!("SQLite: {}", one_line(&e));
     conn.execute_batch(&format!(
         "PRAGMA application_id = {APPLICATION_ID};
          PRAGMA user_version = 10200;
@@ -580,7 +617,7 @@ fn fill(
                     Some(srs_id),
                     env.map_or_else(Vec::new, |e| e.to_vec()),
                 );
-                geom::emit(g, &mut w).map_err(|e| anyhow!("feature {i}: {e}"))?;
+                geom::emit(g, &mut w).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
                 Sql::Blob(bytes)
             };
             let mut values = Vec::with_capacity(fields.len() + 1);
@@ -588,10 +625,12 @@ fn fill(
             let props = &f["properties"];
             for field in fields {
                 let v = props.get(&field.name).unwrap_or(&Value::Null);
-                values.push(sql_value(v, field).map_err(|e| anyhow!("feature {i}: {e}"))?);
+                values.push(
+                    sql_value(v, field).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?,
+                );
             }
             st.execute(rusqlite::params_from_iter(values))
-                .map_err(|e| anyhow!("feature {i}: SQLite: {e}"))?;
+                .map_err(|e| anyhow!("feature {i}: SQLite: {}", one_line(&e)))?;
         }
     }
     let [x0, x1, y0, y1] = extent.map_or([None; 4], |e| e.map(Some));
@@ -676,6 +715,26 @@ mod tests {
         assert!(e.contains("feature 1: field \"n\""), "{e}");
         assert!(!path.exists());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    /// Found by fuzzing: SQLite keeps any value in any column, and an
+    /// integer in a TEXT column was read as a number, then written as text.
+    #[test]
+    fn values_are_read_as_their_fields_hold_them() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.gpkg");
+        let input = fc(json!([
+            {"type": "Feature", "properties": {"name": "a", "x": 1.5}, "geometry": {"type": "Point", "coordinates": [0.0, 0.0]}},
+        ]));
+        write(&path, &input, None).unwrap();
+        let conn = Connection::open(&path).unwrap();
+        conn.execute("UPDATE t SET name = 7, x = 2", []).unwrap();
+        drop(conn);
+        let layer = read(&path, None, u64::MAX).unwrap();
+        assert_eq!(
+            layer.features["features"][0]["properties"],
+            json!({"name": "7", "x": 2.0})
+        );
     }
 
     #[test]

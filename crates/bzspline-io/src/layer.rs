@@ -275,6 +275,29 @@ pub fn as_text(v: &Value) -> Option<String> {
     }
 }
 
+/// Another crate's error as one line: its lines joined by spaces, control
+/// characters (a bad byte it quotes) written as `\u{..}` escapes.
+#[must_use]
+pub fn one_line(e: &dyn std::fmt::Display) -> String {
+    let text = e.to_string();
+    let joined = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    joined
+        .chars()
+        .map(|c| {
+            if c.is_control() {
+                format!("\\u{{{:x}}}", u32::from(c))
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 /// Bytes as the text a [`FieldKind::Binary`] property holds: lowercase
 /// hexadecimal.
 #[must_use]

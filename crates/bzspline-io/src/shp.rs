@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail, Context, Result};
 use serde_json::{json, Map, Value};
 
-use crate::layer::{self, Crs, FieldKind, Layer, Schema};
+use crate::layer::{self, one_line, Crs, FieldKind, Layer, Schema};
 use shapefile::dbase::{self, FieldName, FieldType, FieldValue, TableInfo, TableWriterBuilder};
 use shapefile::{
     Multipoint, MultipointZ, Point, PointZ, Polygon, PolygonRing, PolygonZ, Polyline, PolylineZ,
@@ -227,21 +227,6 @@ pub fn read_parts(
             }),
         },
     })
-}
-
-/// Another crate's error as one line: control characters (a bad byte it
-/// quotes) written as `\u{..}` escapes.
-fn one_line(e: &dyn std::fmt::Display) -> String {
-    e.to_string()
-        .chars()
-        .map(|c| {
-            if c.is_control() {
-                format!("\\u{{{:x}}}", u32::from(c))
-            } else {
-                c.to_string()
-            }
-        })
-        .collect()
 }
 
 /// Walks the records of a `.shp` and gives where each one's content lies,
