@@ -11,6 +11,7 @@ use clap::{Args, ValueEnum};
 use crate::input::{self, Points, Source};
 use crate::model::{Mode, Shape};
 use bzspline::AlphaChoice;
+use bzspline_io::distance::{parse_distance, Distance};
 use bzspline_io::options::parse_alpha;
 
 pub use crate::input::InputFormat;
@@ -306,11 +307,15 @@ pub struct SmoothArgs {
     /// Curve parameters: uniform, chordal or centripetal.
     #[arg(long, value_name = "KIND", value_parser = param_parser(), default_value_t = bzspline::Param::default())]
     pub param: bzspline::Param,
-    /// Largest distance between the smooth curve and the output polyline, in
-    /// coordinate units. Default: 1e-4 of the diagonal of the data's bounding
-    /// box (of each line's, for newline-delimited GeoJSON).
-    #[arg(long, value_name = "T", value_parser = positive, allow_negative_numbers = true)]
-    pub tolerance: Option<f64>,
+    /// Largest distance between the smooth curve and the output polyline: a
+    /// number in the data's coordinate units, or a ground distance (`50m`,
+    /// `2km`) on data whose coordinate system is known (longitude and
+    /// latitude: measured on the ellipsoid; projected: in its unit), or
+    /// `0.001deg` on longitude and latitude. Default: 1e-4 of the diagonal of
+    /// the data's bounding box (of each line's, for newline-delimited
+    /// GeoJSON).
+    #[arg(long, value_name = "T", value_parser = tolerance_distance, allow_negative_numbers = true)]
+    pub tolerance: Option<Distance>,
     /// Smooth every feature's geometry on its own, as if it had no
     /// neighbours: each stays valid, but the borders that features share are
     /// no longer shared afterwards (Python's `coverage=False`).
@@ -319,8 +324,10 @@ pub struct SmoothArgs {
     /// Merge positions closer than EPS, and put a position within EPS of
     /// another line's or ring's edge into that edge, before finding the
     /// shared borders (for borders digitised twice with small differences).
-    #[arg(long, value_name = "EPS", value_parser = non_negative, allow_negative_numbers = true)]
-    pub snap: Option<f64>,
+    /// A number in the data's units, or `0.5m` (on longitude and latitude as
+    /// the same angle of a great circle) or `1e-6deg`, as for --tolerance.
+    #[arg(long, value_name = "EPS", value_parser = snap_distance, allow_negative_numbers = true)]
+    pub snap: Option<Distance>,
     /// Keep every position where the line turns by more than DEG degrees as a
     /// sharp corner (street blocks, buildings, survey lines).
     #[arg(long, value_name = "DEG", value_parser = degrees, allow_negative_numbers = true)]
@@ -428,8 +435,16 @@ fn positive(s: &str) -> Result<f64, String> {
     bzspline_geo::check_tolerance(parse_number(s)?).map_err(|e| rule(&e, s))
 }
 
-fn non_negative(s: &str) -> Result<f64, String> {
-    bzspline_geo::check_snap(parse_number(s)?).map_err(|e| rule(&e, s))
+fn tolerance_distance(s: &str) -> Result<Distance, String> {
+    let d = parse_distance(s)?;
+    bzspline_geo::check_tolerance(d.value).map_err(|e| rule(&e, s))?;
+    Ok(d)
+}
+
+fn snap_distance(s: &str) -> Result<Distance, String> {
+    let d = parse_distance(s)?;
+    bzspline_geo::check_snap(d.value).map_err(|e| rule(&e, s))?;
+    Ok(d)
 }
 
 fn degrees(s: &str) -> Result<f64, String> {

@@ -77,6 +77,7 @@
 mod coverage;
 mod crossings;
 mod error;
+pub mod geodesy;
 mod graph;
 mod levels;
 mod line;
@@ -93,7 +94,7 @@ pub use error::Error;
 pub use line::smooth_line;
 pub use nodes::Nodes;
 pub use options::{
-    check_keep_angle, check_snap, check_tolerance, default_tolerance_of, SmoothOptions,
+    check_keep_angle, check_snap, check_tolerance, default_tolerance_of, Frame, SmoothOptions,
     DEFAULT_TOLERANCE_FRACTION,
 };
 pub use smooth::{Smoothed, Stats, MAX_LEVEL};

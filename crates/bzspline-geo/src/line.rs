@@ -71,7 +71,7 @@ pub fn smooth_line(
     }
     let tol = opts
         .tolerance
-        .unwrap_or_else(|| extent_tolerance(&distinct));
+        .unwrap_or_else(|| opts.default_tolerance_from(extent_tolerance(&distinct)));
     let corners = corners(&distinct, closed, opts.keep_angle);
     let mut out = if corners.is_empty() {
         smooth_piece(&distinct, closed, opts, tol)?

@@ -29,6 +29,26 @@ pub struct SmoothOptions {
     /// `docs/method.md` §11) instead of cutting the corners: the output keeps
     /// every position of the input.
     pub through: bool,
+    /// What the positions are: points of the plane, or longitude and
+    /// latitude on the Earth (then the tolerance is in metres).
+    pub frame: Frame,
+}
+
+/// What positions are, and so in what units the tolerance is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Frame {
+    /// Points of the plane (projected coordinates, pixels): curves are built
+    /// and flattened in the positions' own units.
+    #[default]
+    Plane,
+    /// Longitude and latitude in degrees (then height in metres) on WGS 84:
+    /// curves are built through the positions' places on the ellipsoid
+    /// ([`crate::geodesy`]) and flattened to a tolerance in metres, so that
+    /// parameters and tolerance are ground distances at every latitude,
+    /// across the antimeridian and around the poles; output longitudes are
+    /// written as the input writes them (`[-180, 180]`, `[0, 360]`, or
+    /// continuous). Snapping and keep-angle still measure in degrees.
+    Geographic,
 }
 
 impl Default for SmoothOptions {
@@ -39,11 +59,30 @@ impl Default for SmoothOptions {
             param: Param::Centripetal,
             keep_angle: None,
             through: false,
+            frame: Frame::Plane,
         }
     }
 }
 
 impl SmoothOptions {
+    /// Sets what the positions are (the plane, or longitude and latitude).
+    #[must_use]
+    pub fn frame(mut self, frame: Frame) -> Self {
+        self.frame = frame;
+        self
+    }
+
+    /// The tolerance to flatten to when none is given, from the default of
+    /// the data's extent in its coordinates ([`default_tolerance_of`]): in
+    /// the geographic frame that many degrees as metres of a great circle.
+    #[must_use]
+    pub fn default_tolerance_from(&self, extent_default: f64) -> f64 {
+        match self.frame {
+            Frame::Plane => extent_default,
+            Frame::Geographic => extent_default * crate::geodesy::METRES_PER_DEGREE,
+        }
+    }
+
     /// Sets the flattening tolerance.
     #[must_use]
     pub fn tolerance(mut self, tolerance: f64) -> Self {

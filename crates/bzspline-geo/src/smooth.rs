@@ -179,7 +179,7 @@ impl Topology {
         let extent = self.nodes().extent();
         let tolerance = opts
             .tolerance
-            .unwrap_or_else(|| default_tolerance(arcs, extent));
+            .unwrap_or_else(|| opts.default_tolerance_from(default_tolerance(arcs, extent)));
         let mut stats = self.input_stats(tolerance);
         let (plans, nodes) = self.plans(opts.keep_angle);
         stats.closed_arcs = plans.iter().filter(|p| p.closed_curve).count();

@@ -250,6 +250,33 @@ pub fn has_z(g: &Value) -> bool {
     }
 }
 
+/// Gives every position of a geometry with z somewhere z = 0 where it has
+/// none (WKB lets the members of a collection differ; GeoPackage writers,
+/// ours too, write one geometry with one set of dimensions).
+pub fn fill_z(g: &mut Value) {
+    fn walk(c: &mut Value) {
+        if let Some(a) = c.as_array_mut() {
+            if a.first().is_some_and(Value::is_number) {
+                if a.len() == 2 {
+                    a.push(json!(0.0));
+                }
+            } else {
+                a.iter_mut().for_each(walk);
+            }
+        }
+    }
+    fn fill(g: &mut Value) {
+        if let Some(members) = g.get_mut("geometries").and_then(Value::as_array_mut) {
+            members.iter_mut().for_each(fill);
+        } else if let Some(c) = g.get_mut("coordinates") {
+            walk(c);
+        }
+    }
+    if has_z(g) {
+        fill(g);
+    }
+}
+
 /// The bounding box `[min x, max x, min y, max y]` of a geometry's
 /// positions (GeoPackage's envelope order); `None` for no positions.
 #[must_use]
@@ -434,6 +461,21 @@ mod tests {
             let _ = t.geometrycollection_begin(1, 0);
         }
         assert!(t.geometrycollection_begin(1, 0).is_err());
+    }
+
+    #[test]
+    fn z_is_filled_only_in_geometries_with_z() {
+        let mut g = json!({"type": "GeometryCollection", "geometries": [
+            {"type": "LineString", "coordinates": [[0.0, 0.0, 1.0], [1.0, 1.0, 2.0]]},
+            {"type": "GeometryCollection", "geometries": [{"type": "Point", "coordinates": [5.0, 5.0]}]}]});
+        fill_z(&mut g);
+        assert_eq!(
+            g["geometries"][1]["geometries"][0]["coordinates"],
+            json!([5.0, 5.0, 0.0])
+        );
+        let mut flat = json!({"type": "Point", "coordinates": [1.0, 2.0]});
+        fill_z(&mut flat);
+        assert_eq!(flat["coordinates"], json!([1.0, 2.0]));
     }
 
     #[test]

@@ -355,7 +355,9 @@ pub fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
     let mut out = geom::ToJson::new(true);
     geozero::wkb::process_wkb_geom(&mut &wkb[..], &mut out)
         .map_err(|e| anyhow!("its geometry: {}", one_line(&e)))?;
-    Ok(out.finish())
+    let mut g = out.finish();
+    geom::fill_z(&mut g);
+    Ok(g)
 }
 
 /// The GeoPackage type name of a layer's geometries: their one type, else
@@ -697,16 +699,16 @@ mod tests {
     fn properties_that_do_not_fit_are_named_and_nothing_is_written() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("t.gpkg");
-        let schema = Schema {
-            name: "t".into(),
-            fields: vec![Field {
+        let schema = Schema::new(
+            "t",
+            vec![Field {
                 name: "n".into(),
                 kind: FieldKind::Integer,
                 width: None,
                 decimals: None,
             }],
-            ..Schema::default()
-        };
+            None,
+        );
         let input = fc(json!([
             {"type": "Feature", "properties": {"n": 1}, "geometry": {"type": "Point", "coordinates": [0.0, 0.0]}},
             {"type": "Feature", "properties": {"n": "two"}, "geometry": {"type": "Point", "coordinates": [1.0, 0.0]}},

@@ -161,6 +161,18 @@ pub struct Schema {
 }
 
 impl Schema {
+    /// A schema of a layer's name, fields and CRS.
+    #[must_use]
+    pub fn new(name: impl Into<String>, fields: Vec<Field>, crs: Option<Crs>) -> Schema {
+        Schema {
+            name: name.into(),
+            fields,
+            crs,
+            #[cfg(feature = "shapefile")]
+            dbf: None,
+        }
+    }
+
     /// The fields' names, in order.
     pub fn field_names(&self) -> impl Iterator<Item = &str> {
         self.fields.iter().map(|f| f.name.as_str())

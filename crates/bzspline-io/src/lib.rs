@@ -7,6 +7,8 @@
 //!   the paper's examples, each point knowing the file and line it came from.
 //! - [`model`]: a fit (a spline y(x) or a curve) and its JSON and SVG forms,
 //!   numbers written by the one formatter ([`bzspline::text::Shortest`]).
+//! - [`distance`]: distances with units (`50m`, `2km`, `0.001deg`) and what
+//!   they mean for geographic, projected or unknown coordinates.
 //! - [`options`]: the options every entry point takes, parsed once (alphas
 //!   as decimals or fractions).
 //! - [`time`]: ISO 8601 dates and date-times as numbers and back.
@@ -25,6 +27,7 @@
 //! name (`pts.csv:4: ...`, `map.geojson: feature 2, coordinates[1]: ...`).
 
 pub mod api;
+pub mod distance;
 #[cfg(feature = "flatgeobuf")]
 pub mod fgb;
 pub mod files;

@@ -21,6 +21,7 @@ use serde_json::Value;
 use crate::cli::{InputFormat, SmoothArgs, UsageError};
 use crate::input;
 use crate::output::Sink;
+use bzspline_io::distance::Unit;
 use bzspline_io::files;
 
 /// What an output format is called in messages.
@@ -44,7 +45,7 @@ fn out_name(output: Output) -> &'static str {
 pub fn run(a: &SmoothArgs) -> Result<()> {
     let alpha = a.alpha.unwrap_or(bzspline::DEFAULT_ALPHA);
     let mut lib = SmoothOptions::default().alpha(alpha).param(a.param.clone());
-    lib.tolerance = a.tolerance;
+    lib.tolerance = a.tolerance.map(|d| d.value);
     lib.keep_angle = a.keep_angle;
     lib.through = a.through;
     let out_path = a.output.output.as_deref();
@@ -79,7 +80,9 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     let settings = Settings {
         options: lib,
         independent: a.independent,
-        snap: a.snap,
+        snap: a.snap.map(|d| d.value),
+        tolerance_unit: a.tolerance.map_or(Unit::Data, |d| d.unit),
+        snap_unit: a.snap.map_or(Unit::Data, |d| d.unit),
         object: a.object.clone(),
         output,
         object_name: file
@@ -146,7 +149,11 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                 let max_bytes = job.settings().limits.max_bytes;
                 let layer = files::read(path, f, a.input.layer.as_deref(), max_bytes)?;
                 let name = path.display().to_string();
-                (job.document(&name, layer.features)?, Some(layer.schema))
+                let crs = layer.schema.crs.clone();
+                (
+                    job.layer(&name, layer.features, crs.as_ref())?,
+                    Some(layer.schema),
+                )
             }
             _ => {
                 let max_bytes = job.settings().limits.max_bytes;

@@ -6,8 +6,9 @@ use geo_types::Coord;
 
 use super::{MAX_LEVEL, STRAIGHT};
 use crate::error::Error;
+use crate::geodesy::{self, Convention};
 use crate::graph::key;
-use crate::options::SmoothOptions;
+use crate::options::{Frame, SmoothOptions};
 use crate::piece::{self, Flat};
 
 /// Which original legs one output segment lies along, and whether it is an
@@ -74,7 +75,7 @@ pub(super) fn smooth_arc(
     let walk: Vec<usize> = if closed {
         if plan.closed_curve && !(0..n_legs).any(cuts) {
             let all: Vec<usize> = (0..=n_legs).collect();
-            let (ctrl, leg_of) = refine(arc, &all, levels, true);
+            let (ctrl, leg_of) = refine(arc, &all, levels, true, opts.frame);
             match curve_polyline(&ctrl, true, opts, tol, plan.min_out).map_err(spline_err)? {
                 Some(flat) => collect(&flat, &leg_of, &mut out, &mut segs),
                 None => {
@@ -101,7 +102,7 @@ pub(super) fn smooth_arc(
             keep(arc, piece, &mut out, &mut segs);
             continue;
         }
-        let (ctrl, leg_of) = refine(arc, piece, levels, false);
+        let (ctrl, leg_of) = refine(arc, piece, levels, false, opts.frame);
         let min = if single_piece { plan.min_out } else { 2 };
         match curve_polyline(&ctrl, false, opts, tol, min).map_err(spline_err)? {
             Some(flat) => {
@@ -158,17 +159,35 @@ fn keep(arc: &[Coord], walk: &[usize], out: &mut Vec<Coord>, segs: &mut Vec<Seg>
 
 /// The control polygon of the positions `walk` of `arc` (closed: the walk
 /// returns to its start), each leg `l` cut into `2^levels[l]` equal parts,
-/// flat `[x, y, ...]`; and the original leg of each of its intervals.
-fn refine(arc: &[Coord], walk: &[usize], levels: &[u8], closed: bool) -> (Vec<f64>, Vec<u32>) {
+/// flat `[x, y, ...]`; and the original leg of each of its intervals. In
+/// the geographic frame a leg runs the short way round in longitude (across
+/// the antimeridian when that is shorter).
+fn refine(
+    arc: &[Coord],
+    walk: &[usize],
+    levels: &[u8],
+    closed: bool,
+    frame: Frame,
+) -> (Vec<f64>, Vec<u32>) {
     let mut ctrl = Vec::with_capacity(2 * walk.len());
     let mut leg_of = Vec::with_capacity(walk.len());
     for w in walk.windows(2) {
-        let (a, b) = (arc[w[0]], arc[w[1]]);
+        let (a, mut b) = (arc[w[0]], arc[w[1]]);
+        // Longitudes of points inside a leg written as its ends write theirs.
+        let convention = Convention::of([a.x, b.x]);
+        if frame == Frame::Geographic {
+            b.x = geodesy::unwrap_near(b.x, a.x);
+        }
         let leg = w[0];
         let parts = 1u32 << levels[leg].min(MAX_LEVEL);
         for k in 0..parts {
             let t = f64::from(k) / f64::from(parts);
-            ctrl.push(a.x + (b.x - a.x) * t);
+            let x = a.x + (b.x - a.x) * t;
+            ctrl.push(if k == 0 || frame == Frame::Plane {
+                x
+            } else {
+                convention.apply(x)
+            });
             ctrl.push(a.y + (b.y - a.y) * t);
             leg_of.push(leg as u32);
         }

@@ -10,8 +10,10 @@ use bzspline_geo::{SmoothOptions, Stats};
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 use serde_json::Value;
 
-use super::{chains, coverage, default_tolerance, independent, positions};
+use super::{chains, coverage, default_tolerance, each_position, independent, positions};
+use crate::distance::{Distance, Space, Unit};
 use crate::input::{self, Limits, Points};
+use crate::layer::Crs;
 use crate::topojson;
 
 /// What a smoothed document is written as.
@@ -55,6 +57,10 @@ pub struct Settings {
     pub object_name: String,
     /// Input limits.
     pub limits: Limits,
+    /// The unit of `options.tolerance` ([`Unit::Data`]: the data's own).
+    pub tolerance_unit: Unit,
+    /// The unit of `snap`.
+    pub snap_unit: Unit,
 }
 
 impl Settings {
@@ -100,6 +106,8 @@ pub struct Job {
     cut: (usize, Option<String>),
     total: Stats,
     features: usize,
+    /// The space of the layer being smoothed, when its file states it.
+    space: Option<Space>,
 }
 
 impl Job {
@@ -111,6 +119,7 @@ impl Job {
             cut: (0, None),
             total: Stats::default(),
             features: 0,
+            space: None,
         }
     }
 
@@ -133,6 +142,62 @@ impl Job {
             let doc = self.checked(name, value)?;
             self.geojson(doc, name, true)
         }
+    }
+
+    /// Smooths the features of a layer file read from `name` (a
+    /// FeatureCollection) whose coordinate system is `crs` (none stated:
+    /// `None`), which says what a distance in metres or degrees is.
+    ///
+    /// # Errors
+    ///
+    /// As [`Job::document`], and a distance that cannot be measured in the
+    /// layer's coordinates.
+    pub fn layer(&mut self, name: &str, features: Value, crs: Option<&Crs>) -> Result<Value> {
+        self.space = Some(match crs {
+            None => Space::Unknown("the file states no coordinate system".into()),
+            Some(c) => Space::of_crs(Some(c)),
+        });
+        let out = self.document(name, features);
+        self.space = None;
+        out
+    }
+
+    /// The options and snap distance for data in `space` (found by `space`
+    /// when a distance has a unit): distances with units resolved.
+    fn resolved(
+        &self,
+        where_: &str,
+        space: impl FnOnce() -> Space,
+    ) -> Result<(SmoothOptions, Option<f64>)> {
+        let s = &self.settings;
+        let mut opts = s.options.clone();
+        if s.tolerance_unit == Unit::Data && s.snap_unit == Unit::Data {
+            return Ok((opts, s.snap));
+        }
+        let space = self.space.clone().unwrap_or_else(space);
+        if let Some(t) = opts.tolerance {
+            let d = Distance {
+                value: t,
+                unit: s.tolerance_unit,
+            };
+            let (v, frame) = space
+                .resolve(d)
+                .map_err(|e| anyhow!("{where_}: the tolerance {e}"))?;
+            opts.tolerance = Some(v);
+            opts.frame = frame;
+        }
+        let snap = match s.snap {
+            Some(v) => Some(
+                space
+                    .resolve_snap(Distance {
+                        value: v,
+                        unit: s.snap_unit,
+                    })
+                    .map_err(|e| anyhow!("{where_}: the snap distance {e}"))?,
+            ),
+            None => None,
+        };
+        Ok((opts, snap))
     }
 
     /// Smooths the text of one line of newline-delimited GeoJSON (RFC 8142
@@ -166,7 +231,10 @@ impl Job {
             coordinates: line,
         }));
         feature.set_property("source", points.source.clone());
-        self.geojson(GeoJson::Feature(feature), &points.source, false)
+        self.space = Some(Space::Unknown("a table states no coordinate system".into()));
+        let out = self.geojson(GeoJson::Feature(feature), &points.source, false);
+        self.space = None;
+        out
     }
 
     /// The notes for standard error once the output is written: positions
@@ -207,13 +275,34 @@ impl Job {
             _ => 1,
         };
         let z = coverage::document_has_z(&doc);
-        let lib = &self.settings.options;
+        let (lib, snap) = self.resolved(where_, || {
+            let mut b = [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ];
+            each_position(&doc, &mut |p| {
+                if p.len() >= 2 {
+                    b = [
+                        b[0].min(p[0]),
+                        b[1].min(p[1]),
+                        b[2].max(p[0]),
+                        b[3].max(p[1]),
+                    ];
+                }
+            });
+            Space::of_lonlat_bounds(b, "it")
+        })?;
+        let lib = &lib;
         if z {
             // Curves in space, ring by ring: the coverage's topology is planar.
             if !self.settings.independent && number_single && self.z_at.is_none() {
                 self.z_at = Some(where_.to_owned());
             }
-            let tolerance = lib.tolerance.unwrap_or_else(|| default_tolerance(&doc));
+            let tolerance = lib
+                .tolerance
+                .unwrap_or_else(|| lib.default_tolerance_from(default_tolerance(&doc)));
             let opts = lib.clone().tolerance(tolerance);
             let max = self.settings.limits.max_points;
             let positions_in = positions(&doc);
@@ -237,7 +326,7 @@ impl Job {
         let s = coverage::smooth_document(
             doc,
             lib,
-            self.settings.snap,
+            snap,
             self.settings.limits.max_points,
             where_,
             number_single,
@@ -273,9 +362,21 @@ impl Job {
             let doc = self.checked(name, fc)?;
             return self.geojson(doc, name, true);
         }
+        let (lib, _) = self.resolved(name, || {
+            let mut b = [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ];
+            for c in topo.topology.arcs().iter().flatten() {
+                b = [b[0].min(c.x), b[1].min(c.y), b[2].max(c.x), b[3].max(c.y)];
+            }
+            Space::of_lonlat_bounds(b, "it")
+        })?;
         let s = topo
             .topology
-            .smooth(&self.settings.options)
+            .smooth(&lib)
             .map_err(|e| anyhow!("{name}: {}", topo.describe(&e)))?;
         self.features += topo.features;
         self.total += &s.stats;
@@ -304,7 +405,11 @@ impl Job {
             );
         }
         let tolerance = match (self.settings.options.tolerance, self.settings.independent) {
-            (Some(t), _) => format!("{t}"),
+            (Some(t), _) => Distance {
+                value: t,
+                unit: self.settings.tolerance_unit,
+            }
+            .to_string(),
             (None, false) => format!(
                 "{} (the default: 1e-4 of the extent's diagonal)",
                 t.tolerance
