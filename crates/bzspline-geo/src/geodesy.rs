@@ -20,12 +20,21 @@ fn e2() -> f64 {
     WGS84_F * (2.0 - WGS84_F)
 }
 
+// Every transcendental function here is `libm`'s (a port of musl's), not
+// the platform's, so that a curve comes out the same to the bit natively and
+// in WebAssembly, on every operating system.
+use libm::{atan2, cos, hypot, sin};
+
+fn sin_cos(x: f64) -> (f64, f64) {
+    (sin(x), cos(x))
+}
+
 /// ECEF coordinates (metres) of longitude and latitude in degrees and the
 /// height above the ellipsoid in metres.
 #[must_use]
 pub fn to_ecef(lon: f64, lat: f64, h: f64) -> [f64; 3] {
-    let (sl, cl) = lon.to_radians().sin_cos();
-    let (sp, cp) = lat.to_radians().sin_cos();
+    let (sl, cl) = sin_cos(lon.to_radians());
+    let (sp, cp) = sin_cos(lat.to_radians());
     let n = WGS84_A / (1.0 - e2() * sp * sp).sqrt();
     [
         (n + h) * cp * cl,
@@ -43,23 +52,23 @@ pub fn from_ecef([x, y, z]: [f64; 3]) -> (f64, f64, f64) {
     let b = a * (1.0 - WGS84_F);
     let e2 = e2();
     let ep2 = e2 / (1.0 - e2);
-    let p = x.hypot(y);
-    let lon = y.atan2(x);
+    let p = hypot(x, y);
+    let lon = atan2(y, x);
     // Bowring's first estimate, then Newton-like refinements.
-    let mut lat = (z * a).atan2(p * b);
-    let (s, c) = lat.sin_cos();
-    lat = (z + ep2 * b * s * s * s).atan2(p - e2 * a * c * c * c);
+    let mut lat = atan2(z * a, p * b);
+    let (s, c) = sin_cos(lat);
+    lat = atan2(z + ep2 * b * s * s * s, p - e2 * a * c * c * c);
     for _ in 0..2 {
-        let s = lat.sin();
+        let (s, c) = sin_cos(lat);
         let n = a / (1.0 - e2 * s * s).sqrt();
-        let h = if lat.cos().abs() > 1e-12 {
-            p / lat.cos() - n
+        let h = if c.abs() > 1e-12 {
+            p / c - n
         } else {
             z.abs() - b
         };
-        lat = z.atan2(p * (1.0 - e2 * n / (n + h)));
+        lat = atan2(z, p * (1.0 - e2 * n / (n + h)));
     }
-    let (s, c) = lat.sin_cos();
+    let (s, c) = sin_cos(lat);
     let n = a / (1.0 - e2 * s * s).sqrt();
     let h = if c.abs() > 1e-9 {
         p / c - n

@@ -1,12 +1,13 @@
 // Types of the `bzspline/geo` entry.
 
 export interface SmoothOptions {
-  /** Largest distance between the curve and the output polyline (default 1e-4 of the extent's diagonal). */
-  tolerance?: number;
+  /** Largest distance between the curve and the output polyline (default 1e-4 of the extent's diagonal):
+   * a number in the data's units, or a distance with a unit, "50m", "2km", "0.001deg". */
+  tolerance?: number | string;
   /** Keep positions where the line turns by more than this many degrees. */
   keepAngle?: number;
   /** Join positions (and positions to edges) closer than this first. */
-  snap?: number;
+  snap?: number | string;
   /** Every feature's geometry on its own (each stays valid), not the document as one coverage. */
   independent?: boolean;
   /** Pass through every position. */

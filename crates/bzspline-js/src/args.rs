@@ -7,6 +7,8 @@
 )]
 
 use bzspline::AlphaChoice;
+#[cfg(feature = "geo")]
+use bzspline_io::distance::{parse_distance, Distance};
 use js_sys::{Array, Float64Array, Reflect};
 use wasm_bindgen::{JsCast, JsValue};
 
@@ -157,6 +159,27 @@ impl Options {
     /// A number option (`null` is none).
     pub fn number(&self, name: &str) -> Result<Option<f64>, JsValue> {
         self.typed(name, "a number", JsValue::as_f64)
+    }
+
+    /// A distance option: a number in the data's units, or a string with a
+    /// unit (`"50m"`, `"2km"`, `"0.001deg"`) read by
+    /// [`bzspline_io::distance::parse_distance`] (`null` is none).
+    #[cfg(feature = "geo")]
+    pub fn distance(&self, name: &str) -> Result<Option<Distance>, JsValue> {
+        match self.get(name) {
+            None => Ok(None),
+            Some(v) if v.is_null() => Ok(None),
+            Some(v) => match (v.as_f64(), v.as_string()) {
+                (Some(x), _) => Ok(Some(Distance::data(x))),
+                (None, Some(s)) => parse_distance(&s)
+                    .map(Some)
+                    .map_err(|e| range_error(format!("{name} {e}"))),
+                _ => Err(type_error(format!(
+                    "{name} must be a number or a string such as \"50m\" (found {})",
+                    kind(&v)
+                ))),
+            },
+        }
     }
 
     /// A string option (`null` is none).

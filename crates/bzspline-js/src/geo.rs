@@ -5,6 +5,7 @@
 
 use bzspline::Param;
 use bzspline_geo::SmoothOptions;
+use bzspline_io::distance::Unit;
 use bzspline_io::smooth::job::{Job, Output, Settings};
 use wasm_bindgen::prelude::*;
 
@@ -13,7 +14,8 @@ use crate::args::{range_error, type_error, Options};
 /// Smooths the document in `text` (GeoJSON, or a TopoJSON Topology) and
 /// returns the smoothed document as JSON text: by default the same kind as
 /// went in, `output: "geojson"` or `"topojson"` to choose. Options:
-/// `tolerance`, `keepAngle`, `snap`, `independent`, `through`, `alpha`,
+/// `tolerance` and `snap` (numbers in the data's units, or strings with a
+/// unit: `"50m"`, `"2km"`, `"0.001deg"`), `keepAngle`, `independent`, `through`, `alpha`,
 /// `param`, `object` (the TopoJSON object to write as GeoJSON), `name` (the
 /// object a GeoJSON input becomes in TopoJSON, `collection` by default).
 #[wasm_bindgen(js_name = smoothText)]
@@ -29,7 +31,9 @@ pub fn smooth_text(text: &str, options: &JsValue) -> Result<String, JsValue> {
     if let Some(p) = o.string("param")? {
         lib = lib.param(p.parse::<Param>().map_err(range_error)?);
     }
-    lib.tolerance = o.number("tolerance")?;
+    let tolerance = o.distance("tolerance")?;
+    let snap = o.distance("snap")?;
+    lib.tolerance = tolerance.map(|d| d.value);
     lib.keep_angle = o.number("keepAngle")?;
     lib.through = o.flag("through", false)?;
     let output = match o.string("output")?.as_deref() {
@@ -45,7 +49,9 @@ pub fn smooth_text(text: &str, options: &JsValue) -> Result<String, JsValue> {
     let settings = Settings {
         options: lib,
         independent: o.flag("independent", false)?,
-        snap: o.number("snap")?,
+        snap: snap.map(|d| d.value),
+        tolerance_unit: tolerance.map_or(Unit::Data, |d| d.unit),
+        snap_unit: snap.map_or(Unit::Data, |d| d.unit),
         object: o.string("object")?,
         output,
         object_name: o.string("name")?.unwrap_or_default(),

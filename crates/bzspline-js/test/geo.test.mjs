@@ -46,6 +46,7 @@ test("GeoJSON coverages: the command's output, bit for bit, with each option", (
     same(file, { keepAngle: 60, param: "uniform" }, ["--keep-angle", "60", "--param", "uniform"]);
     same(file, { independent: true }, ["--independent"]);
     same(file, { snap: 1e-9 }, ["--snap", "1e-9"]);
+    same(file, { tolerance: "20km", snap: "1m" }, ["--tolerance", "20km", "--snap", "1m"]);
     same(file, { output: "topojson", name: name.replace(".geojson", "") }, ["--output-format", "topojson"]);
   }
 });
@@ -78,6 +79,8 @@ test("a string in gives a string out; bad documents and options throw, naming th
   assert.throws(() => smooth("{"), (e) => e instanceof TypeError && /invalid JSON/.test(e.message));
   assert.throws(() => smooth(42), TypeError);
   assert.throws(() => smooth(JSON.parse(text), { tolerance: -1 }), (e) => e instanceof RangeError && /tolerance/.test(e.message));
+  assert.throws(() => smooth(JSON.parse(text), { tolerance: "5 furlongs" }), (e) => e instanceof RangeError && /50m, 0\.5km/.test(e.message));
+  assert.throws(() => smooth(JSON.parse(text), { tolerance: true }), (e) => e instanceof TypeError && /tolerance/.test(e.message));
   assert.throws(() => smooth(JSON.parse(text), { independent: true, snap: 1 }), RangeError);
   assert.throws(() => smooth(JSON.parse(text), { output: "svg" }), RangeError);
   const bad = { type: "Feature", properties: {}, geometry: { type: "LineString", coordinates: [[0, 0], [1]] } };
