@@ -56,7 +56,6 @@ pub fn smooth_text(text: &str, options: &JsValue) -> Result<String, JsValue> {
         output,
         object_name: o.string("name")?.unwrap_or_default(),
         limits: bzspline_io::input::Limits::default(),
-        ..Settings::default()
     };
     settings.check().map_err(range_error)?;
     let mut job = Job::new(settings);
