@@ -13,7 +13,7 @@ use bzspline_io::files;
 use bzspline_io::input::InputFormat;
 use bzspline_io::smooth::job::Output;
 use common::gdal::{close, fields, gdal, gdal_features, info, numbers, path, polygons_of};
-use common::run;
+use common::{run, succeeds};
 use serde_json::{json, Value};
 
 const FORMATS: [(&str, InputFormat, Output); 3] = [
@@ -21,12 +21,6 @@ const FORMATS: [(&str, InputFormat, Output); 3] = [
     ("fgb", InputFormat::Flatgeobuf, Output::Flatgeobuf),
     ("shp", InputFormat::Shapefile, Output::Shapefile),
 ];
-
-fn ok(args: &[&str]) -> String {
-    let o = run(args, None);
-    assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
-    o.stdout
-}
 
 fn read_json(file: &str) -> Value {
     serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap()
@@ -283,13 +277,14 @@ fn smoothing_a_layer_file_gives_what_its_geojson_gives() {
             let geojson = path(dir.path(), &format!("{name}-{ext}.geojson"));
             std::fs::write(&geojson, layer.features.to_string()).unwrap();
             let a: Value =
-                serde_json::from_str(&ok(&["smooth", &file, "--tolerance", "0.01"])).unwrap();
+                serde_json::from_str(&succeeds(&["smooth", &file, "--tolerance", "0.01"])).unwrap();
             let b: Value =
-                serde_json::from_str(&ok(&["smooth", &geojson, "--tolerance", "0.01"])).unwrap();
+                serde_json::from_str(&succeeds(&["smooth", &geojson, "--tolerance", "0.01"]))
+                    .unwrap();
             assert_eq!(a, b, "{name} as {ext}");
             // Written to a file of the same format, then read: the same.
             let out = path(dir.path(), &format!("out.{ext}"));
-            ok(&["smooth", &file, "--tolerance", "0.01", "-o", &out]);
+            succeeds(&["smooth", &file, "--tolerance", "0.01", "-o", &out]);
             let back = files::read(Path::new(&out), format, None, u64::MAX).unwrap();
             let (a, b) = (
                 a["features"].as_array().unwrap(),
@@ -338,11 +333,12 @@ fn gdal_reads_what_we_write_and_we_read_what_gdal_writes() {
                 ],
             );
             let ours: Value =
-                serde_json::from_str(&ok(&["smooth", &geojson, "--tolerance", "0.01"])).unwrap();
+                serde_json::from_str(&succeeds(&["smooth", &geojson, "--tolerance", "0.01"]))
+                    .unwrap();
             let ours = ours["features"].as_array().unwrap();
             for (ext2, format2, _) in FORMATS {
                 let out = path(dir.path(), &format!("out.{ext2}"));
-                ok(&["smooth", &input, "--tolerance", "0.01", "-o", &out]);
+                succeeds(&["smooth", &input, "--tolerance", "0.01", "-o", &out]);
                 let theirs = gdal_features(&out);
                 let bits = files::read(Path::new(&out), format2, None, u64::MAX).unwrap();
                 let bits = bits.features["features"].as_array().unwrap();
@@ -425,7 +421,7 @@ fn a_geopackage_of_several_layers_needs_one_chosen() {
         o.stderr
     );
     assert!(!Path::new(&out).exists());
-    ok(&["smooth", &gpkg, "--layer", "more", "-o", &out]);
+    succeeds(&["smooth", &gpkg, "--layer", "more", "-o", &out]);
     let summary = info(&out);
     assert!(summary.contains("Layer name: more"), "{summary}");
 }
@@ -437,16 +433,20 @@ fn fit_reads_the_first_line_of_a_layer_file() {
         "geometry": {"type": "LineString", "coordinates": [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]}}]});
     let geojson = path(dir.path(), "road.geojson");
     std::fs::write(&geojson, doc.to_string()).unwrap();
-    let want = ok(&["fit", &geojson, "--curve"]);
+    let want = succeeds(&["fit", &geojson, "--curve"]);
     for (ext, _, output) in FORMATS {
         let file = path(dir.path(), &format!("road.{ext}"));
         files::write(Path::new(&file), output, &doc, None).unwrap();
-        assert_eq!(ok(&["fit", &file, "--curve"]), want, "{ext}");
+        assert_eq!(succeeds(&["fit", &file, "--curve"]), want, "{ext}");
         // Known by its content too.
         let hidden = path(dir.path(), &format!("road-{ext}.bin"));
         if ext != "shp" {
             std::fs::copy(&file, &hidden).unwrap();
-            assert_eq!(ok(&["fit", &hidden, "--curve"]), want, "{ext} by content");
+            assert_eq!(
+                succeeds(&["fit", &hidden, "--curve"]),
+                want,
+                "{ext} by content"
+            );
         }
     }
 }

@@ -10,15 +10,9 @@ use bzspline_io::files;
 use bzspline_io::layer::{Crs, Schema};
 use bzspline_io::smooth::job::Output;
 use common::gdal::path;
-use common::run;
+use common::{run, succeeds};
 use serde_json::{json, Value};
 use std::path::Path;
-
-fn ok(args: &[&str]) -> String {
-    let o = run(args, None);
-    assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
-    o.stdout
-}
 
 /// A wavy ring about 5 km across centred at `lat` on the meridian `lon`,
 /// as GeoJSON (its east-west degrees stretched by 1/cos(lat), so that it
@@ -58,10 +52,11 @@ fn metres_on_longitude_and_latitude_are_the_same_everywhere() {
         let file = path(dir.path(), &format!("blob{lat}.geojson"));
         std::fs::write(&file, ring_at(20.0, lat).to_string()).unwrap();
         let out: Value =
-            serde_json::from_str(&ok(&["smooth", &file, "--tolerance", "20m"])).unwrap();
+            serde_json::from_str(&succeeds(&["smooth", &file, "--tolerance", "20m"])).unwrap();
         metres.push(positions(&out) as f64);
         let out: Value =
-            serde_json::from_str(&ok(&["smooth", &file, "--tolerance", "0.0002deg"])).unwrap();
+            serde_json::from_str(&succeeds(&["smooth", &file, "--tolerance", "0.0002deg"]))
+                .unwrap();
         degrees.push(positions(&out) as f64);
     }
     let spread = |v: &[f64]| {
@@ -100,8 +95,8 @@ fn metres_on_projected_data_are_its_units() {
         let scaled = scale(&doc, 111_195.0);
         let file = path(dir.path(), &format!("{name}.gpkg"));
         files::write(Path::new(&file), Output::Geopackage, &scaled, Some(&schema)).unwrap();
-        let with_unit = ok(&["smooth", &file, "--tolerance", "20m"]);
-        let bare = ok(&[
+        let with_unit = succeeds(&["smooth", &file, "--tolerance", "20m"]);
+        let bare = succeeds(&[
             "smooth",
             &file,
             "--tolerance",
@@ -164,7 +159,7 @@ fn distances_that_cannot_be_measured_are_refused() {
         1,
         "the snap distance 1 m cannot be measured",
     );
-    ok(&["smooth", &bare, "--tolerance", "0.0005", "-o", &out]);
+    succeeds(&["smooth", &bare, "--tolerance", "0.0005", "-o", &out]);
     std::fs::remove_file(&out).unwrap();
     // GeoJSON whose coordinates are not longitude and latitude.
     let big = path(dir.path(), "big.geojson");

@@ -10,17 +10,11 @@ mod common;
 use std::path::Path;
 
 use common::gdal::{close, fields, gdal, gdal_features, info, numbers, path, polygons_of};
-use common::run;
+use common::{run, succeeds};
 use serde_json::Value;
 
 fn fixture(name: &str) -> String {
     common::fixture(name).display().to_string()
-}
-
-fn smooth_ok(args: &[&str]) -> String {
-    let o = run(args, None);
-    assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
-    o.stdout
 }
 
 #[test]
@@ -50,9 +44,9 @@ fn a_shapefile_smooths_as_its_geojson_and_gdal_reads_the_result() {
             ],
         );
         let out = path(dir.path(), "out.shp");
-        smooth_ok(&["smooth", &shp, "--tolerance", "0.01", "-o", &out]);
+        succeeds(&["smooth", &shp, "--tolerance", "0.01", "-o", &out]);
         let ours: Value =
-            serde_json::from_str(&smooth_ok(&["smooth", &geojson, "--tolerance", "0.01"])).unwrap();
+            serde_json::from_str(&succeeds(&["smooth", &geojson, "--tolerance", "0.01"])).unwrap();
         let ours = ours["features"].as_array().unwrap();
         let theirs = gdal_features(&out);
         let bits = bzspline_io::shp::read(Path::new(&out), u64::MAX)
@@ -101,14 +95,14 @@ fn geojson_written_as_a_shapefile_is_read_by_gdal() {
     let dir = tempfile::tempdir().unwrap();
     let cells = polygons_of(dir.path(), "mosaic");
     let out = path(dir.path(), "shapes.shp");
-    smooth_ok(&["smooth", &cells, "--output-format", "shapefile", "-o", &out]);
+    succeeds(&["smooth", &cells, "--output-format", "shapefile", "-o", &out]);
     let info = info(&out);
     let input: Value = serde_json::from_str(&std::fs::read_to_string(&cells).unwrap()).unwrap();
     let n = input["features"].as_array().unwrap().len();
     assert!(info.contains(&format!("Feature Count: {n}")), "{info}");
     assert!(info.contains("Geometry: Polygon"), "{info}");
     assert!(info.contains("WGS 84"), "{info}");
-    let ours: Value = serde_json::from_str(&smooth_ok(&["smooth", &cells])).unwrap();
+    let ours: Value = serde_json::from_str(&succeeds(&["smooth", &cells])).unwrap();
     for (i, (a, b)) in ours["features"]
         .as_array()
         .unwrap()
@@ -140,7 +134,7 @@ fn fit_reads_the_first_line_of_a_shapefile() {
     let shp = path(dir.path(), "road.shp");
     // Through the identity: a line's smoothing with --through keeps every
     // vertex, so write it with a tolerance that adds none between.
-    smooth_ok(&[
+    succeeds(&[
         "smooth",
         &geojson,
         "--through",
@@ -150,8 +144,8 @@ fn fit_reads_the_first_line_of_a_shapefile() {
         &shp,
     ]);
     assert_eq!(
-        smooth_ok(&["fit", &shp, "--curve"]),
-        smooth_ok(&["fit", &geojson, "--curve"])
+        succeeds(&["fit", &shp, "--curve"]),
+        succeeds(&["fit", &geojson, "--curve"])
     );
 }
 
@@ -159,7 +153,7 @@ fn fit_reads_the_first_line_of_a_shapefile() {
 fn bad_layers_are_refused_naming_the_file_and_nothing_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let shp = path(dir.path(), "cells.shp");
-    smooth_ok(&["smooth", &polygons_of(dir.path(), "mosaic"), "-o", &shp]);
+    succeeds(&["smooth", &polygons_of(dir.path(), "mosaic"), "-o", &shp]);
     let out = path(dir.path(), "out.shp");
     let refused = |args: &[&str], code: i32, want: &str| {
         let o = run(args, None);
@@ -182,7 +176,7 @@ fn bad_layers_are_refused_naming_the_file_and_nothing_is_written() {
         format!(r#"{{"type":"FeatureCollection","features":[{one}]}}"#),
     )
     .unwrap();
-    smooth_ok(&["smooth", &one_path, "-o", &other]);
+    succeeds(&["smooth", &one_path, "-o", &other]);
     let mixed = path(dir.path(), "mixed.shp");
     std::fs::copy(&shp, &mixed).unwrap();
     std::fs::copy(dir.path().join("cells.shx"), dir.path().join("mixed.shx")).unwrap();
@@ -248,11 +242,11 @@ fn a_latin_1_table_is_read_in_the_code_page_its_cpg_names() {
         dbf.windows(2).any(|w| w == b"Z\xfc"),
         "GDAL did not write Latin-1"
     );
-    let out: Value = serde_json::from_str(&smooth_ok(&["smooth", &shp])).unwrap();
+    let out: Value = serde_json::from_str(&succeeds(&["smooth", &shp])).unwrap();
     assert_eq!(out["features"][0]["properties"]["name"], "Zürich");
     // Written back as UTF-8, with a .cpg that says so; GDAL reads it.
     let back = path(dir.path(), "back.shp");
-    smooth_ok(&["smooth", &shp, "-o", &back]);
+    succeeds(&["smooth", &shp, "-o", &back]);
     assert_eq!(
         std::fs::read_to_string(dir.path().join("back.cpg")).unwrap(),
         "UTF-8"

@@ -47,6 +47,14 @@ pub fn run(args: &[&str], stdin: Option<&[u8]>) -> Out {
     }
 }
 
+/// Runs the command, asserts that it succeeded (notes on standard error
+/// allowed), and gives its standard output.
+pub fn succeeds(args: &[&str]) -> String {
+    let o = run(args, None);
+    assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
+    o.stdout
+}
+
 pub fn ok(args: &[&str]) -> String {
     let o = run(args, None);
     assert_eq!(o.code, 0, "{args:?} failed: {}", o.stderr);
