@@ -389,12 +389,12 @@ pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
     Ok(())
 }
 
-/// The bytes of the FlatGeobuf file [`write`] writes, the layer named
+/// The bytes of the FlatGeobuf file [`write()`] writes, the layer named
 /// `name` when `schema` names none.
 ///
 /// # Errors
 ///
-/// As [`write`].
+/// As [`write()`].
 pub fn to_bytes(fc: &Value, schema: Option<&Schema>, name: &str) -> Result<Vec<u8>> {
     let features = fc
         .get("features")

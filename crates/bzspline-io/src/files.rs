@@ -22,7 +22,7 @@ pub fn is_layer(format: InputFormat) -> bool {
     )
 }
 
-/// Whether an output is a layer file written by [`write`].
+/// Whether an output is a layer file written by [`write()`].
 #[must_use]
 pub fn writes_layer(output: Output) -> bool {
     matches!(
