@@ -59,6 +59,57 @@ impl Crs {
         }
     }
 
+    /// A CRS as people write one: an authority and code (`EPSG:4326`,
+    /// `OGC:CRS84`, `urn:ogc:def:crs:EPSG::3857`, the URL form
+    /// `http://www.opengis.net/def/crs/EPSG/0/4326`) or WKT (1 or 2). OGC's
+    /// CRS84 is longitude and latitude on WGS 84, so it reads as EPSG:4326.
+    ///
+    /// # Errors
+    ///
+    /// Text that is none of these, as the words of a message.
+    pub fn parse(text: &str) -> Result<Crs, String> {
+        let t = text.trim();
+        let bad = || {
+            format!(
+                "{t:?} is not a coordinate system: give AUTHORITY:CODE (EPSG:4326, OGC:CRS84) or WKT"
+            )
+        };
+        if t.contains('[') {
+            return Ok(Crs::from_wkt(t));
+        }
+        // The authority and the code are the last two fields of every form.
+        let fields: Vec<&str> = t
+            .split([':', '/'])
+            .map(str::trim)
+            .filter(|f| !f.is_empty())
+            .collect();
+        let (org, code) = match fields.as_slice() {
+            [.., org, "0", code] | [.., org, code] => (*org, *code),
+            _ => return Err(bad()),
+        };
+        let is_version = org.chars().all(|c| c.is_ascii_digit() || c == '.');
+        let (org, code) = if is_version && fields.len() >= 3 {
+            // `urn:ogc:def:crs:EPSG:9.9:4326` puts a version between.
+            (fields[fields.len() - 3], code)
+        } else {
+            (org, code)
+        };
+        if org.eq_ignore_ascii_case("ogc") && code.eq_ignore_ascii_case("crs84") {
+            return Ok(Crs::wgs84());
+        }
+        if !org.chars().all(|c| c.is_ascii_alphanumeric()) {
+            return Err(bad());
+        }
+        let code: i32 = code.parse().map_err(|_| bad())?;
+        if org.eq_ignore_ascii_case("epsg") && code == 4326 {
+            return Ok(Crs::wgs84());
+        }
+        Ok(Crs {
+            authority: Some((org.to_ascii_uppercase(), code)),
+            wkt: None,
+        })
+    }
+
     /// The text of a `.prj`: ESRI's WKT for WGS 84 longitude and latitude
     /// (as GDAL writes it), the file's WKT 1 as it is, else whatever WKT
     /// the file gave (WKT 2, which older readers of `.prj` files ignore).
@@ -347,6 +398,28 @@ mod tests {
         let wkt2 = "PROJCRS[\"x\",BASEGEOGCRS[\"y\",ID[\"EPSG\",4326]],ID[\"EPSG\",3857]]";
         assert_eq!(Crs::from_wkt(wkt2).epsg(), Some(3857));
         assert_eq!(Crs::from_wkt("LOCAL_CS[\"x\"]").authority, None);
+    }
+
+    #[test]
+    fn crs_are_parsed_as_people_write_them() {
+        let code = |t: &str| Crs::parse(t).map(|c| c.authority);
+        let epsg = |c: i32| Ok(Some(("EPSG".to_owned(), c)));
+        assert_eq!(code("EPSG:3857"), epsg(3857));
+        assert_eq!(code(" epsg:2193 "), epsg(2193));
+        assert_eq!(code("urn:ogc:def:crs:EPSG::32633"), epsg(32633));
+        assert_eq!(code("urn:ogc:def:crs:EPSG:9.8.15:27700"), epsg(27700));
+        assert_eq!(
+            code("http://www.opengis.net/def/crs/EPSG/0/5070"),
+            epsg(5070)
+        );
+        for wgs84 in ["OGC:CRS84", "urn:ogc:def:crs:OGC:1.3:CRS84", "EPSG:4326"] {
+            assert_eq!(Crs::parse(wgs84), Ok(Crs::wgs84()), "{wgs84}");
+        }
+        assert_eq!(Crs::parse(WGS84_WKT).unwrap().epsg(), Some(4326));
+        for bad in ["", "4326", "EPSG:", "EPSG:x", "wgs 84", "a b:1"] {
+            let e = Crs::parse(bad).unwrap_err();
+            assert!(e.contains("EPSG:4326, OGC:CRS84"), "{bad}: {e}");
+        }
     }
 
     #[test]

@@ -34,7 +34,8 @@ pub(crate) fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     }
 }
 
-/// An array-like as a float64 numpy array (the same object when it is one).
+/// An array-like as an aligned float64 numpy array (the same object when it
+/// is one).
 /// Complex numbers are refused rather than cut to their real parts.
 pub(crate) fn as_float_array<'py>(
     x: &Bound<'py, PyAny>,
@@ -49,6 +50,9 @@ pub(crate) fn as_float_array<'py>(
     let arr = np
         .call_method1("asarray", (x, "float64"))
         .map_err(|e| PyTypeError::new_err(format!("{what}: {e}")))?;
+    // An array unpickled from a message buffer (dask's protocol 5 frames)
+    // may start at an address no f64 may be read from: copied to one.
+    let arr = np.call_method1("require", (arr, "float64", "A"))?;
     arr.extract()
 }
 

@@ -4,11 +4,14 @@
 
 use geo_types::{Coord, Geometry, LineString, MultiLineString, MultiPolygon, Polygon, Rect};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::PyString;
 
 use bzspline_geo::parts::{self, across, meetings, Levels, Meeting};
-use bzspline_geo::{coverage_chains, smooth_line, Coverage, Nodes, SmoothOptions};
+use bzspline_geo::{coverage_chains, smooth_line, Coverage, Frame, Nodes, SmoothOptions};
+use bzspline_io::distance::{parse_distance, Distance, Space, DISTANCE_FORMS};
+use bzspline_io::layer::Crs;
 
 /// Coordinates and offsets (innermost first) of a ragged array.
 type Ragged = (Vec<[f64; 2]>, Vec<Vec<i64>>);
@@ -351,15 +354,84 @@ fn extent_tuple(r: Option<Rect<f64>>) -> Option<[f64; 4]> {
     r.map(|r| [r.min().x, r.min().y, r.max().x, r.max().y])
 }
 
+/// A distance as `bzspline.geo.smooth` takes one: a number in the data's
+/// units, or text with a unit (`"50m"`, `"2km"`, `"0.001deg"`), parsed by
+/// [`parse_distance`].
+fn distance(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Distance> {
+    if let Ok(s) = value.downcast::<PyString>() {
+        return parse_distance(&s.to_cow()?)
+            .map_err(|e| PyValueError::new_err(format!("{name} {e}")));
+    }
+    value.extract::<f64>().map(Distance::data).map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{name} must be {DISTANCE_FORMS}, not {}",
+            value
+                .get_type()
+                .name()
+                .map_or_else(|_| "?".into(), |n| n.to_string())
+        ))
+    })
+}
+
+/// The tolerance and snap distance of `bzspline.geo.smooth` in the data's
+/// units, and whether to smooth on the ellipsoid: a distance in metres or
+/// degrees is measured in the coordinate system `crs` (`EPSG:4326`, WKT, as
+/// [`Crs::parse`] reads it) by [`Space::resolve`], as the command does.
+#[pyfunction]
+#[pyo3(signature = (tolerance=None, snap=None, crs=None))]
+pub fn _distances(
+    tolerance: Option<&Bound<'_, PyAny>>,
+    snap: Option<&Bound<'_, PyAny>>,
+    crs: Option<&str>,
+) -> PyResult<(Option<f64>, Option<f64>, bool)> {
+    let tolerance = tolerance.map(|t| distance("tolerance", t)).transpose()?;
+    let snap = snap.map(|s| distance("snap", s)).transpose()?;
+    let space = match crs {
+        Some(text) => Space::of_crs(Some(
+            &Crs::parse(text).map_err(|e| PyValueError::new_err(format!("crs: {e}")))?,
+        )),
+        None => Space::Unknown(
+            "no coordinate system is given (pass crs=, for example crs=\"EPSG:4326\", or a GeoSeries with one)"
+                .into(),
+        ),
+    };
+    let (mut t, mut geographic) = (None, false);
+    if let Some(d) = tolerance {
+        let (v, frame) = space
+            .resolve(d)
+            .map_err(|e| PyValueError::new_err(format!("the tolerance {e}")))?;
+        t = Some(v);
+        geographic = frame == Frame::Geographic;
+    }
+    let s = snap
+        .map(|d| {
+            space
+                .resolve_snap(d)
+                .map_err(|e| PyValueError::new_err(format!("the snap distance {e}")))
+        })
+        .transpose()?;
+    Ok((t, s, geographic))
+}
+
 /// `bzspline.geo.smooth`'s keyword arguments as the library's options,
-/// checked by the library ([`SmoothOptions::validate`]).
+/// checked by the library ([`SmoothOptions::validate`]); `geographic`:
+/// longitude and latitude, the tolerance in metres.
 fn smooth_options(
     tolerance: Option<f64>,
     through: bool,
     keep_angle: Option<f64>,
     alpha: f64,
+    geographic: bool,
 ) -> PyResult<SmoothOptions> {
-    let mut opts = SmoothOptions::default().alpha(alpha).through(through);
+    let frame = if geographic {
+        Frame::Geographic
+    } else {
+        Frame::Plane
+    };
+    let mut opts = SmoothOptions::default()
+        .alpha(alpha)
+        .through(through)
+        .frame(frame);
     opts.tolerance = tolerance;
     opts.keep_angle = keep_angle;
     opts.validate()
@@ -370,10 +442,11 @@ fn smooth_options(
 /// Smooths the geometries of ragged arrays (lines and polygons in one
 /// coverage: shared borders smoothed once), or each geometry on its own;
 /// with `nodes` (and `extent`) as one part of a larger coverage; with `snap`,
-/// positions closer than that are merged first. Returns each
-/// group's ragged array of the result.
+/// positions closer than that are merged first; with `geographic`, the
+/// positions are longitude and latitude and the tolerance is in metres
+/// (see [`_distances`]). Returns each group's ragged array of the result.
 #[pyfunction]
-#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None, levels=None, round=None, exact=None))]
+#[pyo3(signature = (groups, tolerance=None, coverage=true, through=false, keep_angle=None, alpha=0.5, nodes=None, extent=None, snap=None, levels=None, round=None, exact=None, geographic=false))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_ragged<'py>(
     py: Python<'py>,
@@ -389,11 +462,12 @@ pub fn _smooth_ragged<'py>(
     levels: Option<PyLevelsIn<'py>>,
     round: Option<usize>,
     exact: Option<usize>,
+    geographic: bool,
 ) -> PyResult<(Vec<PyRagged<'py>>, PyLevels<'py>)> {
     crate::guard(|| {
         let (geoms, index) = gather(&groups)?;
         let nodes = given_nodes(nodes, extent)?;
-        let opts = smooth_options(tolerance, through, keep_angle, alpha)?;
+        let opts = smooth_options(tolerance, through, keep_angle, alpha, geographic)?;
         let start = match levels {
             Some(l) => levels_from(l)?,
             None => Levels::default(),
@@ -696,9 +770,10 @@ type PySpans<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>);
 /// coordinates' dimension (2 or 3: z carried along as a curve in space):
 /// `coords` `(n, d)`, `spans` the offsets of the lines or rings (`closed`
 /// for rings), `owner` each one's geometry in the caller's array (for
-/// errors). Returns the new coordinates and spans.
+/// errors); `geographic` as for [`_smooth_ragged`]. Returns the new
+/// coordinates and spans.
 #[pyfunction]
-#[pyo3(signature = (coords, spans, owner, closed, tolerance=None, through=false, keep_angle=None, alpha=0.5))]
+#[pyo3(signature = (coords, spans, owner, closed, tolerance=None, through=false, keep_angle=None, alpha=0.5, geographic=false))]
 #[allow(clippy::too_many_arguments)] // the keyword arguments of bzspline.geo.smooth
 pub fn _smooth_spans<'py>(
     py: Python<'py>,
@@ -710,6 +785,7 @@ pub fn _smooth_spans<'py>(
     through: bool,
     keep_angle: Option<f64>,
     alpha: f64,
+    geographic: bool,
 ) -> PyResult<PySpans<'py>> {
     crate::guard(|| {
         let view = coords.as_array();
@@ -721,7 +797,7 @@ pub fn _smooth_spans<'py>(
         if owner.len() != ranges.len() {
             return Err(PyValueError::new_err("one owner per line or ring"));
         }
-        let opts = smooth_options(tolerance, through, keep_angle, alpha)?;
+        let opts = smooth_options(tolerance, through, keep_angle, alpha, geographic)?;
         let out = py.allow_threads(|| -> Result<(Vec<f64>, Vec<i64>), Fault> {
             let (mut out, mut ends) = (Vec::with_capacity(flat.len() * 4), vec![0i64]);
             for (j, &(a, b)) in ranges.iter().enumerate() {

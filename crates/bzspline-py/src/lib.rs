@@ -40,5 +40,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geo::_around_of, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_outer, m)?)?;
     m.add_function(wrap_pyfunction!(geo::_smooth_spans, m)?)?;
+    m.add_function(wrap_pyfunction!(geo::_distances, m)?)?;
     Ok(())
 }

@@ -99,3 +99,35 @@ def test_keep_angle_with_z_keeps_the_corners_as_the_command_does():
     with pytest.warns(UserWarning):
         cut = shapely.get_coordinates(bzspline.geo.smooth(line), include_z=True)
     assert not (cut == [1.0, 1.0, 3.0]).all(axis=1).any()
+
+
+def test_metres_on_longitude_and_latitude_are_the_commands(tmp_path):
+    # `tolerance="500m"` and `snap="2m"` on geometries in EPSG:4326 mean what
+    # `bzspline smooth --tolerance 500m --snap 2m` means on GeoJSON (RFC 7946:
+    # longitude and latitude): smoothing on the ellipsoid; the same positions.
+    import shapely
+    from shapely.geometry import mapping, shape
+
+    import bzspline.geo
+
+    path = ROOT / "crates/bzspline-cli/tests/fixtures/mosaic.geojson"
+    doc = json.loads(path.read_text())
+    # Moved north, where a degree of longitude is a quarter of a degree of
+    # latitude on the ground, and across the antimeridian.
+    geoms = shapely.transform(np.array([shape(f["geometry"]) for f in doc["features"]], dtype=object),
+                              lambda c: c * [1.0, 0.5] + [178.5, 74.0])
+    for f, g in zip(doc["features"], geoms):
+        f["geometry"] = mapping(g)
+    moved = tmp_path / "north.geojson"
+    moved.write_text(json.dumps(doc))
+    ours = bzspline.geo.smooth(geoms, tolerance="500m", snap="2m", crs="EPSG:4326")
+    out = subprocess.run([command(), "smooth", str(moved), "--tolerance", "500m", "--snap", "2m"],
+                         capture_output=True, text=True, check=True)
+    theirs = [shape(f["geometry"]) for f in json.loads(out.stdout)["features"]]
+    assert len(theirs) == len(ours)
+    for a, b in zip(ours, theirs):
+        assert np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b))
+    # Not what the same number in degrees gives.
+    plain = bzspline.geo.smooth(geoms, tolerance=500 / 111_195, snap=2 / 111_195)
+    assert not all(np.array_equal(shapely.get_coordinates(a), shapely.get_coordinates(b))
+                   for a, b in zip(ours, plain))

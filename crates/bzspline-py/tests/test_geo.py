@@ -173,3 +173,61 @@ def test_geometries_with_z_are_smoothed_in_space():
         assert (k == corner).all(axis=1).any(), corner
     with pytest.raises(ValueError, match="keep-angle"), pytest.warns(UserWarning):
         bzspline.geo.smooth(line, keep_angle=200)
+
+
+
+FEET = ('PROJCS["NAD83 / North Carolina (ftUS)",GEOGCS["NAD83",UNIT["degree",0.0174532925199433]],'
+        'PROJECTION["Lambert_Conformal_Conic_2SP"],UNIT["US survey foot",0.304800609601219]]')
+
+
+def same(a, b):
+    return len(a) == len(b) and all(
+        np.array_equal(shapely.get_coordinates(p), shapely.get_coordinates(q)) for p, q in zip(a, b))
+
+
+def test_distances_take_units_in_the_coordinate_system():
+    cells = grid(3, 2)
+    # Projected in US survey feet: metres become feet; degrees are refused.
+    feet = bzspline.geo.smooth(cells, tolerance="0.01m", snap="1e-4 m", crs=FEET)
+    assert same(feet, bzspline.geo.smooth(cells, tolerance=0.01 / 0.304800609601219,
+                                          snap=1e-4 / 0.304800609601219))
+    assert same(bzspline.geo.smooth(cells, tolerance="0.00001km", crs="EPSG:3857"),
+                bzspline.geo.smooth(cells, tolerance=0.01))
+    with pytest.raises(ValueError, match="projected, not in degrees"):
+        bzspline.geo.smooth(cells, tolerance="0.1deg", crs="EPSG:3857")
+    # Degrees on longitude and latitude are the coordinates' own units.
+    assert same(bzspline.geo.smooth(cells, tolerance="0.01deg", crs="OGC:CRS84"),
+                bzspline.geo.smooth(cells, tolerance=0.01))
+    # A bare number needs no coordinate system, and keeps to the plane.
+    assert same(bzspline.geo.smooth(cells, tolerance=0.01, crs="EPSG:4326"),
+                bzspline.geo.smooth(cells, tolerance=0.01))
+
+
+def test_distances_that_cannot_be_measured_say_why():
+    cells = grid(2, 2)
+    with pytest.raises(ValueError, match=r"tolerance 50 m cannot be measured: no coordinate system.*crs="):
+        bzspline.geo.smooth(cells, tolerance="50m")
+    with pytest.raises(ValueError, match="snap distance 1 m cannot be measured: EPSG:2193 is not"):
+        bzspline.geo.smooth(cells, snap="1m", crs="EPSG:2193")
+    with pytest.raises(ValueError, match="50m, 0.5km, 0.001deg"):
+        bzspline.geo.smooth(cells, tolerance="50 miles", crs="EPSG:4326")
+    with pytest.raises(ValueError, match="crs: .*not a coordinate system"):
+        bzspline.geo.smooth(cells, tolerance="50m", crs="WGS 84")
+    with pytest.raises(TypeError, match="tolerance must be"):
+        bzspline.geo.smooth(cells, tolerance=[50])
+    with pytest.raises(TypeError, match="crs must be"):
+        bzspline.geo.smooth(cells, tolerance="50m", crs=4326)
+    # Metres on the ellipsoid still check the tolerance's range.
+    with pytest.raises(ValueError, match="tolerance"):
+        bzspline.geo.smooth(cells, tolerance="-5m", crs="EPSG:4326")
+
+
+def test_a_geoseries_measures_in_its_own_crs():
+    geopandas = pytest.importorskip("geopandas")
+    cells = grid(3, 2)
+    lonlat = geopandas.GeoSeries(grid(3, 2), crs="EPSG:4326")
+    out = bzspline.geo.smooth(lonlat, tolerance="200m")
+    assert out.crs == lonlat.crs
+    assert same(out.values, bzspline.geo.smooth(cells, tolerance="200m", crs="EPSG:4326"))
+    utm = geopandas.GeoSeries(grid(3, 2), crs="EPSG:32633")
+    assert same(bzspline.geo.smooth(utm, tolerance="0.01m").values, bzspline.geo.smooth(cells, tolerance=0.01))

@@ -116,11 +116,12 @@ _NO_LEVELS = (np.zeros(0, np.uint64), np.zeros(1, np.int64), np.zeros(0, np.uint
 
 
 def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, snap, levels=None, round=None,
-                  exact=None):
+                  exact=None, geographic=False):
     """Smooths a 1-D object array; returns it and the refinement levels the
     arcs ended at (keys, offsets, values). With ``round``, only that round of
     the conflict search, from ``levels``, judging conflicts only among the
-    first ``exact`` geometries."""
+    first ``exact`` geometries. With ``geographic``, coordinates are
+    longitude and latitude and ``tolerance`` is in metres."""
     import shapely
 
     if nodes is not None and not isinstance(nodes, Nodes):
@@ -133,7 +134,7 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
                       "are not shared with their neighbours' (the coverage's topology is planar)", stacklevel=3)
         if tolerance is None:
             tolerance = _default_tolerance(arr)
-        out[spatial] = _smooth_in_space(arr[spatial], spatial, tolerance, through, keep_angle, alpha)
+        out[spatial] = _smooth_in_space(arr[spatial], spatial, tolerance, through, keep_angle, alpha, geographic)
         arr = arr.copy()
         arr[spatial] = None
     groups, picks = _groups(arr)
@@ -149,13 +150,23 @@ def _smooth_array(arr, tolerance, coverage, through, keep_angle, alpha, nodes, s
         nodes=None if nodes is None else np.ascontiguousarray(nodes.positions),
         extent=None if nodes is None else nodes.extent,
         snap=snap,
-        levels=levels,
+        levels=_aligned(levels),
         round=round,
         exact=exact,
+        geographic=geographic,
     )
     for (kind, _, _, _), pick, (c, o) in zip(groups, picks, results):
         out[pick] = _singles(arr[pick], shapely.from_ragged_array(kind, c, tuple(o)), kind)
     return out, ended
+
+
+def _aligned(arrays):
+    """The arrays (refinement levels, say) at addresses their items may be
+    read from: an array unpickled from a message buffer (dask's protocol 5
+    frames) may start anywhere, and the library reads them in place."""
+    if arrays is None:
+        return None
+    return tuple(np.require(a, requirements="A") for a in arrays)
 
 
 def _singles(given, back, kind):
@@ -188,7 +199,7 @@ def _default_tolerance(arr):
     return _core._default_tolerance(float(x0), float(y0), float(x1), float(y1))
 
 
-def _smooth_in_space(geoms, index, tolerance, through, keep_angle, alpha):
+def _smooth_in_space(geoms, index, tolerance, through, keep_angle, alpha, geographic):
     """Lines and polygons with z, every line and ring smoothed on its own as a
     curve in space (x, y, z), as ``bzspline smooth`` does."""
     import shapely
@@ -206,7 +217,8 @@ def _smooth_in_space(geoms, index, tolerance, through, keep_angle, alpha):
             owner = np.repeat(owner, np.diff(level))
         c, spans = _core._smooth_spans(np.ascontiguousarray(coords, dtype=np.float64),
                                        np.asarray(offsets[0], dtype=np.int64), owner, closed,
-                                       tolerance, through=through, keep_angle=keep_angle, alpha=alpha)
+                                       tolerance, through=through, keep_angle=keep_angle, alpha=alpha,
+                                       geographic=geographic)
         back = shapely.from_ragged_array(kind, c, (spans, *offsets[1:]))
         out[sel] = _singles(geoms[sel], back, int(kind))
     return out

@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _core
 from .errors import GeometryError
-from ._arrays import Nodes, _groups, _like, _smooth_array, _smoothable, _values
+from ._arrays import Nodes, _aligned, _groups, _like, _smooth_array, _smoothable, _values
 
 
 def nodes(d):
@@ -107,7 +107,7 @@ def _smooth_part(part, context, around, nodes, levels, opts, number, round):
     arr = np.concatenate([own, *context, *around])
     exact = len(own) + sum(len(c) for c in context)
     try:
-        out, ended = _smooth_array(arr, *opts, nodes, None, levels, round, exact)
+        out, ended = _smooth_array(arr, *opts[:5], nodes, None, levels, round, exact, geographic=opts[5])
     except ValueError as e:
         raise _in_partition(e, part, number) from None
     return _like(part, out[: len(own)]), ended
@@ -129,7 +129,7 @@ def _in_partition(e, part, number):
                          coordinate=e.coordinate, partition=number, label=label)
 
 
-def smooth(d, tolerance, through, keep_angle, alpha):
+def smooth(d, tolerance, through, keep_angle, alpha, geographic=False):
     """A coverage over dask partitions by the parts protocol of
     ``bzspline_geo::parts``: every partition smoothed with the whole's nodes,
     the other partitions' geometries it holds (its context and those around),
@@ -158,12 +158,12 @@ def smooth(d, tolerance, through, keep_angle, alpha):
     outers = dask.compute(*[dask.delayed(_bounds)(c, tuple(box)) for c, box in zip(contexts, boxes)])
     arounds = [list(dask.persist(*[dask.delayed(_near)(parts[j], outer, tuple(box)) for j in others(i, outer)]))
                for i, (box, outer) in enumerate(zip(boxes, outers))]
-    opts = (tolerance, True, through, keep_angle, alpha)
+    opts = (tolerance, True, through, keep_angle, alpha, geographic)
     rounds = _core._Rounds()
     while True:
         levels, round = rounds.levels, rounds.round
         runs = dask.persist(*[dask.delayed(_smooth_part)(p, c, a, nodes, levels, opts, i, round)
                               for i, (p, c, a) in enumerate(zip(parts, contexts, arounds))])
         ended = dask.compute(*[r[1] for r in runs])
-        if not rounds.finish(list(ended)):
+        if not rounds.finish([_aligned(e) for e in ended]):
             return dd.from_delayed([r[0] for r in runs], meta=d._meta, verify_meta=False)

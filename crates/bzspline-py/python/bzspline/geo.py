@@ -20,7 +20,7 @@ whole gives: every border the same in every partition that holds it, nothing
 crossing.
 """
 
-from typing import Optional
+from typing import Optional, Union
 
 import numpy as np
 
@@ -72,9 +72,9 @@ def nodes(obj):
     return Nodes(positions, extent)
 
 
-def smooth(obj, *, tolerance: Optional[float] = None, coverage: bool = True, through: bool = False,
+def smooth(obj, *, tolerance: Union[float, str, None] = None, coverage: bool = True, through: bool = False,
            keep_angle: Optional[float] = None, alpha: float = 0.5, nodes: Optional[Nodes] = None,
-           snap: Optional[float] = None):
+           snap: Union[float, str, None] = None, crs=None):
     """Smooth lines and polygon rings with the method, keeping coverages valid.
 
     Parameters
@@ -85,10 +85,15 @@ def smooth(obj, *, tolerance: Optional[float] = None, coverage: bool = True, thr
         docs); sort it spatially (``spatial_shuffle``) so that partitions are
         compact, since each one also reads the geometries of the others that
         meet its extent.
-    tolerance : float, optional
-        Largest distance between the smooth curve and the output polyline, in
-        coordinate units; by default 1e-4 of the diagonal of the data's
-        bounding box.
+    tolerance : float or str, optional
+        Largest distance between the smooth curve and the output polyline: a
+        number in coordinate units, or a distance with a unit, ``"50m"``,
+        ``"2km"`` or ``"0.001deg"``, measured in the coordinate system
+        (``crs``, or the GeoSeries' own). On longitude and latitude, metres
+        smooth on the WGS 84 ellipsoid, as ``bzspline smooth --tolerance 50m``
+        does: the same ground distance at every latitude and across the
+        antimeridian; on projected data they become the system's units. By
+        default 1e-4 of the diagonal of the data's bounding box.
     coverage : bool, default True
         Smooth the whole array as one coverage (shared borders once), or each
         geometry on its own as a coverage of its own, with its own default
@@ -111,11 +116,17 @@ def smooth(obj, *, tolerance: Optional[float] = None, coverage: bool = True, thr
         another) is needed: that is decided within the part, and a border
         between parts can then differ. A dask series takes care of all this
         itself.
-    snap : float, optional
+    snap : float or str, optional
         Merge positions closer than this distance first (each to the first met
         within it), so that borders digitised twice with small differences
         become one. Within ``obj`` only: snap a whole coverage before
-        splitting it into parts.
+        splitting it into parts. A number or a distance with a unit, as
+        ``tolerance`` (on longitude and latitude ``"0.5m"`` is the angle of
+        half a metre of a great circle).
+    crs : pyproj.CRS or str, optional
+        The coordinate system, for distances with a unit: a ``pyproj.CRS``,
+        ``"EPSG:4326"``, ``"OGC:CRS84"`` or WKT. By default a GeoSeries'
+        ``crs``; arrays of shapely geometries have none.
 
     Returns
     -------
@@ -134,30 +145,49 @@ def smooth(obj, *, tolerance: Optional[float] = None, coverage: bool = True, thr
         ``ring``, ``coordinate`` where they apply; ``partition`` and ``label``
         for a dask series).
     ValueError
-        For an option out of range.
+        For an option out of range, or a distance with a unit on data whose
+        coordinate system is unknown or cannot measure it.
     TypeError
         For ``nodes`` that is not a :class:`Nodes`.
     """
     import shapely
 
+    given = tolerance
+    if isinstance(tolerance, str) or isinstance(snap, str):
+        crs = _crs_text(crs if crs is not None else getattr(obj, "crs", None))
+    else:
+        crs = _crs_text(crs)
+    tolerance, snap, geographic = _core._distances(tolerance, snap, crs)
     args = (tolerance, coverage, through, keep_angle, alpha, nodes, snap)
     if _is_dask(obj):
         if nodes is not None or snap is not None:
             raise ValueError("a dask series finds its own nodes; snap the coverage before partitioning it")
         if not coverage:
-            return obj.map_partitions(smooth, tolerance=tolerance, coverage=False, through=through,
-                                      keep_angle=keep_angle, alpha=alpha, meta=obj._meta)
+            return obj.map_partitions(smooth, tolerance=given, coverage=False, through=through,
+                                      keep_angle=keep_angle, alpha=alpha, crs=crs, meta=obj._meta)
         from . import _dask
 
-        return _dask.smooth(obj, tolerance, through, keep_angle, alpha)
+        return _dask.smooth(obj, tolerance, through, keep_angle, alpha, geographic)
     if isinstance(obj, shapely.Geometry):
-        return _smooth_array(np.array([obj], dtype=object), *args)[0][0]
+        return _smooth_array(np.array([obj], dtype=object), *args, geographic=geographic)[0][0]
     try:
         import geopandas
     except ImportError:
         geopandas = None
     if geopandas is not None and isinstance(obj, geopandas.GeoSeries):
-        values, _ = _smooth_array(np.asarray(obj.values, dtype=object), *args)
+        values, _ = _smooth_array(np.asarray(obj.values, dtype=object), *args, geographic=geographic)
         return _like(obj, values)
     arr = np.asarray(obj, dtype=object)
-    return _smooth_array(arr.ravel(), *args)[0].reshape(arr.shape)
+    return _smooth_array(arr.ravel(), *args, geographic=geographic)[0].reshape(arr.shape)
+
+
+def _crs_text(crs):
+    """A coordinate system as the library reads it: a ``pyproj.CRS`` (or
+    anything with ``to_wkt``) as its WKT, text as it is, ``None`` as none."""
+    if crs is None:
+        return None
+    if hasattr(crs, "to_wkt"):
+        return crs.to_wkt()
+    if isinstance(crs, str):
+        return crs
+    raise TypeError(f"crs must be a pyproj.CRS or a string such as 'EPSG:4326', not {type(crs).__name__}")
