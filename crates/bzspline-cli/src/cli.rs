@@ -10,6 +10,7 @@ use clap::{Args, ValueEnum};
 
 use crate::input::{self, Points, Source};
 use crate::model::{Mode, Shape};
+use crate::time::DateFormat;
 use bzspline::AlphaChoice;
 use bzspline_io::distance::{parse_distance, Distance};
 use bzspline_io::options::parse_alpha;
@@ -56,9 +57,9 @@ pub struct InputArgs {
     )]
     pub max_bytes: u64,
     /// A table's column of x, by header name or number (from 1); its values
-    /// may be numbers or ISO 8601 dates (`2024-03-01`, days) and date-times
-    /// (`2024-03-01T06:00:00Z`, seconds; without an offset read as UTC). With
-    /// --x alone, y is the first other column.
+    /// may be numbers or dates (`2024-03-01`, days) and date-times
+    /// (`2024-03-01T06:00:00Z`, seconds; without an offset read as UTC), in the
+    /// forms --date-format lists. With --x alone, y is the first other column.
     #[arg(long = "x", value_name = "NAME|N", conflicts_with = "columns")]
     pub x: Option<String>,
     /// A table's column of y, by header name or number. With --y alone (or a
@@ -69,6 +70,20 @@ pub struct InputArgs {
     /// header name or number.
     #[arg(long, value_name = "A,B[,C]", value_delimiter = ',')]
     pub columns: Option<Vec<String>>,
+    /// The form of a table's dates in x, with strftime's (and d3's) directives:
+    /// `%d/%m/%Y`, `%m/%d/%Y`, `%b %d %Y` (month names), `%Y-%m` (months, read as
+    /// their first day), `%Y%m%d`, `%d.%m.%Y %H:%M` (date-times, UTC) or with
+    /// `%z` (an offset such as +0200), `%s` (seconds since 1970). Without it x is
+    /// a number or one of 2000-01-31, 2000-01-31T13:45:00Z, 2000-01-31 13:45,
+    /// 2000/01/31, 2000-01, Jan 31 2000, January 31, 2000, 31 Jan 2000; dates
+    /// such as 01/02/2000, day and month either way round, are refused.
+    #[arg(long, value_name = "FORMAT", value_parser = date_format)]
+    pub date_format: Option<DateFormat>,
+}
+
+/// `--date-format`, checked by [`DateFormat::new`].
+fn date_format(s: &str) -> Result<DateFormat, String> {
+    DateFormat::new(s)
 }
 
 impl InputArgs {
@@ -84,6 +99,7 @@ impl InputArgs {
             x: self.x.clone(),
             y: self.y.clone(),
             columns: self.columns.clone(),
+            date_format: self.date_format.clone(),
         }
     }
 
@@ -238,7 +254,8 @@ pub struct EvalArgs {
     #[command(flatten)]
     pub output: OutputArgs,
     /// Abscissas (curve parameters with --curve), comma-separated: numbers, or
-    /// dates and date-times when the data's x holds them.
+    /// dates and date-times when the data's x holds them (in the form of
+    /// --date-format when it is given).
     #[arg(
         long,
         value_name = "X1,...",
@@ -395,25 +412,50 @@ fn finite(s: &str) -> Result<f64, String> {
     }
 }
 
-/// An abscissa of `--at`: a number, or a date or date-time.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// An abscissa of `--at`: a number, or a date or date-time, or text for
+/// `--date-format` to read.
+#[derive(Debug, Clone, PartialEq)]
 pub enum Abscissa {
-    /// A finite number.
-    Number(f64),
+    /// A finite number, and its text.
+    Number(f64, String),
     /// A date or date-time, in its kind's unit.
     Time(f64, crate::time::TimeKind),
+    /// Neither: a date in the form `--date-format` gives.
+    Text(String),
+}
+
+impl Abscissa {
+    /// The abscissa as the data's x reads it: with a date format, a date in
+    /// that form (numbers too, `20000131`).
+    ///
+    /// # Errors
+    ///
+    /// Text that is no number or date of a known form, or does not match
+    /// the format.
+    pub fn read(&self, dates: Option<&DateFormat>) -> Result<Abscissa, String> {
+        let text = match self {
+            Abscissa::Number(_, t) | Abscissa::Text(t) => t,
+            Abscissa::Time(..) => return Ok(self.clone()),
+        };
+        match dates {
+            Some(f) => f.parse(text).map(|(v, k)| Abscissa::Time(v, k)),
+            None if matches!(self, Abscissa::Text(_)) => Err(format!(
+                "'{text}' is not a number or a date (dates are read as {}; give --date-format for any other form)",
+                crate::time::AUTO_FORMS
+            )),
+            None => Ok(self.clone()),
+        }
+    }
 }
 
 fn abscissa(s: &str) -> Result<Abscissa, String> {
     if let Ok(v) = finite(s) {
-        return Ok(Abscissa::Number(v));
+        return Ok(Abscissa::Number(v, s.trim().to_owned()));
     }
-    match crate::time::parse(s) {
-        Some((v, k)) => Ok(Abscissa::Time(v, k)),
-        None => Err(format!(
-            "must be a finite number or an ISO 8601 date (got {s})"
-        )),
-    }
+    Ok(match crate::time::parse(s) {
+        Some((v, k)) => Abscissa::Time(v, k),
+        None => Abscissa::Text(s.trim().to_owned()),
+    })
 }
 
 fn at_least_two(s: &str) -> Result<usize, String> {

@@ -260,7 +260,11 @@ fn eval(a: &EvalArgs) -> Result<()> {
         (None, Some(path)) => {
             let limits = a.input.limits();
             let (name, bytes) = input::read_source(Some(path), limits.max_bytes)?;
-            let t = input::parse_table(&name, &bytes, None, limits.max_points)?;
+            let select = input::Select {
+                dates: a.input.date_format.clone(),
+                ..Default::default()
+            };
+            let t = input::parse_table_with(&name, &bytes, None, limits.max_points, &select)?;
             input::check_columns(&t, &[1], "1 (one abscissa per line)")?;
             let pos = (0..t.len()).map(|i| t.at(i)).collect();
             let xs = t
@@ -268,7 +272,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
                 .into_iter()
                 .map(|v| match t.time {
                     Some(k) => Abscissa::Time(v, k),
-                    None => Abscissa::Number(v),
+                    None => Abscissa::Number(v, v.to_string()),
                 })
                 .collect();
             (xs, pos)
@@ -284,10 +288,13 @@ fn eval(a: &EvalArgs) -> Result<()> {
     let data_time = points.time.filter(|_| shape.mode == Mode::Function);
     let mut queries = Vec::with_capacity(given.len());
     for (x, pos) in given.iter().zip(&qpos) {
-        queries.push(match (*x, data_time) {
-            (Abscissa::Number(v), None) => v,
+        let dates = a.input.date_format.as_ref().filter(|_| data_time.is_some());
+        let x = x.read(dates).map_err(|e| anyhow!("{pos}: {e}"))?;
+        queries.push(match (x, data_time) {
+            (Abscissa::Number(v, _), None) => v,
             (Abscissa::Time(v, k), Some(want)) => time::convert(v, k, want),
-            (Abscissa::Number(v), Some(_)) => {
+            (Abscissa::Text(_), _) => unreachable!("read above"),
+            (Abscissa::Number(v, _), Some(_)) => {
                 bail!(
                     "{pos}: {v} is a number, but x in {} holds dates",
                     points.source

@@ -1,12 +1,29 @@
-//! Dates and times as x: ISO 8601 dates (`2024-03-01`), read as days since
-//! 1970-01-01, and date-times (`2024-03-01T06:00:00Z`, with an offset such as
-//! `+02:00`, or naive and then read as UTC), read as seconds since
-//! 1970-01-01T00:00:00Z; and the way back, in the input's form.
+//! Dates and times as x: dates (`2024-03-01`, and the other unambiguous forms
+//! of [`AUTO_FORMS`]), read as days since 1970-01-01, and date-times
+//! (`2024-03-01T06:00:00Z`, with an offset such as `+02:00`, or naive and then
+//! read as UTC), read as seconds since 1970-01-01T00:00:00Z; any other form
+//! through a [`DateFormat`] (strftime's directives); and the way back, in
+//! ISO 8601.
 
 use jiff::civil::Date;
+use jiff::fmt::strtime;
 use jiff::fmt::temporal::Pieces;
 use jiff::tz::{Offset, TimeZone};
 use jiff::Timestamp;
+
+/// The forms read as dates without a [`DateFormat`], for messages and help.
+pub const AUTO_FORMS: &str = "2000-01-31, 2000-01-31T13:45:00Z or 2000-01-31 13:45 (with an offset such as +02:00, or read as UTC), 2000/01/31, 2000-01 (a month), Jan 31 2000, January 31, 2000, 31 Jan 2000";
+
+/// Forms with a month's name, tried in order.
+const NAMED: [&str; 7] = [
+    "%b %d %Y",
+    "%B %d %Y",
+    "%b %d, %Y",
+    "%B %d, %Y",
+    "%d %b %Y",
+    "%d %B %Y",
+    "%a %b %d %Y",
+];
 
 /// The form of a column of dates or times, which decides its unit and how
 /// numbers are written back.
@@ -26,9 +43,27 @@ const SECONDS_PER_DAY: f64 = 86_400.0;
 #[must_use]
 pub fn parse(text: &str) -> Option<(f64, TimeKind)> {
     let text = text.trim();
+    let b = text.as_bytes();
+    let digits = |r: std::ops::Range<usize>| b[r].iter().all(u8::is_ascii_digit);
+    // A month, `2000-01`: its first day.
+    if b.len() == 7 && b[4] == b'-' && digits(0..4) && digits(5..7) {
+        return with_format("%Y-%m", text).ok();
+    }
+    // `2000/01/31`: year first, so not ambiguous.
+    if b.len() == 10 && b[4] == b'/' && b[7] == b'/' && digits(0..4) {
+        return with_format("%Y/%m/%d", text).ok();
+    }
+    if b.first().is_some_and(u8::is_ascii_alphabetic)
+        || b.iter().any(u8::is_ascii_alphabetic)
+            && b.first().is_some_and(u8::is_ascii_digit)
+            && b.len() < 20
+    {
+        if let Some(t) = NAMED.iter().find_map(|f| with_format(f, text).ok()) {
+            return Some(t);
+        }
+    }
     // Only text that starts like a date: jiff's parser takes more forms
     // (week dates, ordinal dates) than a table's x column should.
-    let b = text.as_bytes();
     if b.len() < 10 || b[4] != b'-' || b[7] != b'-' {
         return None;
     }
@@ -43,6 +78,95 @@ pub fn parse(text: &str) -> Option<(f64, TimeKind)> {
     let ts = tz.to_timestamp(civil).ok()?;
     let keep = offset.filter(|o| *o != Offset::UTC);
     Some((seconds_of(ts), TimeKind::DateTime(keep)))
+}
+
+/// Whether `text` is a date whose day and month could be either way round
+/// (`01/02/2000`, `1-2-00`, `01.02.2000`): such dates need a
+/// [`DateFormat`].
+#[must_use]
+pub fn ambiguous(text: &str) -> bool {
+    let parts: Vec<&str> = text.trim().split(['/', '-', '.']).collect();
+    let number = |p: &str, lo: usize, hi: usize| {
+        (lo..=hi).contains(&p.len()) && p.bytes().all(|c| c.is_ascii_digit())
+    };
+    parts.len() == 3 && number(parts[0], 1, 2) && number(parts[1], 1, 2) && number(parts[2], 2, 4)
+}
+
+/// A date format with strftime's (and d3-time-format's) directives: `%Y`
+/// `%m` `%d`, `%b` (a month's name), `%H` `%M` `%S`, `%z` (an offset),
+/// `%s` (seconds since 1970). A format without a day reads the first day of
+/// the month (`%Y-%m`); without an hour, dates; with one, date-times, at the
+/// offset `%z` gives or else in UTC.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DateFormat(String);
+
+impl DateFormat {
+    /// Checks a format: it must have directives jiff knows and name a date.
+    ///
+    /// # Errors
+    ///
+    /// The words of a message (the caller names the option).
+    pub fn new(format: &str) -> Result<DateFormat, String> {
+        let a = jiff::civil::date(2001, 2, 3).at(4, 5, 6, 0);
+        let b = jiff::civil::date(2009, 8, 7).at(4, 5, 6, 0);
+        let write = |d: jiff::civil::DateTime| {
+            let tm = strtime::BrokenDownTime::from(
+                &d.to_zoned(TimeZone::UTC).map_err(|e| e.to_string())?,
+            );
+            tm.to_string(format).map_err(|e| e.to_string())
+        };
+        let (x, y) = (write(a)?, write(b)?);
+        if x == y {
+            return Err(format!(
+                "{format:?} names no date: give a year, a month and a day, for example %d/%m/%Y"
+            ));
+        }
+        Ok(DateFormat(format.to_owned()))
+    }
+
+    /// The format as given.
+    #[must_use]
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+
+    /// Reads `text` in this format.
+    ///
+    /// # Errors
+    ///
+    /// Text that does not match, as the words of a message.
+    pub fn parse(&self, text: &str) -> Result<(f64, TimeKind), String> {
+        with_format(&self.0, text.trim()).map_err(|e| {
+            format!(
+                "'{}' does not match the date format '{}' ({e})",
+                text.trim(),
+                self.0
+            )
+        })
+    }
+}
+
+/// `text` read with strftime's `format`: dates without an hour, date-times
+/// with one (at their offset, or UTC).
+fn with_format(format: &str, text: &str) -> Result<(f64, TimeKind), String> {
+    let mut tm = strtime::parse(format, text).map_err(|e| e.to_string())?;
+    if tm.day().is_none() && tm.month().is_some() {
+        tm.set_day(Some(1)).map_err(|e| e.to_string())?;
+    }
+    if tm.hour().is_some() || format.contains("%s") {
+        let ts = match tm.to_timestamp() {
+            Ok(ts) => ts,
+            // No offset: a naive time, read as UTC.
+            Err(_) => {
+                let dt = tm.to_datetime().map_err(|e| e.to_string())?;
+                TimeZone::UTC.to_timestamp(dt).map_err(|e| e.to_string())?
+            }
+        };
+        let keep = tm.offset().filter(|o| *o != Offset::UTC);
+        return Ok((seconds_of(ts), TimeKind::DateTime(keep)));
+    }
+    let date = tm.to_date().map_err(|e| e.to_string())?;
+    Ok((days_of(date), TimeKind::Date))
 }
 
 /// `value` of kind `from` in the unit of kind `to` (days or seconds).
@@ -122,6 +246,69 @@ mod tests {
             Some("2024-03-01T06:00:01.5Z")
         );
         assert_eq!(convert(1.0, TimeKind::Date, k), 86_400.0);
+    }
+
+    #[test]
+    fn unambiguous_forms_are_read_without_a_format() {
+        let day = parse("2000-01-31");
+        for t in [
+            "2000/01/31",
+            "Jan 31 2000",
+            "January 31, 2000",
+            "31 Jan 2000",
+            "31 january 2000",
+            "Mon Jan 31 2000",
+        ] {
+            assert_eq!(parse(t), day, "{t}");
+        }
+        assert_eq!(parse("2000-01"), parse("2000-01-01"));
+        let noon = parse("2000-01-31T12:00:00Z");
+        assert!(noon.is_some());
+        assert_eq!(parse("2000-01-31 12:00:00"), noon);
+        assert_eq!(parse("2000-01-31 12:00"), noon);
+        // A number that looks like a date stays a number.
+        assert_eq!(parse("20000131"), None);
+    }
+
+    #[test]
+    fn day_and_month_either_way_round_are_ambiguous() {
+        for t in ["01/02/2000", "1/2/00", "01.02.2000", "31-01-2000"] {
+            assert!(ambiguous(t), "{t}");
+            assert_eq!(parse(t), None, "{t}");
+        }
+        for t in ["2000/01/31", "2000-01-31", "20000131", "1/2", "1.5"] {
+            assert!(!ambiguous(t), "{t}");
+        }
+    }
+
+    #[test]
+    fn formats_read_any_form() {
+        let want = parse("2000-02-01").unwrap();
+        let f = |fmt: &str| DateFormat::new(fmt).unwrap();
+        assert_eq!(f("%d/%m/%Y").parse("01/02/2000"), Ok(want));
+        assert_eq!(f("%m/%d/%Y").parse("02/01/2000"), Ok(want));
+        assert_eq!(f("%Y%m%d").parse("20000201"), Ok(want));
+        assert_eq!(f("%Y-%m").parse("2000-02"), Ok(want));
+        assert_eq!(f("%b %d %Y").parse("Feb 1 2000"), Ok(want));
+        let (v, k) = f("%d.%m.%Y %H:%M %z")
+            .parse("01.02.2000 08:00 +0200")
+            .unwrap();
+        assert_eq!(v, want.0 * 86_400.0 + 6.0 * 3600.0);
+        assert_eq!(k, TimeKind::DateTime(Some(Offset::constant(2))));
+        assert_eq!(
+            f("%d/%m/%Y %H:%M").parse("01/02/2000 06:00").unwrap().0,
+            want.0 * 86_400.0 + 6.0 * 3600.0
+        );
+        let e = f("%d/%m/%Y").parse("2000-02-01").unwrap_err();
+        assert!(
+            e.contains("does not match the date format '%d/%m/%Y'"),
+            "{e}"
+        );
+        assert!(f("%d/%m/%Y").parse("31/02/2000").is_err());
+        assert!(DateFormat::new("%H:%M")
+            .unwrap_err()
+            .contains("names no date"));
+        assert!(DateFormat::new("%Q%!").is_err());
     }
 
     #[test]

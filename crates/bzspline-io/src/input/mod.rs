@@ -83,6 +83,8 @@ pub struct Source {
     pub y: Option<String>,
     /// A table's columns, in order, by header name or number.
     pub columns: Option<Vec<String>>,
+    /// The form of a table's dates, with strftime's directives.
+    pub date_format: Option<crate::time::DateFormat>,
 }
 
 impl Default for Source {
@@ -96,6 +98,7 @@ impl Default for Source {
             x: None,
             y: None,
             columns: None,
+            date_format: None,
         }
     }
 }
@@ -502,10 +505,11 @@ pub fn load(args: &Source) -> Result<Points> {
             .columns
             .as_ref()
             .map(|c| c.iter().map(|s| Col::parse(s)).collect()),
+        dates: args.date_format.clone(),
     };
     let table = matches!(format, InputFormat::Csv | InputFormat::Tsv);
     if !table && select != Select::default() {
-        bail!("{name}: --x, --y and --columns choose columns of a table; this is {format:?}");
+        bail!("{name}: --x, --y, --columns and --date-format are for tables; this is {format:?}");
     }
     let points = match format {
         InputFormat::Csv => parse_table_with(&name, &bytes, None, max, &select),

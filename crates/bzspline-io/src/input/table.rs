@@ -6,7 +6,7 @@
 use anyhow::{anyhow, Result};
 
 use super::{too_many, utf8, Points, Pos, Positions};
-use crate::time::{self, TimeKind};
+use crate::time::{self, DateFormat, TimeKind};
 
 /// A column, by its header name or its number (from 1).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -38,7 +38,8 @@ impl std::fmt::Display for Col {
 }
 
 /// Which columns of a table are read, in order: `--columns`, or `--x` and
-/// `--y`; every column when nothing is chosen.
+/// `--y`; every column when nothing is chosen; and how the first of them
+/// writes its dates.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Select {
     /// The abscissa (`--x`).
@@ -47,6 +48,9 @@ pub struct Select {
     pub y: Option<Col>,
     /// The columns of a curve's coordinates, or x and y (`--columns`).
     pub columns: Option<Vec<Col>>,
+    /// The form of the first column's dates (`--date-format`); without it,
+    /// numbers and the forms of [`time::AUTO_FORMS`].
+    pub dates: Option<DateFormat>,
 }
 
 /// The chosen columns of a table whose rows have `width` fields, by number
@@ -180,21 +184,31 @@ fn parse_number(field: &str) -> std::result::Result<f64, String> {
 
 /// The first column's field: a number, or a date or date-time of the kind the
 /// column's first row set (`kind`: unset, `None` for numbers, the kind of
-/// dates).
-fn read_x(field: &str, kind: &mut Option<Option<TimeKind>>) -> std::result::Result<f64, String> {
-    if let Ok(v) = parse_number(field) {
-        return match kind {
-            Some(Some(_)) => Err(format!(
-                "'{}' is a number, but the column holds dates",
-                show(field)
-            )),
-            _ => {
-                *kind = Some(None);
-                Ok(v)
-            }
-        };
+/// dates); with `dates`, a date in that form (numbers too: `20000131`).
+fn read_x(
+    field: &str,
+    kind: &mut Option<Option<TimeKind>>,
+    dates: Option<&DateFormat>,
+) -> std::result::Result<f64, String> {
+    let date = match dates {
+        Some(f) => Some(f.parse(field)?),
+        None => None,
+    };
+    if date.is_none() {
+        if let Ok(v) = parse_number(field) {
+            return match kind {
+                Some(Some(_)) => Err(format!(
+                    "'{}' is a number, but the column holds dates",
+                    show(field)
+                )),
+                _ => {
+                    *kind = Some(None);
+                    Ok(v)
+                }
+            };
+        }
     }
-    match (time::parse(field), *kind) {
+    match (date.or_else(|| time::parse(field)), *kind) {
         (Some((v, k)), None) => {
             *kind = Some(Some(k));
             Ok(v)
@@ -204,10 +218,19 @@ fn read_x(field: &str, kind: &mut Option<Option<TimeKind>>) -> std::result::Resu
             "'{}' is a date, but the column holds numbers",
             show(field)
         )),
+        (None, _) if time::ambiguous(field) => Err(format!(
+            "'{}' could be day/month or month/day: give --date-format, for example %d/%m/%Y or %m/%d/%Y (read without it: {})",
+            show(field),
+            time::AUTO_FORMS
+        )),
         (None, _) => match field.parse::<f64>() {
             Ok(_) => parse_number(field),
             Err(_) if field.is_empty() => parse_number(field),
-            Err(_) => Err(format!("'{}' is not a number or a date", show(field))),
+            Err(_) => Err(format!(
+                "'{}' is not a number or a date (dates are read as {}; give --date-format for any other form)",
+                show(field),
+                time::AUTO_FORMS
+            )),
         },
     }
 }
@@ -312,7 +335,12 @@ pub fn parse_table_with(
         if record.iter().all(str::is_empty) || record.get(0).is_some_and(|f| f.starts_with('#')) {
             continue; // a line of spaces, or an indented comment
         }
-        let readable = |f: &str| parse_number(f).is_ok() || time::parse(f).is_some();
+        let readable = |f: &str| {
+            parse_number(f).is_ok()
+                || time::parse(f).is_some()
+                || time::ambiguous(f)
+                || select.dates.as_ref().is_some_and(|d| d.parse(f).is_ok())
+        };
         let numeric = record.iter().filter(|f| readable(f)).count();
         if lines.is_empty() && header.is_none() && numeric == 0 {
             header = Some(record.iter().map(str::to_owned).collect());
@@ -329,7 +357,7 @@ pub fn parse_table_with(
         read_row(
             &record,
             cols,
-            &mut kind,
+            (&mut kind, select.dates.as_ref()),
             numeric == 0,
             (name, line),
             &mut coords,
@@ -389,7 +417,7 @@ fn check_width(
 fn read_row(
     record: &csv::StringRecord,
     cols: &[usize],
-    kind: &mut Option<Option<TimeKind>>,
+    (kind, dates): (&mut Option<Option<TimeKind>>, Option<&DateFormat>),
     no_numbers: bool,
     (name, line): (&str, usize),
     coords: &mut Vec<f64>,
@@ -397,7 +425,7 @@ fn read_row(
     for (slot, &j) in cols.iter().enumerate() {
         let field = record.get(j).unwrap_or("");
         let read = if slot == 0 {
-            read_x(field, kind)
+            read_x(field, kind, dates)
         } else {
             parse_number(field)
         };
