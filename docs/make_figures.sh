@@ -21,3 +21,5 @@ python3 docs/make_through.py    # through.* and step.*: curves through the point
 # smoothing.png: a noisy bump fitted by bzspline and scipy; needs the Python package
 # installed (pip install ./crates/bzspline-py scipy matplotlib).
 python3 -c "import sys; sys.path.insert(0, 'bench'); import smoothing; smoothing.figure('docs/smoothing.png', 0)"
+# qgis.png is drawn by QGIS's renderer: with python3-qgis, and bzspline and shapely 2 in
+# QGIS's Python, run QT_QPA_PLATFORM=offscreen python3 docs/make_qgis.py.
