@@ -439,10 +439,9 @@ impl Abscissa {
         };
         match dates {
             Some(f) => f.parse(text).map(|(v, k)| Abscissa::Time(v, k)),
-            None if matches!(self, Abscissa::Text(_)) => Err(format!(
-                "'{text}' is not a number or a date (dates are read as {}; give --date-format for any other form)",
-                crate::time::AUTO_FORMS
-            )),
+            None if matches!(self, Abscissa::Text(_)) => {
+                Err(crate::time::not_a_number_or_date(text))
+            }
             None => Ok(self.clone()),
         }
     }

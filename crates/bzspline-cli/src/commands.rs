@@ -289,7 +289,12 @@ fn eval(a: &EvalArgs) -> Result<()> {
     let mut queries = Vec::with_capacity(given.len());
     for (x, pos) in given.iter().zip(&qpos) {
         let dates = a.input.date_format.as_ref().filter(|_| data_time.is_some());
-        let x = x.read(dates).map_err(|e| anyhow!("{pos}: {e}"))?;
+        let x = match x.read(dates) {
+            Ok(x) => x,
+            // Values of --at are arguments: a bad one is a usage error.
+            Err(e) if a.at.is_some() => usage!("{pos}: {e}"),
+            Err(e) => bail!("{pos}: {e}"),
+        };
         queries.push(match (x, data_time) {
             (Abscissa::Number(v, _), None) => v,
             (Abscissa::Time(v, k), Some(want)) => time::convert(v, k, want),

@@ -92,6 +92,21 @@ pub fn ambiguous(text: &str) -> bool {
     parts.len() == 3 && number(parts[0], 1, 2) && number(parts[1], 1, 2) && number(parts[2], 2, 4)
 }
 
+/// The message for text that is neither a number nor a date of a known
+/// form. Text with a digit in it may be a date in another form, so the
+/// message lists the forms read and names `--date-format`; a word (a
+/// header, `NA`) gets the plain message.
+#[must_use]
+pub fn not_a_number_or_date(text: &str) -> String {
+    if text.bytes().any(|c| c.is_ascii_digit()) {
+        format!(
+            "'{text}' is not a number or a date (dates are read as {AUTO_FORMS}; give --date-format for any other form)"
+        )
+    } else {
+        format!("'{text}' is not a number or a date")
+    }
+}
+
 /// A date format with strftime's (and d3-time-format's) directives: `%Y`
 /// `%m` `%d`, `%b` (a month's name), `%H` `%M` `%S`, `%z` (an offset),
 /// `%s` (seconds since 1970). A format without a day reads the first day of

@@ -226,11 +226,7 @@ fn read_x(
         (None, _) => match field.parse::<f64>() {
             Ok(_) => parse_number(field),
             Err(_) if field.is_empty() => parse_number(field),
-            Err(_) => Err(format!(
-                "'{}' is not a number or a date (dates are read as {}; give --date-format for any other form)",
-                show(field),
-                time::AUTO_FORMS
-            )),
+            Err(_) => Err(time::not_a_number_or_date(&show(field))),
         },
     }
 }
