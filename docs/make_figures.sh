@@ -15,6 +15,12 @@ for ext in svg png; do
     "$bz" plot docs/visitors.csv --no-polygon \
         --title "Daily visitors, January 2024 (α = 1/2)" -o "docs/dated.$ext"
 done
+# dense.png: 5,104 daily closes of the S&P 500 from vega-datasets (fetched with npm).
+vd=$(mktemp -d)
+(cd "$vd" && npm pack --silent vega-datasets@2.11.0 >/dev/null && tar xzf vega-datasets-2.11.0.tgz)
+"$bz" plot "$vd/package/data/sp500-2000.csv" --x date --y close \
+    --title "S&P 500, daily close: 5,104 points drawn as a chart" -o docs/dense.png
+rm -rf "$vd"
 python3 docs/make_compare.py
 python3 docs/make_coverage.py   # coverage.png needs rsvg-convert (apt-get install librsvg2-bin)
 python3 docs/make_through.py    # through.* and step.*: curves through the points (docs/.venv)

@@ -224,3 +224,135 @@ fn axes_hold_the_whole_finite_range() {
         );
     }
 }
+
+/// The `d` of the widest-stroked path (the spline), as its commands: a
+/// letter and its numbers.
+fn spline_path(svg: &str) -> Vec<(char, Vec<f64>)> {
+    let doc = roxmltree::Document::parse(svg).unwrap();
+    let d = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("path") && n.attribute("stroke-width") == Some("2.4"))
+        .filter_map(|n| n.attribute("d"))
+        .max_by_key(|d| d.len())
+        .expect("a spline path")
+        .to_string();
+    let mut out: Vec<(char, Vec<f64>)> = Vec::new();
+    let mut num = String::new();
+    for c in d.chars().chain(std::iter::once('E')) {
+        if c.is_ascii_alphabetic() && c != 'e' || c == ',' || c == ' ' {
+            if !num.is_empty() {
+                out.last_mut().unwrap().1.push(num.parse().unwrap());
+                num.clear();
+            }
+            if c.is_ascii_alphabetic() && c != 'E' {
+                out.push((c, Vec::new()));
+            }
+        } else {
+            num.push(c);
+        }
+    }
+    out
+}
+
+/// A 5,000-point noisy series plotted with the defaults is a chart: a small
+/// SVG, no control polygon or rings, and a line that draws the same pixels
+/// as the spline's pieces (checked against the pieces flattened here).
+#[test]
+fn many_points_draw_a_small_readable_chart() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut csv = String::from("t,v\n");
+    let mut state = 12345u64;
+    for i in 0..5000 {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let noise = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        let x = f64::from(i);
+        csv.push_str(&format!(
+            "{x},{}\n",
+            (x / 300.0).sin() * 100.0 + 20.0 * noise
+        ));
+    }
+    std::fs::write(dir.path().join("series.csv"), csv).unwrap();
+    let out = run(dir.path(), &["plot", "series.csv", "-o", "dense.svg"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(dir.path().join("dense.svg")).unwrap();
+    assert!(svg.len() < 200_000, "{} bytes", svg.len());
+    assert!(
+        !svg.contains("stroke-dasharray=\"6 4\""),
+        "no control polygon"
+    );
+    assert!(count(&svg, "circle") <= 2, "only the legend's symbols");
+    let line = spline_path(&svg);
+    assert!(line.iter().all(|(c, _)| *c == 'M' || *c == 'L'));
+
+    // The same figure with every point asked for draws the pieces exactly.
+    let out = run(
+        dir.path(),
+        &["plot", "series.csv", "--points", "-o", "full.svg"],
+    );
+    assert!(out.status.success());
+    let full = std::fs::read_to_string(dir.path().join("full.svg")).unwrap();
+    assert!(full.len() > 2 * svg.len());
+    let pieces = spline_path(&full);
+    assert_eq!(pieces.iter().filter(|(c, _)| *c == 'C').count(), 4999);
+    // Flatten every piece to 0.05 px steps and bin the points by pixel column.
+    let mut columns: std::collections::BTreeMap<i64, Vec<[f64; 2]>> = Default::default();
+    let mut at = [0.0; 2];
+    for (c, v) in &pieces {
+        if *c == 'M' {
+            at = [v[0], v[1]];
+            continue;
+        }
+        let p = [at, [v[0], v[1]], [v[2], v[3]], [v[4], v[5]]];
+        let reach: f64 = (1..4)
+            .map(|k| (p[k][0] - p[k - 1][0]).hypot(p[k][1] - p[k - 1][1]))
+            .sum();
+        let n = (reach / 0.05).ceil().max(1.0) as usize;
+        for k in 0..=n {
+            let t = k as f64 / n as f64;
+            let u = 1.0 - t;
+            let b = [u * u * u, 3.0 * u * u * t, 3.0 * u * t * t, t * t * t];
+            let q = [0, 1].map(|j| (0..4).map(|i| b[i] * p[i][j]).sum::<f64>());
+            columns.entry(q[0].floor() as i64).or_default().push(q);
+        }
+        at = p[3];
+    }
+    // Every vertex of the chart's line lies on the spline.
+    let mut drawn: std::collections::BTreeMap<i64, (f64, f64)> = Default::default();
+    for (_, v) in &line {
+        let q = [v[0], v[1]];
+        let col = q[0].floor() as i64;
+        let near = (col - 1..=col + 1)
+            .filter_map(|c| columns.get(&c))
+            .flatten()
+            .map(|p| (p[0] - q[0]).hypot(p[1] - q[1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!(near < 0.06, "vertex {q:?} is {near} px off the spline");
+        let e = drawn
+            .entry(col)
+            .or_insert((f64::INFINITY, f64::NEG_INFINITY));
+        *e = (e.0.min(q[1]), e.1.max(q[1]));
+    }
+    // And the line reaches the spline's lowest and highest point in every
+    // pixel column (give or take the column beside it: the SVG's numbers
+    // are rounded to a hundredth of a pixel, which may move a vertex on a
+    // column's edge across it).
+    for (col, pts) in &columns {
+        let lo = pts.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+        let hi = pts.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+        let (dlo, dhi) = (col - 1..=col + 1)
+            .filter_map(|c| drawn.get(&c))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, b| {
+                (a.0.min(b.0), a.1.max(b.1))
+            });
+        assert!(
+            dlo < lo + 0.5 && dhi > hi - 0.5,
+            "column {col}: spline {lo}..{hi}, drawn {dlo}..{dhi}"
+        );
+    }
+}

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail, Context as _};
 use serde::Deserialize;
 
-use super::{PlotData, PlotOptions};
+use super::{PlotData, PlotOptions, DENSE_POINTS};
 
 /// Options of the figure (the `plot` subcommand).
 #[derive(clap::Args, Clone, Debug, PartialEq)]
@@ -28,14 +28,27 @@ pub struct FigureArgs {
     #[arg(long)]
     pub ylabel: Option<String>,
     /// Do not draw the control points (a clean chart line).
-    #[arg(long)]
+    #[arg(long, overrides_with = "points")]
     pub no_points: bool,
-    /// Do not draw the dashed control polygon.
-    #[arg(long)]
+    /// Draw the control points as dots even past 300 points (where
+    /// they are drawn as small marks).
+    #[arg(long, overrides_with = "no_points")]
+    pub points: bool,
+    /// Do not draw the dashed control polygon (not drawn by default past
+    /// 300 points).
+    #[arg(long, overrides_with = "polygon")]
     pub no_polygon: bool,
-    /// Do not mark the points where the curve touches the control polygon.
-    #[arg(long)]
+    /// Draw the dashed control polygon, also past 300 points.
+    #[arg(long, overrides_with = "no_polygon")]
+    pub polygon: bool,
+    /// Do not mark the points where the curve touches the control polygon
+    /// (not marked by default past 300 points).
+    #[arg(long, overrides_with = "tangents")]
     pub no_tangents: bool,
+    /// Mark the points where the curve touches the control polygon, also
+    /// past 300 points.
+    #[arg(long, overrides_with = "no_tangents")]
+    pub tangents: bool,
     /// Shade the convex hull of the control points.
     #[arg(long)]
     pub hull: bool,
@@ -62,9 +75,21 @@ pub struct FigureArgs {
 
 impl FigureArgs {
     /// The drawing options these arguments ask for; `names` are the data's
-    /// column names (the axis labels unless given).
+    /// column names (the axis labels unless given), `n` the number of
+    /// points: past [`DENSE_POINTS`] the figure is a chart (the points as
+    /// small marks, no control polygon or tangent rings) unless asked.
     #[must_use]
-    pub fn options(&self, names: Option<&[String]>) -> PlotOptions {
+    pub fn options(&self, names: Option<&[String]>, n: usize) -> PlotOptions {
+        let dense = n > DENSE_POINTS;
+        let chosen = |on: bool, off: bool, default: bool| {
+            if on {
+                true
+            } else if off {
+                false
+            } else {
+                default
+            }
+        };
         let name = |i: usize, default: &str| {
             names
                 .and_then(|n| n.get(i))
@@ -77,11 +102,12 @@ impl FigureArgs {
             title: self.title.clone(),
             x_label: self.xlabel.clone().unwrap_or_else(|| name(0, "x")),
             y_label: self.ylabel.clone().unwrap_or_else(|| name(1, "y")),
-            show_tangents: !self.no_tangents,
+            show_tangents: chosen(self.tangents, self.no_tangents, !dense),
             show_hull: self.hull,
             show_knots: self.knots,
             show_points: !self.no_points,
-            show_polygon: !self.no_polygon,
+            show_polygon: chosen(self.polygon, self.no_polygon, !dense),
+            dense: dense && !self.points,
             show_range: self.data_range,
             equal_aspect: self.equal_aspect,
             png_scale: self.scale,
@@ -167,7 +193,7 @@ mod tests {
             "1/3, 0.5,2/3",
         ])
         .unwrap();
-        let o = cli.plot.options(None);
+        let o = cli.plot.options(None, 10);
         assert_eq!((o.width, o.height), (640, 500));
         assert_eq!(o.title.as_deref(), Some("T"));
         assert!(!o.show_tangents && o.show_hull && !o.show_knots);
@@ -180,6 +206,22 @@ mod tests {
             .err()
             .unwrap();
         assert!(e.to_string().contains("\"x\""), "{e}");
+    }
+
+    #[test]
+    fn many_points_make_a_chart_unless_asked() {
+        let parse = |a: &[&str]| Cli::try_parse_from([&["t"], a].concat()).unwrap().plot;
+        let few = parse(&[]).options(None, DENSE_POINTS);
+        assert!(few.show_polygon && few.show_tangents && few.show_points && !few.dense);
+        let many = parse(&[]).options(None, DENSE_POINTS + 1);
+        assert!(!many.show_polygon && !many.show_tangents && many.show_points && many.dense);
+        let asked = parse(&["--polygon", "--tangents", "--points"]).options(None, 5000);
+        assert!(asked.show_polygon && asked.show_tangents && !asked.dense);
+        // The last of a pair wins.
+        let o = parse(&["--polygon", "--no-polygon"]).options(None, 10);
+        assert!(!o.show_polygon);
+        let o = parse(&["--no-points", "--points"]).options(None, 10);
+        assert!(o.show_points);
     }
 
     #[test]

@@ -70,7 +70,7 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     for path in &a.figure.overlay {
         data.extend(read_overlay(path)?);
     }
-    let mut opts = a.figure.options(points.names.as_deref());
+    let mut opts = a.figure.options(points.names.as_deref(), points.len());
     opts.x_time = points.time.filter(|_| shape.mode == Mode::Function);
     // A curve's shape is only right with one unit as long on both axes.
     opts.equal_aspect |= shape.mode == Mode::Curve;

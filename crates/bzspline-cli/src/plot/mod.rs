@@ -184,7 +184,16 @@ pub struct PlotOptions {
     /// The curves are smoothing fits of their observations: the control
     /// polygon is the fitted one, drawn faint.
     pub smoothing: bool,
+    /// Many points: points, knots and observations are drawn as small marks
+    /// in one path, and a curve of more pieces than half the plot's width
+    /// in pixels as a polyline on the pixel grid, so that the SVG grows
+    /// with the drawing, not with the points.
+    pub dense: bool,
 }
+
+/// Past this many points a plot is drawn as a chart by default: the points
+/// as small marks, no control polygon and no tangent rings.
+pub const DENSE_POINTS: usize = 300;
 
 impl Default for PlotOptions {
     fn default() -> Self {
@@ -203,6 +212,7 @@ impl Default for PlotOptions {
             equal_aspect: false,
             png_scale: 1.0,
             x_time: None,
+            dense: false,
             through: false,
             smoothing: false,
         }

@@ -474,12 +474,22 @@ fn draw_data(
         }
     }
     for d in data {
+        if opts.dense {
+            write_marks(s, f, &d.observations, INK, 0.45, 3.0);
+            continue;
+        }
         for p in d.observations.iter().filter(|p| finite(p)) {
             let (x, y) = f.px(*p);
             let _ = writeln!(
                 s,
                 r#"<circle cx="{x}" cy="{y}" r="2.2" fill="{INK}" fill-opacity="0.45"/>"#
             );
+        }
+    }
+    if opts.show_points && opts.dense {
+        // Many points: faint marks under the curve, which stays readable.
+        for (c, _) in controls {
+            write_marks(s, f, c, INK, 0.35, 2.6);
         }
     }
     if opts.show_polygon {
@@ -496,11 +506,13 @@ fn draw_data(
     }
     // The first curve is the subject of the figure: draw it last, on top.
     for (i, d) in data.iter().enumerate().rev() {
-        write_curve(s, f, d, color(i));
+        write_curve(s, f, d, color(i), opts.dense);
     }
     for (i, d) in data.iter().enumerate() {
         let c = if data.len() == 1 { color(0) } else { color(i) };
-        if opts.show_knots {
+        if opts.show_knots && opts.dense {
+            write_marks(s, f, &d.knot_points, c, 1.0, 4.0);
+        } else if opts.show_knots {
             for p in d.knot_points.iter().filter(|p| finite(p)) {
                 let (x, y) = f.px(*p);
                 let _ = writeln!(
@@ -521,7 +533,7 @@ fn draw_data(
             }
         }
     }
-    if opts.show_points {
+    if opts.show_points && !opts.dense {
         for (c, _) in controls {
             for p in c.iter().filter(|p| finite(p)) {
                 let (x, y) = f.px(*p);
@@ -562,10 +574,117 @@ fn write_points(s: &mut String, f: &Frame, pts: &[[f64; 2]]) {
     }
 }
 
-fn write_curve(s: &mut String, f: &Frame, d: &PlotData, color: &str) {
+/// Points as one path of round dots `size` pixels across, one per half
+/// pixel at most: the size of the SVG follows the drawing, not the points.
+fn write_marks(s: &mut String, f: &Frame, pts: &[[f64; 2]], color: &str, opacity: f64, size: f64) {
+    let mut seen = std::collections::HashSet::new();
+    let mut path = String::new();
+    for p in pts.iter().filter(|p| finite(p)) {
+        let (x, y) = f.px(*p);
+        if seen.insert(((x.0 * 2.0).round() as i64, (y.0 * 2.0).round() as i64)) {
+            let _ = write!(path, "M{x},{y}h0");
+        }
+    }
+    if !path.is_empty() {
+        let _ = writeln!(
+            s,
+            r#"<path d="{path}" stroke="{color}" stroke-opacity="{opacity}" stroke-width="{size}" stroke-linecap="round" fill="none"/>"#
+        );
+    }
+}
+
+/// The pieces in pixels, flattened: each cut into chords no longer than a
+/// pixel (a chord of a cubic that short strays from it by far less than a
+/// pixel), then thinned to the pixel grid. Where x never decreases (a graph
+/// y(x)), every pixel column keeps its first, lowest, highest and last
+/// point, which draws the same pixels as the whole polyline; elsewhere a
+/// point within half a pixel of the last kept one is dropped.
+fn dense_polyline(f: &Frame, segs: &[&[[f64; 2]; 4]]) -> Vec<[f64; 2]> {
+    let px = |p: [f64; 2]| {
+        let (x, y) = f.px(p);
+        [x.0, y.0]
+    };
+    let mut pts: Vec<[f64; 2]> = Vec::new();
+    for seg in segs {
+        let c = seg.map(px);
+        let reach = (1..4)
+            .map(|k| (c[k][0] - c[k - 1][0]).hypot(c[k][1] - c[k - 1][1]))
+            .sum::<f64>();
+        let n = (reach.ceil() as usize).clamp(1, 64);
+        if pts.last() != Some(&c[0]) {
+            pts.push(c[0]);
+        }
+        for k in 1..=n {
+            let t = k as f64 / n as f64;
+            let u = 1.0 - t;
+            let b = [u * u * u, 3.0 * u * u * t, 3.0 * u * t * t, t * t * t];
+            pts.push([
+                b[0] * c[0][0] + b[1] * c[1][0] + b[2] * c[2][0] + b[3] * c[3][0],
+                b[0] * c[0][1] + b[1] * c[1][1] + b[2] * c[2][1] + b[3] * c[3][1],
+            ]);
+        }
+    }
+    if pts.windows(2).all(|w| w[1][0] >= w[0][0]) {
+        let mut out: Vec<[f64; 2]> = Vec::new();
+        let mut start = 0;
+        while start < pts.len() {
+            let column = pts[start][0].floor();
+            let end = pts[start..]
+                .iter()
+                .position(|p| p[0].floor() != column)
+                .map_or(pts.len(), |k| start + k);
+            let run = &pts[start..end];
+            let by_y = |a: &&[f64; 2], b: &&[f64; 2]| a[1].total_cmp(&b[1]);
+            let lo = run
+                .iter()
+                .enumerate()
+                .min_by(|a, b| by_y(&a.1, &b.1))
+                .map_or(0, |m| m.0);
+            let hi = run
+                .iter()
+                .enumerate()
+                .max_by(|a, b| by_y(&a.1, &b.1))
+                .map_or(0, |m| m.0);
+            let mut keep = [0, lo, hi, run.len() - 1];
+            keep.sort_unstable();
+            let mut last = None;
+            for k in keep {
+                if last != Some(k) {
+                    out.push(run[k]);
+                    last = Some(k);
+                }
+            }
+            start = end;
+        }
+        out
+    } else {
+        let mut out: Vec<[f64; 2]> = Vec::with_capacity(pts.len());
+        for (i, p) in pts.iter().enumerate() {
+            let near = out
+                .last()
+                .is_some_and(|q: &[f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]) < 0.5);
+            if !near || i + 1 == pts.len() {
+                out.push(*p);
+            }
+        }
+        out
+    }
+}
+
+fn write_curve(s: &mut String, f: &Frame, d: &PlotData, color: &str, dense: bool) {
     let mut path = String::new();
     let segs: Vec<&[[f64; 2]; 4]> = d.segments.iter().filter(|p| p.iter().all(finite)).collect();
-    if !segs.is_empty() {
+    if dense && segs.len() as f64 > f.w / 2.0 {
+        for (i, p) in dense_polyline(f, &segs).iter().enumerate() {
+            let _ = write!(
+                path,
+                "{}{},{}",
+                if i == 0 { "M" } else { "L" },
+                Num(p[0]),
+                Num(p[1])
+            );
+        }
+    } else if !segs.is_empty() {
         let segs_first = segs.first().map(|p| p[0]);
         let mut last: Option<[f64; 2]> = None;
         for p in segs {
