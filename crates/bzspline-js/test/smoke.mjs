@@ -1,4 +1,4 @@
-// Run in a fresh folder where the packed package is installed: the three
+// Run in a fresh folder where the packed package is installed: the four
 // entries load, a d3 line draws, a spline answers, noisy data smooth, a map
 // smooths.
 import assert from "node:assert/strict";
@@ -6,6 +6,7 @@ import { line } from "d3-shape";
 import { Spline, curveBzsplineX } from "bzspline";
 import { smooth } from "bzspline/geo";
 import { smoothingSpline } from "bzspline/smoothing";
+import { bzsplinePlugin, curveValue } from "bzspline/chartjs";
 
 const d = line().curve(curveBzsplineX)([[0, 0], [1, 2], [2, 1], [3, 3]]);
 assert.match(d, /^M0,0C/);
@@ -16,4 +17,6 @@ const square = { type: "Polygon", coordinates: [[[0, 0], [1, 0], [1, 1], [0, 1],
 const out = smooth({ type: "Feature", properties: {}, geometry: square });
 assert.equal(out.geometry.type, "Polygon");
 assert.ok(out.geometry.coordinates[0].length > 5);
+assert.equal(bzsplinePlugin.id, "bzspline");
+assert.equal(typeof curveValue, "function");
 console.log("smoke: ok");

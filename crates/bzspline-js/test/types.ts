@@ -39,3 +39,27 @@ curveBzspline.param("spiral");
 s.free();
 c.free();
 export { lam, sv, sc, v, vs, e, d1, segs, p, near, path, outline, out, obj };
+// The Chart.js plugin: registered once, chosen per dataset.
+import { Chart, type ChartConfiguration } from "chart.js";
+import { bzsplinePlugin, curveValue } from "../js/chartjs.js";
+Chart.register(bzsplinePlugin);
+const lineConfig: ChartConfiguration<"line"> = {
+  type: "line",
+  data: { labels: ["a", "b", "c"], datasets: [{ data: [1, 3, 2], bzspline: { alpha: 0.4, through: true } }] },
+};
+const scatterConfig: ChartConfiguration<"scatter"> = {
+  type: "scatter",
+  data: { datasets: [{ data: [{ x: 0, y: 1 }], showLine: true, bzspline: true }] },
+};
+const badConfig: ChartConfiguration<"line"> = {
+  type: "line",
+  // @ts-expect-error: alpha is a number
+  data: { datasets: [{ data: [1, 2], bzspline: { alpha: "half" } }] },
+};
+declare const someChart: Chart;
+const atPointer: number | null = curveValue(someChart, 0, 120);
+// Recharts takes the d3 curve factories as `type`.
+import { createElement } from "react";
+import { Line as RechartsLine, Area as RechartsArea } from "recharts";
+createElement(RechartsLine, { type: curveBzsplineX, dataKey: "y" });
+createElement(RechartsArea, { type: curveBzsplineX.alpha(0.4).through(true), dataKey: "y" });

@@ -1,0 +1,304 @@
+// A Chart.js 4 plugin that draws line datasets with the method's spline:
+// registered once (`Chart.register(bzsplinePlugin)`), chosen per dataset
+// (`bzspline: true` or `{ alpha, through }`). The curve is the spline
+// through the dataset's points in pixel space; each piece is one cubic
+// Bezier segment, drawn by the line element's own path methods (`path`,
+// `pathSegment`, `interpolate`, `draw`), which the filler, the animations
+// and the decimation call, so fill, gaps, stacking, decimation, animation and
+// resizing keep working. Pieces join at the spline's knots, which are the
+// points themselves only for `through` and at the ends. `curveValue` gives
+// the value on the drawn curve at a pixel (a tooltip at the pointer's x).
+import "./index.js";
+import { splinePieces, checkAlpha } from "../wasm/core.js";
+
+/** The dataset's settings, or null where the plugin does not draw it. */
+function settings(dataset, index) {
+  const o = dataset.bzspline;
+  if (!o) return null;
+  if (o === true) return { alpha: 0.5, through: false };
+  if (typeof o !== "object") {
+    throw new TypeError(`dataset ${index}: bzspline is true or { alpha, through }, not ${String(o)}`);
+  }
+  let alpha = 0.5;
+  if (o.alpha !== undefined) {
+    try {
+      alpha = checkAlpha(+o.alpha);
+    } catch (e) {
+      throw new RangeError(`dataset ${index}: bzspline ${e.message}`);
+    }
+  }
+  return { alpha, through: !!o.through };
+}
+
+/** 1 when the values rise strictly, -1 when they fall strictly, 0 otherwise. */
+function direction(u) {
+  if (u.length < 2) return 0;
+  const s = Math.sign(u[1] - u[0]);
+  if (s === 0 || Number.isNaN(s)) return 0;
+  for (let i = 1; i < u.length; i++) if (!(Math.sign(u[i] - u[i - 1]) === s)) return 0;
+  return s;
+}
+
+/** The runs of point indices drawn as one piece of line: split at gaps unless spanned. */
+function runs(points, spanGaps) {
+  const out = [];
+  let run = [];
+  points.forEach((p, i) => {
+    if (p.skip) {
+      if (!spanGaps && run.length) {
+        out.push(run);
+        run = [];
+      }
+      return;
+    }
+    run.push(i);
+  });
+  if (run.length) out.push(run);
+  return out;
+}
+
+/**
+ * The pieces of one run in pixels, as in `splinePieces`: `[u0, v0, (u1, v1,
+ * u2, v2, u3, v3)...]` with u the index axis, in the order of the points;
+ * null where the method cannot take the run.
+ */
+function pieces(run, swap, o) {
+  const u = run.map((p) => (swap ? p.y : p.x));
+  const v = run.map((p) => (swap ? p.x : p.y));
+  const dir = direction(u);
+  if (dir === 0) return null;
+  if (run.length === 2) {
+    const [du, dv] = [u[1] - u[0], v[1] - v[0]];
+    return [u[0], v[0], u[0] + du / 3, v[0] + dv / 3, u[0] + (2 * du) / 3, v[0] + (2 * dv) / 3, u[1], v[1]];
+  }
+  if (dir === 1) {
+    const p = splinePieces(u, v, o.alpha, o.through);
+    return p.length ? Array.from(p) : null;
+  }
+  const p = splinePieces(u.slice().reverse(), v.slice().reverse(), o.alpha, o.through);
+  if (!p.length) return null;
+  // The same pieces, each written from its other end.
+  const back = [p[p.length - 2], p[p.length - 1]];
+  for (let i = p.length - 6; i >= 2; i -= 6) {
+    back.push(p[i + 2], p[i + 3], p[i], p[i + 1], p[i - 2], p[i - 1]);
+  }
+  return back;
+}
+
+/**
+ * What the line element `line` draws, from the method: for each point index
+ * its knot on the curve and the piece to the next point of its run; null
+ * where Chart.js must draw the line itself (a loop, a stepped line, index
+ * values that do not run one way, a piece that is not finite).
+ */
+function build(line, indexAxis) {
+  const o = line._bzspline;
+  const opts = line.options || {};
+  const points = line.points || [];
+  if (!o || line._loop || opts.stepped) return null;
+  const swap = indexAxis === "y";
+  const at = (p, i) => (swap ? [p[i + 1], p[i]] : [p[i], p[i + 1]]);
+  const knots = new Map();
+  const next = new Map();
+  const all = [];
+  for (const run of runs(points, opts.spanGaps)) {
+    if (run.length < 2) continue;
+    const p = pieces(
+      run.map((i) => points[i]),
+      swap,
+      o,
+    );
+    if (!p || p.some((c) => !Number.isFinite(c))) return null;
+    all.push(p);
+    run.forEach((i, k) => {
+      knots.set(i, at(p, 6 * k));
+      if (k + 1 < run.length) next.set(i, [run[k + 1], ...at(p, 6 * k + 2), ...at(p, 6 * k + 4)]);
+    });
+  }
+  return { swap, pieces: all, knots, next };
+}
+
+/** The drawing of `line`, built for its current pixels when needed. */
+function drawn(line, indexAxis) {
+  if (!line._bzspline) return null;
+  if (!line._pointsUpdated || !line._bzsplineDrawn || line._bzsplineAxis !== indexAxis) {
+    // Where the method cannot take the line, Chart.js's own control points
+    // are still to be computed: the line stays not updated.
+    line._bzsplineDrawn = build(line, indexAxis);
+    line._bzsplineAxis = indexAxis;
+    if (line._bzsplineDrawn) line._pointsUpdated = true;
+  }
+  return line._bzsplineDrawn;
+}
+
+/** Sets the stroke style of a line segment as Chart.js does. */
+function setStyle(ctx, options, style = options) {
+  const or = (v, d) => (v === undefined ? d : v);
+  ctx.lineCap = or(style.borderCapStyle, options.borderCapStyle);
+  ctx.setLineDash(or(style.borderDash, options.borderDash));
+  ctx.lineDashOffset = or(style.borderDashOffset, options.borderDashOffset);
+  ctx.lineJoin = or(style.borderJoinStyle, options.borderJoinStyle);
+  ctx.lineWidth = or(style.borderWidth, options.borderWidth);
+  ctx.strokeStyle = or(style.borderColor, options.borderColor);
+}
+
+/**
+ * The line element's methods that draw and interpolate it, for a line the
+ * plugin draws; each defers to Chart.js's own where the method cannot take
+ * the line. Their contracts are those of Chart.js's `LineElement`.
+ */
+const methods = {
+  updateControlPoints(chartArea, indexAxis) {
+    if (drawn(this, indexAxis)) return;
+    this._bzsplineOwn.updateControlPoints.call(this, chartArea, indexAxis);
+  },
+
+  pathSegment(ctx, segment, params = {}) {
+    const d = this._bzspline && this._pointsUpdated ? this._bzsplineDrawn : null;
+    if (!d || segment.loop) return this._bzsplineOwn.pathSegment.call(this, ctx, segment, params);
+    const points = this.points;
+    const start = Math.max(params.start ?? 0, segment.start);
+    const end = Math.min(params.end ?? points.length - 1, segment.end);
+    const reverse = !!params.reverse;
+    let move = params.move ?? true;
+    let prev = -1;
+    const knot = (i) => d.knots.get(i) || [points[i].x, points[i].y];
+    for (let k = 0; k <= end - start; k++) {
+      const i = reverse ? end - k : start + k;
+      if (points[i].skip) continue;
+      const [x, y] = knot(i);
+      if (move) {
+        ctx.moveTo(x, y);
+        move = false;
+      } else {
+        const [lo, hi] = reverse ? [i, prev] : [prev, i];
+        const c = prev < 0 ? null : d.next.get(lo);
+        if (c && c[0] === hi) {
+          if (reverse) ctx.bezierCurveTo(c[3], c[4], c[1], c[2], x, y);
+          else ctx.bezierCurveTo(c[1], c[2], c[3], c[4], x, y);
+        } else {
+          ctx.lineTo(x, y);
+        }
+      }
+      prev = i;
+    }
+    return false;
+  },
+
+  path(ctx, start, count) {
+    if (!(this._bzspline && this._pointsUpdated && this._bzsplineDrawn)) {
+      return this._bzsplineOwn.path.call(this, ctx, start, count);
+    }
+    start = start || 0;
+    count = count || this.points.length - start;
+    for (const segment of this.segments) this.pathSegment(ctx, segment, { start, end: start + count - 1 });
+    return false;
+  },
+
+  interpolate(point, property) {
+    const d = this._bzspline && this._pointsUpdated ? this._bzsplineDrawn : null;
+    const axis = d && (d.swap ? "y" : "x");
+    if (!d || property !== axis) return this._bzsplineOwn.interpolate.call(this, point, property);
+    const v = valueAt(d, point[property]);
+    if (v === null) return undefined;
+    return d.swap ? { x: v, y: point[property] } : { x: point[property], y: v };
+  },
+
+  draw(ctx, chartArea, start, count) {
+    if (!(this._bzspline && this._pointsUpdated && this._bzsplineDrawn)) {
+      return this._bzsplineOwn.draw.call(this, ctx, chartArea, start, count);
+    }
+    const options = this.options || {};
+    const points = this.points || [];
+    if (points.length && options.borderWidth) {
+      start = start || 0;
+      count = count || points.length - start;
+      ctx.save();
+      for (const segment of this.segments) {
+        setStyle(ctx, options, segment.style);
+        ctx.beginPath();
+        this.pathSegment(ctx, segment, { start, end: start + count - 1 });
+        ctx.stroke();
+      }
+      ctx.restore();
+    }
+    if (this.animated) {
+      // As Chart.js: an animated line is rebuilt for every frame's pixels.
+      this._pointsUpdated = false;
+      this._path = undefined;
+    }
+  },
+};
+
+/** Gives a line element the plugin's methods (once). */
+function adopt(line) {
+  if (line._bzsplineOwn) return;
+  const own = {};
+  for (const name of Object.keys(methods)) {
+    own[name] = line[name];
+    line[name] = methods[name];
+  }
+  line._bzsplineOwn = own;
+}
+
+/** The plugin: `Chart.register(bzsplinePlugin)`. */
+export const bzsplinePlugin = {
+  id: "bzspline",
+  beforeUpdate(chart) {
+    // Options are checked before Chart.js builds anything, so a bad one
+    // throws from `new Chart` or `update`, not while drawing.
+    chart.data.datasets.forEach((dataset, i) => settings(dataset, i));
+  },
+  afterDatasetUpdate(chart, args) {
+    const line = args.meta && args.meta.dataset;
+    if (!line || typeof line.updateControlPoints !== "function") return;
+    const o = settings(chart.data.datasets[args.index] || {}, args.index);
+    line._bzspline = o;
+    line._pointsUpdated = false;
+    line._path = undefined;
+    if (o) adopt(line);
+  },
+};
+
+/** The value of a cubic Bezier piece's coordinate at t. */
+function bezier(a, b, c, d, t) {
+  const s = 1 - t;
+  return s * s * s * a + 3 * s * s * t * b + 3 * s * t * t * c + t * t * t * d;
+}
+
+/** The value on the drawn curve at `u` on the index axis, in pixels; null where none. */
+function valueAt(d, u) {
+  if (!Number.isFinite(u)) return null;
+  for (const p of d.pieces) {
+    for (let i = 2; i + 5 < p.length; i += 6) {
+      const [u0, u3] = [p[i - 2], p[i + 4]];
+      if (!((u - u0) * (u - u3) <= 0)) continue;
+      // u(t) is monotone on the piece: bisect to the last bit.
+      let [lo, hi] = u0 <= u3 ? [0, 1] : [1, 0];
+      for (let k = 0; k < 60; k++) {
+        const mid = (lo + hi) / 2;
+        if (bezier(u0, p[i], p[i + 2], u3, mid) < u) lo = mid;
+        else hi = mid;
+      }
+      return bezier(p[i - 1], p[i + 1], p[i + 3], p[i + 5], (lo + hi) / 2);
+    }
+  }
+  return null;
+}
+
+/**
+ * The value on the drawn curve of dataset `datasetIndex` at `pixel` on the
+ * index axis (the pointer's x for a vertical line chart), in the value
+ * scale's units; null where the dataset is not drawn by the plugin or has
+ * no curve at that pixel (outside its points, in a gap).
+ */
+export function curveValue(chart, datasetIndex, pixel) {
+  const meta = chart.getDatasetMeta(datasetIndex);
+  const line = meta && meta.dataset;
+  if (!line || !line._bzspline) return null;
+  const d = drawn(line, meta.iScale && meta.iScale.axis);
+  const v = d ? valueAt(d, pixel) : null;
+  return v === null ? null : meta.vScale.getValueForPixel(v);
+}
+
+export default bzsplinePlugin;
