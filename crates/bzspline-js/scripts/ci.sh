@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The npm package's checks, on a fresh machine: installs the wasm32 target and
 # wasm-bindgen-cli at the version of Cargo.lock (and Chromium for the page
-# test), builds the WebAssembly, runs the Node tests (d3, Observable Plot, the
+# test), builds the WebAssembly, runs the Node tests (d3, Observable Plot,
+# Recharts in jsdom, Chart.js on a recording canvas, the
 # command's smoothing bit for bit, a page in headless Chromium), checks the
 # TypeScript declarations with tsc, then packs
 # the package, installs the tarball in a fresh folder outside the repository

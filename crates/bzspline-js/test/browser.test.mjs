@@ -72,3 +72,37 @@ test("a page without a bundler draws the line and area Node draws", async () => 
   await page.screenshot({ path: screenshot });
   await page.close();
 });
+
+test("Chart.js with the plugin draws the spline's pieces and reads the curve at a pixel", async () => {
+  const page = await browser.newPage({ viewport: { width: 1240, height: 300 } });
+  const errors = [];
+  page.on("pageerror", (e) => errors.push(e.message));
+  page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
+  page.on("requestfailed", (r) => errors.push(`${r.url()}: failed`));
+  await page.goto(`${base}/test/page/chartjs.html`);
+  await page.waitForFunction(() => window.result, null, { timeout: 15000 }).catch(() => assert.deepEqual(errors, []));
+  const result = await page.evaluate(() => window.result);
+  assert.deepEqual(errors, []);
+  // Every piece of the spline through the dataset's pixels was drawn by a
+  // bezierCurveTo call of Chart.js's.
+  assert.equal(result.pieces.length, 9);
+  for (const [k, piece] of result.pieces.entries()) {
+    assert.ok(
+      result.calls.some((c) => c.every((v, j) => Math.abs(v - piece[j]) < 1e-9)),
+      `piece ${k} was drawn`,
+    );
+  }
+  for (const p of result.probes) {
+    assert.ok(Math.abs(p.curve - p.spline) < 1e-9 * (1 + Math.abs(p.spline)), `value at ${p.px}`);
+  }
+  // On this data Chart.js's tension overshoots the data's range [10, 60];
+  // the plugin's curve stays inside it.
+  const [lo, hi] = result.reach.bzspline;
+  assert.ok(lo >= 10 - 1e-9 && hi <= 60 + 1e-9, `bzspline reaches ${lo}..${hi}`);
+  const [tlo, thi] = result.reach.tension;
+  assert.ok(tlo < 10 || thi > 60, `tension 0.4 reaches ${tlo}..${thi}`);
+  const shot = resolve(root, process.env.BZSPLINE_CHARTJS_SCREENSHOT || "target/e2e/chartjs.png");
+  mkdirSync(dirname(shot), { recursive: true });
+  await page.screenshot({ path: shot });
+  await page.close();
+});
