@@ -43,16 +43,16 @@ function direction(u) {
 function runs(points, spanGaps) {
   const out = [];
   let run = [];
-  points.forEach((p, i) => {
-    if (p.skip) {
+  for (let i = 0; i < points.length; i++) {
+    if (points[i].skip) {
       if (!spanGaps && run.length) {
         out.push(run);
         run = [];
       }
-      return;
+      continue;
     }
     run.push(i);
-  });
+  }
   if (run.length) out.push(run);
   return out;
 }
@@ -60,36 +60,47 @@ function runs(points, spanGaps) {
 /**
  * The pieces of one run in pixels, as in `splinePieces`: `[u0, v0, (u1, v1,
  * u2, v2, u3, v3)...]` with u the index axis, in the order of the points;
- * null where the method cannot take the run.
+ * null where the method cannot take the run or a value is not finite.
  */
-function pieces(run, swap, o) {
-  const u = run.map((p) => (swap ? p.y : p.x));
-  const v = run.map((p) => (swap ? p.x : p.y));
+function pieces(points, run, swap, o) {
+  const n = run.length;
+  const u = new Float64Array(n);
+  const v = new Float64Array(n);
+  for (let k = 0; k < n; k++) {
+    const p = points[run[k]];
+    u[k] = swap ? p.y : p.x;
+    v[k] = swap ? p.x : p.y;
+  }
   const dir = direction(u);
   if (dir === 0) return null;
-  if (run.length === 2) {
+  let p;
+  if (n === 2) {
     const [du, dv] = [u[1] - u[0], v[1] - v[0]];
-    return [u[0], v[0], u[0] + du / 3, v[0] + dv / 3, u[0] + (2 * du) / 3, v[0] + (2 * dv) / 3, u[1], v[1]];
+    p = Float64Array.of(u[0], v[0], u[0] + du / 3, v[0] + dv / 3, u[0] + (2 * du) / 3, v[0] + (2 * dv) / 3, u[1], v[1]);
+  } else if (dir === 1) {
+    p = splinePieces(u, v, o.alpha, o.through);
+  } else {
+    const r = splinePieces(u.reverse(), v.reverse(), o.alpha, o.through);
+    // The same pieces, each written from its other end.
+    p = new Float64Array(r.length);
+    if (r.length) {
+      p[0] = r[r.length - 2];
+      p[1] = r[r.length - 1];
+    }
+    for (let i = r.length - 6, j = 2; i >= 2; i -= 6, j += 6) {
+      p.set([r[i + 2], r[i + 3], r[i], r[i + 1], r[i - 2], r[i - 1]], j);
+    }
   }
-  if (dir === 1) {
-    const p = splinePieces(u, v, o.alpha, o.through);
-    return p.length ? Array.from(p) : null;
-  }
-  const p = splinePieces(u.slice().reverse(), v.slice().reverse(), o.alpha, o.through);
-  if (!p.length) return null;
-  // The same pieces, each written from its other end.
-  const back = [p[p.length - 2], p[p.length - 1]];
-  for (let i = p.length - 6; i >= 2; i -= 6) {
-    back.push(p[i + 2], p[i + 3], p[i], p[i + 1], p[i - 2], p[i - 1]);
-  }
-  return back;
+  if (p.length !== 2 + 6 * (n - 1)) return null;
+  for (let i = 0; i < p.length; i++) if (!Number.isFinite(p[i])) return null;
+  return p;
 }
 
 /**
- * What the line element `line` draws, from the method: for each point index
- * its knot on the curve and the piece to the next point of its run; null
- * where Chart.js must draw the line itself (a loop, a stepped line, index
- * values that do not run one way, a piece that is not finite).
+ * What the line element `line` draws, from the method: the pieces of each
+ * run, and for each point index its run and place in it; null where Chart.js
+ * must draw the line itself (a loop, a stepped line, index values that do
+ * not run one way, a piece that is not finite).
  */
 function build(line, indexAxis) {
   const o = line._bzspline;
@@ -97,25 +108,21 @@ function build(line, indexAxis) {
   const points = line.points || [];
   if (!o || line._loop || opts.stepped) return null;
   const swap = indexAxis === "y";
-  const at = (p, i) => (swap ? [p[i + 1], p[i]] : [p[i], p[i + 1]]);
-  const knots = new Map();
-  const next = new Map();
   const all = [];
+  // For each point index: its run in `all` and its place in the run.
+  const runOf = new Int32Array(points.length).fill(-1);
+  const place = new Int32Array(points.length);
   for (const run of runs(points, opts.spanGaps)) {
     if (run.length < 2) continue;
-    const p = pieces(
-      run.map((i) => points[i]),
-      swap,
-      o,
-    );
-    if (!p || p.some((c) => !Number.isFinite(c))) return null;
+    const p = pieces(points, run, swap, o);
+    if (!p) return null;
+    for (let k = 0; k < run.length; k++) {
+      runOf[run[k]] = all.length;
+      place[run[k]] = k;
+    }
     all.push(p);
-    run.forEach((i, k) => {
-      knots.set(i, at(p, 6 * k));
-      if (k + 1 < run.length) next.set(i, [run[k + 1], ...at(p, 6 * k + 2), ...at(p, 6 * k + 4)]);
-    });
   }
-  return { swap, pieces: all, knots, next };
+  return { swap, pieces: all, runOf, place };
 }
 
 /** The drawing of `line`, built for its current pixels when needed. */
@@ -157,28 +164,31 @@ const methods = {
     const d = this._bzspline && this._pointsUpdated ? this._bzsplineDrawn : null;
     if (!d || segment.loop) return this._bzsplineOwn.pathSegment.call(this, ctx, segment, params);
     const points = this.points;
+    const { runOf, place, swap } = d;
     const start = Math.max(params.start ?? 0, segment.start);
     const end = Math.min(params.end ?? points.length - 1, segment.end);
     const reverse = !!params.reverse;
     let move = params.move ?? true;
     let prev = -1;
-    const knot = (i) => d.knots.get(i) || [points[i].x, points[i].y];
     for (let k = 0; k <= end - start; k++) {
       const i = reverse ? end - k : start + k;
       if (points[i].skip) continue;
-      const [x, y] = knot(i);
+      const r = runOf[i];
+      const p = r < 0 ? null : d.pieces[r];
+      // The point's knot on the curve (the point itself outside a run).
+      const j = p ? 6 * place[i] : 0;
+      const [x, y] = !p ? [points[i].x, points[i].y] : swap ? [p[j + 1], p[j]] : [p[j], p[j + 1]];
       if (move) {
         ctx.moveTo(x, y);
         move = false;
+      } else if (p && prev >= 0 && runOf[prev] === r && Math.abs(place[prev] - place[i]) === 1) {
+        // The piece between the two, from its first or its last end.
+        const c = 6 * Math.min(place[prev], place[i]) + 2;
+        const [a, b] = reverse ? [c + 2, c] : [c, c + 2];
+        if (swap) ctx.bezierCurveTo(p[a + 1], p[a], p[b + 1], p[b], x, y);
+        else ctx.bezierCurveTo(p[a], p[a + 1], p[b], p[b + 1], x, y);
       } else {
-        const [lo, hi] = reverse ? [i, prev] : [prev, i];
-        const c = prev < 0 ? null : d.next.get(lo);
-        if (c && c[0] === hi) {
-          if (reverse) ctx.bezierCurveTo(c[3], c[4], c[1], c[2], x, y);
-          else ctx.bezierCurveTo(c[1], c[2], c[3], c[4], x, y);
-        } else {
-          ctx.lineTo(x, y);
-        }
+        ctx.lineTo(x, y);
       }
       prev = i;
     }
@@ -270,18 +280,27 @@ function bezier(a, b, c, d, t) {
 function valueAt(d, u) {
   if (!Number.isFinite(u)) return null;
   for (const p of d.pieces) {
-    for (let i = 2; i + 5 < p.length; i += 6) {
-      const [u0, u3] = [p[i - 2], p[i + 4]];
-      if (!((u - u0) * (u - u3) <= 0)) continue;
-      // u(t) is monotone on the piece: bisect to the last bit.
-      let [lo, hi] = u0 <= u3 ? [0, 1] : [1, 0];
-      for (let k = 0; k < 60; k++) {
-        const mid = (lo + hi) / 2;
-        if (bezier(u0, p[i], p[i + 2], u3, mid) < u) lo = mid;
-        else hi = mid;
-      }
-      return bezier(p[i - 1], p[i + 1], p[i + 3], p[i + 5], (lo + hi) / 2);
+    const m = (p.length - 2) / 6;
+    const rising = p[6 * m] > p[0];
+    const ahead = (k) => (rising ? p[6 * k] <= u : p[6 * k] >= u);
+    if (!ahead(0) || !(rising ? u <= p[6 * m] : u >= p[6 * m])) continue;
+    // The last knot at or before u, by bisection on the knots.
+    let [lo, hi] = [0, m];
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (ahead(mid)) lo = mid;
+      else hi = mid;
     }
+    const i = 6 * lo + 2;
+    const [u0, u3] = [p[i - 2], p[i + 4]];
+    // u(t) is monotone on the piece: bisect to the last bit.
+    let [a, b] = rising ? [0, 1] : [1, 0];
+    for (let k = 0; k < 60; k++) {
+      const mid = (a + b) / 2;
+      if (bezier(u0, p[i], p[i + 2], u3, mid) < u) a = mid;
+      else b = mid;
+    }
+    return bezier(p[i - 1], p[i + 1], p[i + 3], p[i + 5], (a + b) / 2);
   }
   return null;
 }

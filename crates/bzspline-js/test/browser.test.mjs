@@ -101,6 +101,17 @@ test("Chart.js with the plugin draws the spline's pieces and reads the curve at 
   assert.ok(lo >= 10 - 1e-9 && hi <= 60 + 1e-9, `bzspline reaches ${lo}..${hi}`);
   const [tlo, thi] = result.reach.tension;
   assert.ok(tlo < 10 || thi > 60, `tension 0.4 reaches ${tlo}..${thi}`);
+  // Animated: several frames, each drawn as the method's pieces, the last
+  // one the spline of the final pixels.
+  const anim = await page.evaluate(() => window.animate());
+  assert.ok(anim.count > 3, `${anim.count} frames`);
+  assert.ok(anim.piecesPerFrame.every((n) => n === 9), `pieces per frame ${anim.piecesPerFrame}`);
+  for (const [k, piece] of anim.pieces.entries()) {
+    assert.ok(
+      anim.last.some((c) => c.every((v, j) => Math.abs(v - piece[j]) < 1e-9)),
+      `piece ${k} drawn in the last frame`,
+    );
+  }
   const shot = resolve(root, process.env.BZSPLINE_CHARTJS_SCREENSHOT || "target/e2e/chartjs.png");
   mkdirSync(dirname(shot), { recursive: true });
   await page.screenshot({ path: shot });

@@ -6,7 +6,7 @@
 // Chart.js draws them.
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { Chart, registerables } from "chart.js";
+import { Chart, registerables, _adapters } from "chart.js";
 import { Spline } from "../js/index.js";
 import { bzsplinePlugin, curveValue } from "../js/chartjs.js";
 import { series, close } from "./record.mjs";
@@ -199,6 +199,55 @@ test("timestamps and LTTB decimation draw the spline through what Chart.js keeps
   c.destroy();
 });
 
+// Chart.js's time scale needs a date adapter (a page takes one such as
+// chartjs-adapter-date-fns); this one knows UTC, which is all a test needs.
+const MS = { millisecond: 1, second: 1e3, minute: 6e4, hour: 36e5, day: 864e5, week: 6048e5 };
+const fields = (t) => {
+  const d = new Date(t);
+  return [d.getUTCFullYear(), d.getUTCMonth(), d.getUTCDate()];
+};
+_adapters._date.override({
+  formats: () => Object.fromEntries(Object.keys({ ...MS, month: 0, quarter: 0, year: 0, datetime: 0 }).map((k) => [k, k])),
+  parse: (v) => (typeof v === "number" ? v : v instanceof Date ? +v : Date.parse(v)),
+  format: (t) => new Date(t).toISOString().slice(0, 10),
+  add(t, n, unit) {
+    if (unit in MS) return t + n * MS[unit];
+    const [y, m, d] = fields(t);
+    const months = unit === "year" ? 12 * n : unit === "quarter" ? 3 * n : n;
+    return Date.UTC(y, m + months, d) + (t % MS.day);
+  },
+  diff(a, b, unit) {
+    if (unit in MS) return (a - b) / MS[unit];
+    const [[ya, ma], [yb, mb]] = [fields(a), fields(b)];
+    const months = 12 * (ya - yb) + ma - mb;
+    return unit === "year" ? months / 12 : unit === "quarter" ? months / 3 : months;
+  },
+  startOf(t, unit) {
+    if (unit === "week" || unit === "isoWeek") unit = "day";
+    if (unit in MS) return t - (t % MS[unit]);
+    const [y, m] = fields(t);
+    return unit === "year" ? Date.UTC(y, 0) : unit === "quarter" ? Date.UTC(y, m - (m % 3)) : Date.UTC(y, m);
+  },
+  endOf(t, unit) {
+    return this.add(this.startOf(t, unit), 1, unit) - 1;
+  },
+});
+
+test("a time scale draws the spline through its points' pixels", () => {
+  const data = series(60, 21).map(([, y], i) => ({ x: Date.UTC(2024, 0, 1) + i * 7 * MS.day, y }));
+  const { chart: c, ctx } = chart({
+    type: "line",
+    data: { datasets: [{ data, borderColor: "#0a0b0c", bzspline: true }] },
+    options: { scales: { x: { type: "time" } } },
+  });
+  assert.equal(c.scales.x.type, "time");
+  const [path] = strokes(ctx, "#0a0b0c");
+  const s = pixelSpline(c, 0);
+  samePieces(path, s, 1e-9, "time scale");
+  s.free();
+  c.destroy();
+});
+
 test("after a resize the curve is rebuilt for the new pixels", () => {
   const data = series(20, 9).map(([x, y]) => ({ x, y }));
   const { chart: c, ctx } = chart({
@@ -212,6 +261,39 @@ test("after a resize the curve is rebuilt for the new pixels", () => {
   samePieces(last, s, 1e-9, "resized");
   s.free();
   c.destroy();
+});
+
+test("reversed axes and horizontal lines (indexAxis y) draw the same spline", () => {
+  const data = series(15, 4).map(([x, y]) => ({ x, y }));
+  for (const [what, options, axis] of [
+    ["reversed x", { scales: { x: { type: "linear", reverse: true } } }, "x"],
+    ["indexAxis y", { indexAxis: "y", scales: { y: { type: "linear" }, x: { type: "linear" } } }, "y"],
+    ["indexAxis y, reversed", { indexAxis: "y", scales: { y: { type: "linear", reverse: true }, x: { type: "linear" } } }, "y"],
+  ]) {
+    const rows = axis === "y" ? data.map(({ x, y }) => ({ x: y, y: x })) : data;
+    const { chart: c, ctx } = chart({
+      type: "line",
+      data: { datasets: [{ data: rows, borderColor: "#765432", bzspline: { alpha: 0.4 } }] },
+      options,
+    });
+    const [path] = strokes(ctx, "#765432");
+    // Each drawn piece as [start, c1, c2, end] in (u, v), u the index axis,
+    // written from its lower u.
+    const uv = (x, y) => (axis === "y" ? [y, x] : [x, y]);
+    const drawn = path.slice(1).map((call, k) => {
+      const q = [uv(...path[k].slice(-2)), uv(call[1], call[2]), uv(call[3], call[4]), uv(call[5], call[6])];
+      return q[0][0] < q[3][0] ? q : q.reverse();
+    });
+    drawn.sort((a, b) => a[0][0] - b[0][0]);
+    const pts = c.getDatasetMeta(0).data.map((p) => uv(p.x, p.y)).sort((a, b) => a[0] - b[0]);
+    const s = new Spline(pts.map((p) => p[0]), pts.map((p) => p[1]), { alpha: 0.4 });
+    assert.equal(drawn.length, s.segments.length, what);
+    s.segments.forEach((seg, k) =>
+      seg.forEach((pt, j) => pt.forEach((v, e) => close(drawn[k][j][e], v, 1e-9, `${what}: piece ${k}`))),
+    );
+    s.free();
+    c.destroy();
+  }
 });
 
 test("what the method cannot take is drawn as Chart.js draws it, without an exception", () => {
