@@ -356,3 +356,32 @@ fn many_points_draw_a_small_readable_chart() {
         );
     }
 }
+
+#[test]
+fn date_ticks_are_no_finer_than_the_data() {
+    let dir = tempfile::tempdir().unwrap();
+    // Four months of monthly values, a span that alone would get day ticks.
+    std::fs::write(
+        dir.path().join("monthly.csv"),
+        "month,v\n2020-01,3\n2020-02,5\n2020-03,4\n2020-04,6\n",
+    )
+    .unwrap();
+    let out = run(dir.path(), &["plot", "monthly.csv", "-o", "m.svg"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(dir.path().join("m.svg")).unwrap();
+    for month in ["2020-01", "2020-02", "2020-03", "2020-04"] {
+        assert!(
+            svg.contains(&format!(">{month}</text>")),
+            "a tick at {month}"
+        );
+    }
+    // No tick label with a day in it.
+    let days = svg
+        .match_indices(">2020-")
+        .filter(|(i, _)| svg[i + 8..].starts_with('-'));
+    assert_eq!(days.count(), 0, "{svg}");
+}

@@ -19,8 +19,8 @@ pub struct Axis {
     pub calendar: Option<(TimeKind, Unit)>,
 }
 
-/// The calendar units date ticks step by.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The calendar units date ticks step by, finest first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Unit {
     /// Seconds, minutes or hours: labels with the time of day.
     Clock,
@@ -70,9 +70,18 @@ impl Axis {
 
     /// An axis of dates or times (`kind`'s unit: days or seconds since 1970)
     /// with about `target` ticks at whole calendar units: seconds, minutes,
-    /// hours, days, weeks, months or years, as the span asks.
+    /// hours, days, weeks, months or years, as the span asks, never finer
+    /// than `finest` (the data's [`resolution`]: monthly data gets month
+    /// ticks, however short the span).
     #[must_use]
-    pub fn calendar(lo: f64, hi: f64, pad: f64, target: usize, kind: TimeKind) -> Self {
+    pub fn calendar(
+        lo: f64,
+        hi: f64,
+        pad: f64,
+        target: usize,
+        kind: TimeKind,
+        finest: Unit,
+    ) -> Self {
         let mut a = Axis::new(lo, hi, pad, target);
         let to_s = time::convert(1.0, kind, TimeKind::DateTime(None));
         let (lo_s, hi_s) = (a.lo * to_s, a.hi * to_s);
@@ -86,26 +95,31 @@ impl Axis {
             7200.0, 10800.0, 21600.0, 43200.0,
         ];
         let want = span / target.max(2) as f64;
-        let (unit, ticks_s): (Unit, Vec<f64>) =
-            if let Some(&step) = clock.iter().find(|&&st| st >= want) {
-                (Unit::Clock, ticks(lo_s, hi_s, step))
-            } else if let Some(&days) = [1.0, 2.0, 7.0, 14.0].iter().find(|&&d| d * DAY >= want) {
-                // Weeks start on the Monday after 1970-01-01 (a Thursday) + 4 days.
-                let shift = if days >= 7.0 { 4.0 * DAY } else { 0.0 };
-                let t = ticks(lo_s - shift, hi_s - shift, days * DAY);
-                (Unit::Day, t.into_iter().map(|v| v + shift).collect())
-            } else if let Some(&months) = [1, 2, 3, 6]
-                .iter()
-                .find(|&&m| f64::from(m) * 30.0 * DAY >= want)
-            {
-                (Unit::Month, month_ticks(lo_s, hi_s, months))
-            } else {
-                let years = nice_step(want / (365.25 * DAY) / 2.0, 1).max(1.0);
-                (
-                    Unit::Year,
-                    month_ticks(lo_s, hi_s, (years as i32).saturating_mul(12)),
-                )
-            };
+        let (unit, ticks_s): (Unit, Vec<f64>) = if let Some(&step) = clock
+            .iter()
+            .find(|&&st| st >= want && finest == Unit::Clock)
+        {
+            (Unit::Clock, ticks(lo_s, hi_s, step))
+        } else if let Some(&days) = [1.0, 2.0, 7.0, 14.0]
+            .iter()
+            .find(|&&d| d * DAY >= want && finest <= Unit::Day)
+        {
+            // Weeks start on the Monday after 1970-01-01 (a Thursday) + 4 days.
+            let shift = if days >= 7.0 { 4.0 * DAY } else { 0.0 };
+            let t = ticks(lo_s - shift, hi_s - shift, days * DAY);
+            (Unit::Day, t.into_iter().map(|v| v + shift).collect())
+        } else if let Some(&months) = [1, 2, 3, 6]
+            .iter()
+            .find(|&&m| f64::from(m) * 30.0 * DAY >= want && finest <= Unit::Month)
+        {
+            (Unit::Month, month_ticks(lo_s, hi_s, months))
+        } else {
+            let years = nice_step(want / (365.25 * DAY) / 2.0, 1).max(1.0);
+            (
+                Unit::Year,
+                month_ticks(lo_s, hi_s, (years as i32).saturating_mul(12)),
+            )
+        };
         a.ticks = ticks_s.into_iter().map(|v| v / to_s).collect();
         a.calendar = Some((kind, unit));
         a
@@ -145,6 +159,39 @@ impl Axis {
             }
         }
     }
+}
+
+/// The coarsest calendar unit every date or time of `values` (in `kind`'s
+/// unit) is whole in: [`Unit::Year`] when all are on the first of January at
+/// midnight, [`Unit::Month`] on the first of a month, [`Unit::Day`] at
+/// midnight (in the data's offset), else [`Unit::Clock`]. Looks at the first
+/// 20,000 finite values: data keeps one resolution.
+#[must_use]
+pub fn resolution(values: impl IntoIterator<Item = f64>, kind: TimeKind) -> Unit {
+    let mut finest = Unit::Year;
+    for v in values.into_iter().filter(|v| v.is_finite()).take(20_000) {
+        let Some(text) = time::format(v, kind) else {
+            return Unit::Clock;
+        };
+        let (date, clock) = text.split_once('T').unwrap_or((&text, ""));
+        let midnight =
+            clock.is_empty() || (clock.starts_with("00:00:00") && !clock[8..].starts_with('.'));
+        let n = date.len();
+        let unit = if !midnight || n < 10 {
+            Unit::Clock
+        } else if &date[n - 2..] != "01" {
+            Unit::Day
+        } else if &date[n - 5..n - 3] != "01" {
+            Unit::Month
+        } else {
+            Unit::Year
+        };
+        finest = finest.min(unit);
+        if finest == Unit::Clock {
+            break;
+        }
+    }
+    finest
 }
 
 /// Ticks at the first of every `months`-th month (from January of year 0)
@@ -304,18 +351,79 @@ mod tests {
     }
 
     #[test]
+    fn ticks_follow_the_data_resolution() {
+        let day = |s: &str| time::parse(s).unwrap().0;
+        let days = |v: &[&str]| v.iter().map(|s| day(s)).collect::<Vec<_>>();
+        // Every calendar unit, and each one's data.
+        let monthly = days(&["2020-01-01", "2020-02-01", "2020-03-01", "2020-04-01"]);
+        let yearly = days(&["1990-01-01", "1991-01-01", "1995-01-01"]);
+        let daily = days(&["2020-01-01", "2020-01-02", "2020-02-01"]);
+        assert_eq!(resolution(monthly.clone(), TimeKind::Date), Unit::Month);
+        assert_eq!(resolution(yearly.clone(), TimeKind::Date), Unit::Year);
+        assert_eq!(resolution(daily, TimeKind::Date), Unit::Day);
+        let k = TimeKind::DateTime(None);
+        let secs = |v: &[&str]| {
+            v.iter()
+                .map(|s| time::parse(s).unwrap().0)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(
+            resolution(secs(&["2020-01-01T00:00:00Z", "2020-03-01T00:00:00Z"]), k),
+            Unit::Month
+        );
+        assert_eq!(
+            resolution(secs(&["2020-01-01T00:00:00Z", "2020-01-01T00:00:00.5Z"]), k),
+            Unit::Clock
+        );
+        assert_eq!(resolution([f64::NAN], k), Unit::Year);
+        // Four months of monthly data: month ticks, where the span alone
+        // would ask for two-week ticks.
+        let (lo, hi) = (monthly[0], monthly[3]);
+        let free = Axis::calendar(lo, hi, 0.03, 12, TimeKind::Date, Unit::Clock);
+        assert_eq!(free.calendar, Some((TimeKind::Date, Unit::Day)));
+        let m = Axis::calendar(lo, hi, 0.03, 12, TimeKind::Date, Unit::Month);
+        let labels: Vec<String> = m.ticks.iter().map(|t| m.label(*t)).collect();
+        assert_eq!(labels, ["2020-01", "2020-02", "2020-03", "2020-04"]);
+        // Six years of yearly data: one tick a year, not every few months.
+        let y = Axis::calendar(yearly[0], yearly[2], 0.0, 12, TimeKind::Date, Unit::Year);
+        let labels: Vec<String> = y.ticks.iter().map(|t| y.label(*t)).collect();
+        assert_eq!(labels, ["1990", "1991", "1992", "1993", "1994", "1995"]);
+    }
+
+    #[test]
     fn date_axes_tick_at_calendar_units() {
         let day = |s: &str| time::parse(s).unwrap().0;
-        let a = Axis::calendar(day("2024-01-01"), day("2024-01-09"), 0.0, 6, TimeKind::Date);
+        let a = Axis::calendar(
+            day("2024-01-01"),
+            day("2024-01-09"),
+            0.0,
+            6,
+            TimeKind::Date,
+            Unit::Clock,
+        );
         let labels: Vec<String> = a.ticks.iter().map(|t| a.label(*t)).collect();
         assert_eq!(
             labels,
             ["2024-01-02", "2024-01-04", "2024-01-06", "2024-01-08"]
         );
-        let m = Axis::calendar(day("2023-11-20"), day("2024-06-10"), 0.0, 6, TimeKind::Date);
+        let m = Axis::calendar(
+            day("2023-11-20"),
+            day("2024-06-10"),
+            0.0,
+            6,
+            TimeKind::Date,
+            Unit::Clock,
+        );
         let labels: Vec<String> = m.ticks.iter().map(|t| m.label(*t)).collect();
         assert_eq!(labels, ["2024-01", "2024-03", "2024-05"]);
-        let y = Axis::calendar(day("1990-06-01"), day("2024-06-01"), 0.0, 6, TimeKind::Date);
+        let y = Axis::calendar(
+            day("1990-06-01"),
+            day("2024-06-01"),
+            0.0,
+            6,
+            TimeKind::Date,
+            Unit::Clock,
+        );
         let labels: Vec<String> = y.ticks.iter().map(|t| y.label(*t)).collect();
         assert_eq!(labels, ["2000", "2010", "2020"]);
         let k = TimeKind::DateTime(None);
@@ -326,6 +434,7 @@ mod tests {
             0.0,
             5,
             k,
+            Unit::Clock,
         );
         let labels: Vec<String> = h.ticks.iter().map(|t| h.label(*t)).collect();
         assert_eq!(

@@ -3,6 +3,7 @@
 
 use std::fmt::Write as _;
 
+use super::axis;
 use super::{convex_hull, Axis, PlotData, PlotOptions};
 
 /// Colours of the curves, in order: a palette that stays distinct for the usual
@@ -148,8 +149,22 @@ fn axes(
     // At most one tick per 55 px across and per 45 px up (the values are small).
     let x_ticks = ((width - 120.0) / 55.0).clamp(2.0, 12.0) as usize;
     let y_ticks = ((height - 130.0) / 45.0).clamp(2.0, 10.0) as usize;
+    // Date ticks no finer than the data's dates (months for monthly data).
+    let finest = opts.x_time.map(|kind| {
+        let data_x = data
+            .iter()
+            .flat_map(|d| d.control.iter().chain(&d.observations).map(|p| p[0]));
+        axis::resolution(data_x, kind)
+    });
     let x_axis = |ticks: usize| match opts.x_time {
-        Some(kind) => Axis::calendar(xs.0, xs.1, 0.03, ticks, kind),
+        Some(kind) => Axis::calendar(
+            xs.0,
+            xs.1,
+            0.03,
+            ticks,
+            kind,
+            finest.unwrap_or(axis::Unit::Clock),
+        ),
         None => Axis::new(xs.0, xs.1, 0.03, ticks),
     };
     // Fewer ticks until their labels fit side by side with a gap.
