@@ -1,6 +1,6 @@
 // Types of the `bzspline/chartjs` entry (Chart.js 4).
 import type { Chart, ChartType, Plugin } from "chart.js";
-import type { Alpha } from "./index.js";
+import type { Alpha, Spline } from "./index.js";
 
 /** How a dataset is drawn by the plugin. */
 export interface BzsplineDatasetOptions {
@@ -8,6 +8,13 @@ export interface BzsplineDatasetOptions {
   alpha?: Alpha;
   /** Pass through every point: the interpolating variant. */
   through?: boolean;
+  /**
+   * Draw a fit of the points instead: a function of the points' pixels
+   * (index axis rising, value axis) returning a `Spline` with its knots at
+   * them, such as `smoothingSpline` of `bzspline/smoothing` (the weight
+   * chosen by cross-validation). Where it throws, Chart.js draws the line.
+   */
+  smooth?: (x: Float64Array, y: Float64Array) => Spline;
 }
 
 declare module "chart.js" {

@@ -1,13 +1,14 @@
 // A Chart.js 4 plugin that draws line datasets with the method's spline:
 // registered once (`Chart.register(bzsplinePlugin)`), chosen per dataset
-// (`bzspline: true` or `{ alpha, through }`). The curve is the spline
-// through the dataset's points in pixel space; each piece is one cubic
-// Bezier segment, drawn by the line element's own path methods (`path`,
-// `pathSegment`, `interpolate`, `draw`), which the filler, the animations
-// and the decimation call, so fill, gaps, stacking, decimation, animation and
-// resizing keep working. Pieces join at the spline's knots, which are the
-// points themselves only for `through` and at the ends. `curveValue` gives
-// the value on the drawn curve at a pixel (a tooltip at the pointer's x).
+// (`bzspline: true` or `{ alpha, through, smooth }`). The curve is the
+// spline of the dataset's points in pixel space, or the fit `smooth` makes
+// of them; each piece is one cubic Bezier segment, drawn by the line
+// element's own path methods (`path`, `pathSegment`, `interpolate`, `draw`),
+// which the filler, the animations and the decimation call, so fill, gaps,
+// stacking, decimation, animation and resizing keep working. Pieces join at
+// the spline's knots, which are the points themselves only for `through`
+// and at the ends. `curveValue` gives the value on the drawn curve at a
+// pixel (a tooltip at the pointer's x).
 import "./index.js";
 import { splinePieces, checkAlpha } from "../wasm/core.js";
 
@@ -27,7 +28,33 @@ function settings(dataset, index) {
       throw new RangeError(`dataset ${index}: bzspline ${e.message}`);
     }
   }
-  return { alpha, through: !!o.through };
+  if (o.smooth !== undefined && typeof o.smooth !== "function") {
+    throw new TypeError(
+      `dataset ${index}: bzspline smooth is a function (x, y) => Spline, such as smoothingSpline of bzspline/smoothing`,
+    );
+  }
+  return { alpha, through: !!o.through, smooth: o.smooth };
+}
+
+/**
+ * The pieces, flat as `splinePieces` gives them, of the spline `smooth`
+ * fits to (u, v); null where it throws or its knots are not the points'.
+ */
+function fitted(smooth, u, v) {
+  let s;
+  try {
+    s = smooth(u, v);
+    const segs = s.segments;
+    if (segs.length !== u.length - 1) return null;
+    const p = new Float64Array(2 + 6 * segs.length);
+    p.set(segs[0][0], 0);
+    segs.forEach((seg, k) => p.set([...seg[1], ...seg[2], ...seg[3]], 2 + 6 * k));
+    return p;
+  } catch {
+    return null;
+  } finally {
+    if (s && typeof s.free === "function") s.free();
+  }
 }
 
 /** 1 when the values rise strictly, -1 when they fall strictly, 0 otherwise. */
@@ -73,14 +100,17 @@ function pieces(points, run, swap, o) {
   }
   const dir = direction(u);
   if (dir === 0) return null;
+  // The method's spline, or the fit `smooth` gives, through rising u.
+  const spline = (u, v) => (o.smooth ? fitted(o.smooth, u, v) : splinePieces(u, v, o.alpha, o.through));
   let p;
   if (n === 2) {
     const [du, dv] = [u[1] - u[0], v[1] - v[0]];
     p = Float64Array.of(u[0], v[0], u[0] + du / 3, v[0] + dv / 3, u[0] + (2 * du) / 3, v[0] + (2 * dv) / 3, u[1], v[1]);
   } else if (dir === 1) {
-    p = splinePieces(u, v, o.alpha, o.through);
+    p = spline(u, v);
   } else {
-    const r = splinePieces(u.reverse(), v.reverse(), o.alpha, o.through);
+    const r = spline(u.reverse(), v.reverse());
+    if (!r) return null;
     // The same pieces, each written from its other end.
     p = new Float64Array(r.length);
     if (r.length) {
@@ -91,6 +121,7 @@ function pieces(points, run, swap, o) {
       p.set([r[i + 2], r[i + 3], r[i], r[i + 1], r[i - 2], r[i - 1]], j);
     }
   }
+  if (!p || p.length !== 2 + 6 * (n - 1)) return null;
   if (p.length !== 2 + 6 * (n - 1)) return null;
   for (let i = 0; i < p.length; i++) if (!Number.isFinite(p[i])) return null;
   return p;

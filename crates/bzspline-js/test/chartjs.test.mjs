@@ -8,6 +8,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { Chart, registerables, _adapters } from "chart.js";
 import { Spline } from "../js/index.js";
+import { smoothingSpline } from "../js/smoothing.js";
 import { bzsplinePlugin, curveValue } from "../js/chartjs.js";
 import { series, close } from "./record.mjs";
 
@@ -248,6 +249,35 @@ test("a time scale draws the spline through its points' pixels", () => {
   c.destroy();
 });
 
+test("smooth draws the fit it is given: the smoothing spline of noisy points", () => {
+  let state = 7;
+  const noise = () => ((state = (state * 16807) % 2147483647) / 2147483647 - 0.5) * 30;
+  const data = Array.from({ length: 120 }, (_, i) => ({ x: i, y: 100 * Math.sin(i / 15) + noise() }));
+  const { chart: c, ctx } = chart({
+    type: "line",
+    data: { datasets: [{ data, borderColor: "#aabbcc", bzspline: { smooth: smoothingSpline } }] },
+    options: { scales: { x: { type: "linear" } } },
+  });
+  const [path] = strokes(ctx, "#aabbcc");
+  const pts = c.getDatasetMeta(0).data;
+  const fit = smoothingSpline(pts.map((p) => p.x), pts.map((p) => p.y));
+  assert.ok(fit.lam > 0 && fit.dof < pts.length / 2, `lam ${fit.lam}, dof ${fit.dof}`);
+  samePieces(path, fit, 1e-9, "smoothed");
+  // The tooltip helper reads the smoothed curve.
+  const px = pts[50].x;
+  close(curveValue(c, 0, px), c.getDatasetMeta(0).vScale.getValueForPixel(fit.at(px)), 1e-9, "curveValue");
+  fit.free();
+  c.destroy();
+  // A fit that throws leaves the line to Chart.js, without an exception.
+  const { ctx: ctx2 } = chart({
+    type: "line",
+    data: { datasets: [{ data, borderColor: "#aabbcc", bzspline: { smooth: () => { throw new Error("no"); } } }] },
+    options: { scales: { x: { type: "linear" } } },
+  });
+  const [own] = strokes(ctx2, "#aabbcc");
+  assert.ok(own.slice(1).every((call) => call[0] === "L"));
+});
+
 test("after a resize the curve is rebuilt for the new pixels", () => {
   const data = series(20, 9).map(([x, y]) => ({ x, y }));
   const { chart: c, ctx } = chart({
@@ -332,5 +362,13 @@ test("a bad option is refused naming the dataset", () => {
   assert.throws(
     () => new Chart(recordingCanvas().canvas, { type: "line", data: { datasets: [{ data: [1], bzspline: "yes" }] } }),
     /dataset 0: bzspline is true or/,
+  );
+  assert.throws(
+    () =>
+      new Chart(recordingCanvas().canvas, {
+        type: "line",
+        data: { datasets: [{ data: [1, 2, 3], bzspline: { smooth: "auto" } }] },
+      }),
+    /dataset 0: bzspline smooth is a function/,
   );
 });

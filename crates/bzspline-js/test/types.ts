@@ -51,6 +51,10 @@ const scatterConfig: ChartConfiguration<"scatter"> = {
   type: "scatter",
   data: { datasets: [{ data: [{ x: 0, y: 1 }], showLine: true, bzspline: true }] },
 };
+const smoothConfig: ChartConfiguration<"line"> = {
+  type: "line",
+  data: { labels: ["a", "b", "c"], datasets: [{ data: [1, 3, 2], bzspline: { smooth: smoothingSpline } }] },
+};
 const badConfig: ChartConfiguration<"line"> = {
   type: "line",
   // @ts-expect-error: alpha is a number
