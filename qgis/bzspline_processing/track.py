@@ -119,7 +119,6 @@ class SmoothTrack(QgsProcessingAlgorithm):
         import numpy as np
 
         import bzspline
-        from bzspline import _core
 
         source = self.parameterAsSource(parameters, self.INPUT, context)
         if source is None:
@@ -174,10 +173,8 @@ class SmoothTrack(QgsProcessingAlgorithm):
                 continue
             try:
                 curve = bzspline.smoothing_curve(xy, param=t - t[0])
-                tol, _, _ = _core._distances(tolerance, None, layers.crs_text(frame))
-                if tol is None:
-                    lo, hi = xy.min(axis=0), xy.max(axis=0)
-                    tol = _core._default_tolerance(lo[0], lo[1], hi[0], hi[1])
+                lo, hi = xy.min(axis=0), xy.max(axis=0)
+                tol = bzspline.geo.tolerance(tolerance, crs=layers.crs_text(frame), bounds=(*lo, *hi))
                 line = curve.flatten(tol)
             except ValueError as e:
                 raise QgsProcessingException(f"{name}: {e}") from None

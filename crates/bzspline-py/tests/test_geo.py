@@ -231,3 +231,25 @@ def test_a_geoseries_measures_in_its_own_crs():
     assert same(out.values, bzspline.geo.smooth(cells, tolerance="200m", crs="EPSG:4326"))
     utm = geopandas.GeoSeries(grid(3, 2), crs="EPSG:32633")
     assert same(bzspline.geo.smooth(utm, tolerance="0.01m").values, bzspline.geo.smooth(cells, tolerance=0.01))
+
+
+def test_tolerance_reads_a_distance_as_smooth_does():
+    # Numbers are in the data's units; units convert to the CRS's own.
+    assert bzspline.geo.tolerance(2.5) == 2.5
+    assert bzspline.geo.tolerance("1km", crs="EPSG:3857") == pytest.approx(1000.0, rel=1e-12)
+    # A projection in US survey feet, as a .prj file writes it.
+    feet = ('PROJCS["NAD83 / New York Long Island (ftUS)",GEOGCS["NAD83",DATUM["North_American_Datum_1983",'
+            'SPHEROID["GRS 1980",6378137,298.257222101]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],'
+            'PROJECTION["Lambert_Conformal_Conic_2SP"],UNIT["US survey foot",0.304800609601219]]')
+    assert bzspline.geo.tolerance("1m", crs=feet) == pytest.approx(1 / 0.304800609601219, rel=1e-12)
+    with pytest.raises(ValueError, match="ellipsoid"):
+        bzspline.geo.tolerance("50m", crs="EPSG:4326")
+    with pytest.raises(ValueError, match="bounds"):
+        bzspline.geo.tolerance()
+    with pytest.raises(ValueError):
+        bzspline.geo.tolerance("50 parsecs", crs="EPSG:3857")
+    # No value: the tolerance smooth takes by itself for data of those bounds.
+    ring = shapely.Polygon([(0, 0), (40, 3), (55, 30), (20, 45), (-5, 25)])
+    default = bzspline.geo.tolerance(bounds=ring.bounds)
+    assert shapely.equals_exact(bzspline.geo.smooth(ring), bzspline.geo.smooth(ring, tolerance=default), 0.0)
+    assert not shapely.equals_exact(bzspline.geo.smooth(ring), bzspline.geo.smooth(ring, tolerance=default * 4), 0.0)

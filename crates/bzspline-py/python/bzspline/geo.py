@@ -27,7 +27,7 @@ import numpy as np
 from . import _core
 from ._arrays import Nodes, _groups, _is_dask, _like, _smooth_array, _values
 
-__all__ = ["Nodes", "nodes", "smooth"]
+__all__ = ["Nodes", "nodes", "smooth", "tolerance"]
 
 def nodes(obj):
     """The junctions of a whole coverage, for smoothing it in parts.
@@ -179,6 +179,34 @@ def smooth(obj, *, tolerance: Union[float, str, None] = None, coverage: bool = T
         return _like(obj, values)
     arr = np.asarray(obj, dtype=object)
     return _smooth_array(arr.ravel(), *args, geographic=geographic)[0].reshape(arr.shape)
+
+
+def tolerance(value: Union[float, str, None] = None, *, crs=None, bounds=None) -> float:
+    """A tolerance in the data's units, read as :func:`smooth` reads one.
+
+    A number is in the data's units already; a distance with a unit
+    (``"50m"``, ``"0.5km"``, ``"0.001deg"``) is converted to the units of
+    ``crs`` (a ``pyproj.CRS`` or text such as ``"EPSG:3857"``); ``None`` gives
+    :func:`smooth`'s default for data within ``bounds``
+    (``(xmin, ymin, xmax, ymax)``). For example for ``Curve.flatten``.
+
+    Raises
+    ------
+    ValueError
+        For a distance that cannot be read or converted, a distance in metres
+        on longitude and latitude (:func:`smooth` measures those on the
+        ellipsoid; project the data first), or ``None`` without ``bounds``.
+    """
+    if value is None:
+        if bounds is None:
+            raise ValueError("a default tolerance needs the data's bounds (xmin, ymin, xmax, ymax)")
+        xmin, ymin, xmax, ymax = (float(b) for b in bounds)
+        return _core._default_tolerance(xmin, ymin, xmax, ymax)
+    t, _, geographic = _core._distances(value, None, _crs_text(crs))
+    if geographic:
+        raise ValueError(f"the tolerance {value!r} is a distance on the ellipsoid, not in degrees: "
+                         "project the data first, or give degrees")
+    return t
 
 
 def _crs_text(crs):
