@@ -86,7 +86,10 @@ def to_qgis(geom, wkb_type):
     if geom is None:
         return QgsGeometry()
     g = QgsGeometry()
-    g.fromWkb(shapely.to_wkb(geom))
+    # The dimension given: inside QGIS (the desktop and qgis_process) a
+    # shapely wheel's GEOS calls can reach the GEOS QGIS loaded, which may be
+    # older than 3.12 and refuses shapely's default of 4 (for M values).
+    g.fromWkb(shapely.to_wkb(geom, output_dimension=3))
     if QgsWkbTypes.isMultiType(wkb_type) and not g.isMultipart():
         g.convertToMultiType()
     return g

@@ -100,6 +100,10 @@ class SmoothBase(QgsProcessingAlgorithm):
         return not self.coverage
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        # qgis_process runs an algorithm without asking canExecute.
+        problem = package_problem()
+        if problem is not None:
+            raise QgsProcessingException(problem)
         try:
             return self.process(parameters, context, feedback)
         except layers.Canceled:

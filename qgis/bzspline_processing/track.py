@@ -109,6 +109,10 @@ class SmoothTrack(QgsProcessingAlgorithm):
             self.OUTPUT, "Smoothed track", QgsProcessing.TypeVectorLine))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        # qgis_process runs an algorithm without asking canExecute.
+        problem = package_problem()
+        if problem is not None:
+            raise QgsProcessingException(problem)
         try:
             return self.process(parameters, context, feedback)
         except layers.Canceled:

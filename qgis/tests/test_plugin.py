@@ -77,3 +77,16 @@ def test_without_the_package_the_algorithms_say_how_to_install_it(monkeypatch):
     alg = provider().algorithm("smoothcoverage").create()
     ok, why = alg.canExecute()
     assert not ok and why == message
+
+
+def test_a_shapely_on_another_geos_than_the_loaded_one_is_refused():
+    from bzspline_processing.provider import MIXED_GEOS, geos_problem, global_geos, package_problem
+
+    assert geos_problem((3, 11, 1), (3, 11, 2)) is None
+    assert geos_problem((3, 13, 1), None) is None
+    assert geos_problem((3, 13, 1), (3, 11, 1)) == ("3.13.1", "3.11.1")
+    assert "--no-binary shapely" in MIXED_GEOS
+    # Python loads QGIS's modules privately: no GEOS is global here, and
+    # whichever shapely this is, it answers with its own.
+    assert global_geos() is None
+    assert package_problem() is None

@@ -101,10 +101,11 @@ def _ragged(geoms, include_z):
 
 
 def _warn_measures(arr):
-    """Warns once when some geometry of ``arr`` carries M (shapely >= 2.1)."""
+    """Warns once when some geometry of ``arr`` carries M (shapely >= 2.1 on
+    GEOS >= 3.12; with an older GEOS no geometry has M)."""
     import shapely
 
-    if not hasattr(shapely, "has_m"):
+    if not hasattr(shapely, "has_m") or shapely.geos_version < (3, 12, 0):
         return
     idx = np.flatnonzero(_smoothable(arr))
     n = int(shapely.has_m(arr[idx]).sum())
