@@ -169,6 +169,11 @@ function drawn(line, indexAxis) {
   return line._bzsplineDrawn;
 }
 
+/** What `line` draws for its current pixels, or null where Chart.js draws it. */
+function placed(line) {
+  return line._bzspline && line._pointsUpdated ? line._bzsplineDrawn : null;
+}
+
 /** Sets the stroke style of a line segment as Chart.js does. */
 function setStyle(ctx, options, style = options) {
   const or = (v, d) => (v === undefined ? d : v);
@@ -192,7 +197,7 @@ const methods = {
   },
 
   pathSegment(ctx, segment, params = {}) {
-    const d = this._bzspline && this._pointsUpdated ? this._bzsplineDrawn : null;
+    const d = placed(this);
     if (!d || segment.loop) return this._bzsplineOwn.pathSegment.call(this, ctx, segment, params);
     const points = this.points;
     const { runOf, place, swap } = d;
@@ -227,7 +232,7 @@ const methods = {
   },
 
   path(ctx, start, count) {
-    if (!(this._bzspline && this._pointsUpdated && this._bzsplineDrawn)) {
+    if (!placed(this)) {
       return this._bzsplineOwn.path.call(this, ctx, start, count);
     }
     start = start || 0;
@@ -237,7 +242,7 @@ const methods = {
   },
 
   interpolate(point, property) {
-    const d = this._bzspline && this._pointsUpdated ? this._bzsplineDrawn : null;
+    const d = placed(this);
     const axis = d && (d.swap ? "y" : "x");
     if (!d || property !== axis) return this._bzsplineOwn.interpolate.call(this, point, property);
     const v = valueAt(d, point[property]);
@@ -246,7 +251,7 @@ const methods = {
   },
 
   draw(ctx, chartArea, start, count) {
-    if (!(this._bzspline && this._pointsUpdated && this._bzsplineDrawn)) {
+    if (!placed(this)) {
       return this._bzsplineOwn.draw.call(this, ctx, chartArea, start, count);
     }
     const options = this.options || {};
