@@ -22,7 +22,7 @@ use crate::input::{DEFAULT_MAX_BYTES, DEFAULT_MAX_POINTS};
 #[derive(Debug, Clone, Args)]
 pub struct InputArgs {
     /// Input file: a table (CSV, TSV, whitespace), JSON points, GeoJSON (or newline-delimited),
-    /// a Shapefile, GeoPackage or FlatGeobuf file, or for `smooth` TopoJSON; `-` or nothing
+    /// a Shapefile, GeoPackage, FlatGeobuf or GeoParquet file, or for `smooth` TopoJSON; `-` or nothing
     /// reads standard input.
     #[arg(value_name = "FILE", conflicts_with = "example")]
     pub file: Option<PathBuf>,
@@ -357,8 +357,9 @@ pub struct SmoothArgs {
     /// change) on standard error; printed anyway when it is a terminal.
     #[arg(long)]
     pub stats: bool,
-    /// Output format: GeoJSON (the default) or TopoJSON (also chosen by an
-    /// output file name ending in `.topojson`).
+    /// Output format: GeoJSON (the default), TopoJSON or a layer file (also
+    /// chosen by the output file's extension: `.topojson`, `.shp`, `.gpkg`,
+    /// `.fgb`, `.parquet`).
     #[arg(long, value_enum, value_name = "FORMAT")]
     pub output_format: Option<bzspline_io::smooth::job::Output>,
     /// With TopoJSON input and GeoJSON output: only the features of this

@@ -1,9 +1,12 @@
-//! GeoPackage and FlatGeobuf beside Shapefiles: every coverage the tests
-//! use goes through every format's writer and reader with its geometry bit
-//! for bit and its fields and CRS kept; smoothing a layer file gives what
-//! smoothing its features as GeoJSON gives; GDAL (the outside judge) reads
-//! every file the command writes, and the command reads GDAL's; bad files
-//! are refused with one line naming the file, and nothing is written.
+//! GeoPackage, FlatGeobuf and GeoParquet beside Shapefiles: every coverage
+//! the tests use goes through every format's writer and reader with its
+//! geometry bit for bit and its fields and CRS kept; smoothing a layer file
+//! gives what smoothing its features as GeoJSON gives; GDAL (the outside
+//! judge) reads every file the command writes in the formats its build
+//! reads, and the command reads GDAL's (GeoParquet, which Debian's GDAL
+//! does not read, is judged by geopandas and pyarrow in the Python tests);
+//! bad files are refused with one line naming the file, and nothing is
+//! written.
 
 mod common;
 
@@ -16,10 +19,11 @@ use common::gdal::{close, fields, gdal, gdal_features, info, numbers, path, poly
 use common::{run, succeeds};
 use serde_json::{json, Value};
 
-const FORMATS: [(&str, InputFormat, Output); 3] = [
+const FORMATS: [(&str, InputFormat, Output); 4] = [
     ("gpkg", InputFormat::Geopackage, Output::Geopackage),
     ("fgb", InputFormat::Flatgeobuf, Output::Flatgeobuf),
     ("shp", InputFormat::Shapefile, Output::Shapefile),
+    ("parquet", InputFormat::Geoparquet, Output::Geoparquet),
 ];
 
 fn read_json(file: &str) -> Value {
@@ -184,7 +188,7 @@ fn every_coverage_round_trips_through_every_format() {
             let got = back.features["features"].as_array().unwrap();
             assert_eq!(got.len(), features.len(), "{name} as {ext}");
             match ext {
-                "gpkg" => {
+                "gpkg" | "parquet" => {
                     // z for every position of a geometry or none: the 2D
                     // members of a geometry with z come back with z = 0.
                     let want: Vec<Value> = features
@@ -292,7 +296,7 @@ fn smoothing_a_layer_file_gives_what_its_geojson_gives() {
             );
             match ext {
                 "fgb" => same_features(a, b, &format!("{name} as {ext}")),
-                "gpkg" => same_order(a, b, &format!("{name} as {ext}")),
+                "gpkg" | "parquet" => same_order(a, b, &format!("{name} as {ext}")),
                 _ => {
                     for (i, (f, g)) in a.iter().zip(b).enumerate() {
                         assert_eq!(
@@ -337,6 +341,9 @@ fn gdal_reads_what_we_write_and_we_read_what_gdal_writes() {
                     .unwrap();
             let ours = ours["features"].as_array().unwrap();
             for (ext2, format2, _) in FORMATS {
+                if ext2 == "parquet" {
+                    continue; // Debian's GDAL has no Parquet driver
+                }
                 let out = path(dir.path(), &format!("out.{ext2}"));
                 succeeds(&["smooth", &input, "--tolerance", "0.01", "-o", &out]);
                 let theirs = gdal_features(&out);
@@ -474,12 +481,14 @@ fn bad_layer_files_are_refused_naming_the_file_and_nothing_is_written() {
     files::write(Path::new(&gpkg), Output::Geopackage, &cells, None).unwrap();
     let fgb = path(dir.path(), "cells.fgb");
     files::write(Path::new(&fgb), Output::Flatgeobuf, &cells, None).unwrap();
+    let parquet = path(dir.path(), "cells.parquet");
+    files::write(Path::new(&parquet), Output::Geoparquet, &cells, None).unwrap();
     refused(
         &["smooth", &gpkg, "--layer", "roads", "-o", &out],
         1,
         "cells.gpkg: no layer \"roads\"; its feature layers: cells",
     );
-    for (file, what) in [(&gpkg, "gpkg"), (&fgb, "fgb")] {
+    for (file, what) in [(&gpkg, "gpkg"), (&fgb, "fgb"), (&parquet, "parquet")] {
         let bytes = std::fs::read(file).unwrap();
         let cut = path(dir.path(), &format!("cut.{what}"));
         std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
@@ -532,7 +541,7 @@ fn bad_layer_files_are_refused_naming_the_file_and_nothing_is_written() {
         width: None,
         decimals: None,
     }];
-    for output in [Output::Geopackage, Output::Flatgeobuf] {
+    for output in [Output::Geopackage, Output::Flatgeobuf, Output::Geoparquet] {
         let e = files::write(Path::new(&out), output, &mixed, Some(&wrong))
             .unwrap_err()
             .to_string();

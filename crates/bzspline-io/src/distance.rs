@@ -121,6 +121,21 @@ impl Space {
                 };
             }
         }
+        if let Some(p) = crs
+            .projjson
+            .as_deref()
+            .and_then(|p| serde_json::from_str::<serde_json::Value>(p).ok())
+        {
+            match p["type"].as_str() {
+                Some("GeographicCRS") => return Space::Geographic,
+                Some("ProjectedCRS") => {
+                    return Space::Projected {
+                        metres: projjson_unit(&p).or_else(|| known_projected(crs.epsg())),
+                    }
+                }
+                _ => {}
+            }
+        }
         match crs.epsg() {
             Some(4326 | 4269 | 4258 | 4283 | 4167 | 4674 | 4612 | 6318) => Space::Geographic,
             code => match known_projected(code) {
@@ -192,6 +207,23 @@ impl Space {
                 "its coordinates reach ({x0}, {y0})-({x1}, {y1}), beyond longitude and latitude, so {what} is not longitude and latitude"
             ))
         }
+    }
+}
+
+/// Metres in the unit of a PROJJSON projected CRS's first axis: `metre`,
+/// `foot`, `US survey foot`, or a unit object with its conversion factor.
+fn projjson_unit(p: &serde_json::Value) -> Option<f64> {
+    let unit = &p["coordinate_system"]["axis"][0]["unit"];
+    match unit {
+        serde_json::Value::String(name) => match name.as_str() {
+            "metre" => Some(1.0),
+            "foot" => Some(0.3048),
+            "US survey foot" => Some(1200.0 / 3937.0),
+            _ => None,
+        },
+        u => u["conversion_factor"]
+            .as_f64()
+            .filter(|m| m.is_finite() && *m > 0.0),
     }
 }
 
@@ -314,7 +346,23 @@ mod tests {
         let code = |c: i32| Crs {
             authority: Some(("EPSG".into(), c)),
             wkt: None,
+            projjson: None,
         };
+        let projjson = |p: serde_json::Value| Crs::from_projjson(&p);
+        assert_eq!(
+            Space::of_crs(Some(&projjson(
+                serde_json::json!({"type": "GeographicCRS", "name": "x"})
+            ))),
+            Space::Geographic
+        );
+        let ft = serde_json::json!({"type": "ProjectedCRS", "coordinate_system": {"axis": [
+            {"unit": {"type": "LinearUnit", "name": "US survey foot", "conversion_factor": 0.3048006096012192}}]}});
+        assert_eq!(
+            Space::of_crs(Some(&projjson(ft))),
+            Space::Projected {
+                metres: Some(0.304_800_609_601_219_2)
+            }
+        );
         assert_eq!(Space::of_crs(Some(&code(4269))), Space::Geographic);
         assert_eq!(
             Space::of_crs(Some(&code(32617))),

@@ -80,7 +80,11 @@ pub fn read_from<R: Read>(name: &str, mut reader: R) -> Result<Layer> {
     let crs = header.crs().and_then(|c| {
         let wkt = c.wkt().map(str::to_owned);
         let authority = (c.code() != 0).then(|| (c.org().unwrap_or("EPSG").to_owned(), c.code()));
-        (authority.is_some() || wkt.is_some()).then_some(Crs { authority, wkt })
+        (authority.is_some() || wkt.is_some()).then_some(Crs {
+            authority,
+            wkt,
+            projjson: None,
+        })
     });
     let mut columns: Vec<(Field, ColumnType)> = Vec::new();
     for c in header.columns().iter().flatten() {
@@ -323,19 +327,10 @@ fn number(x: f64) -> Value {
 }
 
 /// A FlatGeobuf geometry type for a layer's geometries: their one type,
-/// else `Unknown` (each feature then carries its own).
+/// else `Unknown` (each feature then carries its own; so does a layer with
+/// a feature without geometry).
 fn geometry_type(features: &[Value]) -> GeometryType {
-    let mut kind: Option<&str> = None;
-    for f in features {
-        let t = f["geometry"]["type"].as_str();
-        match (kind, t) {
-            (_, None) => return GeometryType::Unknown,
-            (None, Some(t)) => kind = Some(t),
-            (Some(k), Some(t)) if k == t => {}
-            _ => return GeometryType::Unknown,
-        }
-    }
-    match kind {
+    match geom::one_type(features, true) {
         Some("Point") => GeometryType::Point,
         Some("MultiPoint") => GeometryType::MultiPoint,
         Some("LineString") => GeometryType::LineString,
@@ -513,14 +508,7 @@ fn column_value(v: &Value, f: &Field) -> Result<Option<Cell>> {
         (FieldKind::Boolean, Value::Bool(b)) => Cell::Bool(*b),
         (FieldKind::Boolean, _) => return Err(bad("true or false")),
         (FieldKind::Integer, Value::Number(n)) => {
-            let i = n
-                .as_i64()
-                .or_else(|| {
-                    n.as_f64()
-                        .filter(|x| x.fract() == 0.0 && x.abs() < 9.2e18)
-                        .map(|x| x as i64)
-                })
-                .ok_or_else(|| bad("a whole number"))?;
+            let i = layer::whole(n).ok_or_else(|| bad("a whole number"))?;
             if f.width.is_some_and(|w| w <= 9) {
                 Cell::Int(i32::try_from(i).map_err(|_| bad("a 32-bit whole number"))?)
             } else {

@@ -1,7 +1,8 @@
 //! GIS layer files by format: the reader and the writer that a file's
-//! format selects (ESRI Shapefile, GeoPackage, FlatGeobuf), each behind its
-//! cargo feature, so that the command and the bindings choose in one place
-//! and a layer read from one format can be written to another.
+//! format selects (ESRI Shapefile, GeoPackage, FlatGeobuf, GeoParquet),
+//! each behind its cargo feature, so that the command and the bindings
+//! choose in one place and a layer read from one format can be written to
+//! another.
 
 use std::path::Path;
 
@@ -18,7 +19,10 @@ use crate::smooth::job::Output;
 pub fn is_layer(format: InputFormat) -> bool {
     matches!(
         format,
-        InputFormat::Shapefile | InputFormat::Geopackage | InputFormat::Flatgeobuf
+        InputFormat::Shapefile
+            | InputFormat::Geopackage
+            | InputFormat::Flatgeobuf
+            | InputFormat::Geoparquet
     )
 }
 
@@ -27,7 +31,7 @@ pub fn is_layer(format: InputFormat) -> bool {
 pub fn writes_layer(output: Output) -> bool {
     matches!(
         output,
-        Output::Shapefile | Output::Geopackage | Output::Flatgeobuf
+        Output::Shapefile | Output::Geopackage | Output::Flatgeobuf | Output::Geoparquet
     )
 }
 
@@ -38,6 +42,7 @@ pub fn format_name(format: InputFormat) -> &'static str {
         InputFormat::Shapefile => "a Shapefile",
         InputFormat::Geopackage => "a GeoPackage",
         InputFormat::Flatgeobuf => "a FlatGeobuf file",
+        InputFormat::Geoparquet => "a GeoParquet file",
         InputFormat::Csv | InputFormat::Tsv => "a table",
         InputFormat::Json => "JSON",
         InputFormat::Geojson | InputFormat::Geojsonseq => "GeoJSON",
@@ -73,6 +78,8 @@ pub fn read(
         InputFormat::Geopackage => crate::gpkg::read(path, layer, max_bytes),
         #[cfg(feature = "flatgeobuf")]
         InputFormat::Flatgeobuf => crate::fgb::read(path, max_bytes),
+        #[cfg(feature = "geoparquet")]
+        InputFormat::Geoparquet => crate::geoparquet::read(path, max_bytes),
         f if is_layer(f) => bail!(
             "{name}: this build reads no {} (a cargo feature of bzspline-io)",
             &format_name(f)[2..]
@@ -122,6 +129,8 @@ pub fn write(path: &Path, output: Output, doc: &Value, schema: Option<&Schema>) 
         Output::Geopackage => crate::gpkg::write(path, fc, schema),
         #[cfg(feature = "flatgeobuf")]
         Output::Flatgeobuf => crate::fgb::write(path, fc, schema),
+        #[cfg(feature = "geoparquet")]
+        Output::Geoparquet => crate::geoparquet::write(path, fc, schema),
         o => bail!("{name}: this build writes no {o:?} (a cargo feature of bzspline-io)"),
     }
 }

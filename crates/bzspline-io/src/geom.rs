@@ -1,5 +1,5 @@
 //! GeoJSON geometries (as JSON values) to and from geozero's geometry
-//! processors: the geometry half of the GeoPackage and FlatGeobuf readers
+//! processors: the geometry half of the GeoPackage, FlatGeobuf and GeoParquet readers
 //! and writers. [`ToJson`] builds a geometry from what a reader emits;
 //! [`emit`] feeds a geometry to a writer. Positions keep z; M is dropped.
 
@@ -232,6 +232,24 @@ impl GeomProcessor for ToJson {
     fn tin_begin(&mut self, _size: usize, _idx: usize) -> Result<()> {
         Self::curved()
     }
+}
+
+/// The one geometry type of a layer's features (`"Polygon"`), `None` when
+/// their types differ or there are none; features without geometry are
+/// passed over unless `null_differs`.
+#[must_use]
+pub fn one_type(features: &[Value], null_differs: bool) -> Option<&str> {
+    let mut kind: Option<&str> = None;
+    for f in features {
+        match (kind, f["geometry"]["type"].as_str()) {
+            (_, None) if null_differs => return None,
+            (_, None) => {}
+            (None, Some(t)) => kind = Some(t),
+            (Some(k), Some(t)) if k == t => {}
+            _ => return None,
+        }
+    }
+    kind
 }
 
 /// Whether any position of a geometry has z.

@@ -184,7 +184,11 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
                 (Some(o), Some(c)) if !o.eq_ignore_ascii_case("none") => Some((o, c)),
                 _ => None,
             };
-            Some(Crs { authority, wkt })
+            Some(Crs {
+                authority,
+                wkt,
+                projjson: None,
+            })
         }
     };
     // The columns: the integer primary key is the feature id, the geometry
@@ -363,18 +367,7 @@ pub fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
 /// The GeoPackage type name of a layer's geometries: their one type, else
 /// `GEOMETRY`.
 fn type_name(features: &[Value]) -> &'static str {
-    let mut kind: Option<&str> = None;
-    for f in features {
-        let Some(t) = f["geometry"]["type"].as_str() else {
-            continue;
-        };
-        match kind {
-            None => kind = Some(t),
-            Some(k) if k == t => {}
-            Some(_) => return "GEOMETRY",
-        }
-    }
-    match kind {
+    match geom::one_type(features, false) {
         Some("Point") => "POINT",
         Some("MultiPoint") => "MULTIPOINT",
         Some("LineString") => "LINESTRING",
@@ -413,15 +406,9 @@ fn sql_value(v: &Value, f: &Field) -> Result<Sql> {
         (_, Value::Null) => Sql::Null,
         (FieldKind::Boolean, Value::Bool(b)) => Sql::Integer(i64::from(*b)),
         (FieldKind::Boolean, _) => return Err(bad("true or false")),
-        (FieldKind::Integer, Value::Number(n)) => Sql::Integer(
-            n.as_i64()
-                .or_else(|| {
-                    n.as_f64()
-                        .filter(|x| x.fract() == 0.0 && x.abs() < 9.2e18)
-                        .map(|x| x as i64)
-                })
-                .ok_or_else(|| bad("a whole number"))?,
-        ),
+        (FieldKind::Integer, Value::Number(n)) => {
+            Sql::Integer(layer::whole(n).ok_or_else(|| bad("a whole number"))?)
+        }
         (FieldKind::Integer, Value::Bool(b)) => Sql::Integer(i64::from(*b)),
         (FieldKind::Integer, _) => return Err(bad("a whole number")),
         (FieldKind::Real, Value::Number(n)) => {

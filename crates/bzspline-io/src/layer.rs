@@ -15,6 +15,9 @@ pub struct Crs {
     /// The definition as WKT (a `.prj`, a GeoPackage's `definition`), when
     /// the file gives one.
     pub wkt: Option<String>,
+    /// The definition as PROJJSON (a GeoParquet file's), when the file gives
+    /// one.
+    pub projjson: Option<String>,
 }
 
 /// OGC WKT 1 of EPSG:4326 (WGS 84 longitude and latitude), as GeoPackage's
@@ -32,6 +35,7 @@ impl Crs {
         Crs {
             authority: Some(("EPSG".to_owned(), 4326)),
             wkt: Some(WGS84_WKT.to_owned()),
+            projjson: None,
         }
     }
 
@@ -56,6 +60,32 @@ impl Crs {
                 .then(|| ("EPSG".to_owned(), 4326))
             }),
             wkt: Some(wkt.to_owned()),
+            projjson: None,
+        }
+    }
+
+    /// A CRS from its PROJJSON (a GeoParquet file's `crs`), with the
+    /// authority its `id` names; OGC's CRS84 reads as EPSG:4326.
+    #[must_use]
+    pub fn from_projjson(p: &serde_json::Value) -> Crs {
+        let id = &p["id"];
+        let authority = match (id["authority"].as_str(), &id["code"]) {
+            (Some(org), Value::Number(n)) => n
+                .as_i64()
+                .and_then(|c| i32::try_from(c).ok())
+                .map(|c| (org.to_owned(), c)),
+            (Some(org), Value::String(c))
+                if org.eq_ignore_ascii_case("ogc") && c.eq_ignore_ascii_case("crs84") =>
+            {
+                Some(("EPSG".to_owned(), 4326))
+            }
+            (Some(org), Value::String(c)) => c.parse().ok().map(|c| (org.to_owned(), c)),
+            _ => None,
+        };
+        Crs {
+            authority,
+            wkt: None,
+            projjson: Some(p.to_string()),
         }
     }
 
@@ -107,6 +137,7 @@ impl Crs {
         Ok(Crs {
             authority: Some((org.to_ascii_uppercase(), code)),
             wkt: None,
+            projjson: None,
         })
     }
 
@@ -237,7 +268,12 @@ impl Schema {
 /// # Errors
 ///
 /// When the file cannot be created.
-#[cfg(any(feature = "shapefile", feature = "geopackage", feature = "flatgeobuf"))]
+#[cfg(any(
+    feature = "shapefile",
+    feature = "geopackage",
+    feature = "flatgeobuf",
+    feature = "geoparquet"
+))]
 pub(crate) fn staging_file(
     dir: &std::path::Path,
     suffix: &str,
@@ -359,6 +395,17 @@ pub fn one_line(e: &dyn std::fmt::Display) -> String {
             }
         })
         .collect()
+}
+
+/// A property's number as a whole number: an integer, or a float with no
+/// fraction within the range of 64-bit integers.
+#[must_use]
+pub fn whole(n: &serde_json::Number) -> Option<i64> {
+    n.as_i64().or_else(|| {
+        n.as_f64()
+            .filter(|x| x.fract() == 0.0 && x.abs() < 9.2e18)
+            .map(|x| x as i64)
+    })
 }
 
 /// Bytes as the text a [`FieldKind::Binary`] property holds: lowercase

@@ -20,6 +20,7 @@
 //! - `shp` (feature `shapefile`): ESRI Shapefiles in and out.
 //! - `gpkg` (feature `geopackage`): GeoPackage feature layers in and out.
 //! - `fgb` (feature `flatgeobuf`): FlatGeobuf files in and out.
+//! - `geoparquet` (feature `geoparquet`): GeoParquet files in and out.
 //! - [`smooth`]: a GeoJSON document smoothed as one coverage or ring by ring.
 //! - [`api`]: the editor's `POST /api/fit` request and response.
 //!
@@ -31,8 +32,10 @@ pub mod distance;
 #[cfg(feature = "flatgeobuf")]
 pub mod fgb;
 pub mod files;
-#[cfg(any(feature = "geopackage", feature = "flatgeobuf"))]
+#[cfg(any(feature = "geopackage", feature = "flatgeobuf", feature = "geoparquet"))]
 pub mod geom;
+#[cfg(feature = "geoparquet")]
+pub mod geoparquet;
 #[cfg(feature = "geopackage")]
 pub mod gpkg;
 pub mod input;

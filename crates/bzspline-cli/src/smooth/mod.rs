@@ -24,17 +24,6 @@ use crate::output::Sink;
 use bzspline_io::distance::Unit;
 use bzspline_io::files;
 
-/// What an output format is called in messages.
-fn out_name(output: Output) -> &'static str {
-    match output {
-        Output::Geopackage => "a GeoPackage",
-        Output::Flatgeobuf => "a FlatGeobuf file",
-        Output::Shapefile => "a Shapefile",
-        Output::Geojson => "GeoJSON",
-        Output::Topojson => "TopoJSON",
-    }
-}
-
 /// Runs `smooth`.
 ///
 /// # Errors
@@ -49,15 +38,9 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
     lib.keep_angle = a.keep_angle;
     lib.through = a.through;
     let out_path = a.output.output.as_deref();
-    let output = a.output_format.unwrap_or_else(|| {
-        match out_path.and_then(Path::extension).and_then(|e| e.to_str()) {
-            Some(e) if e.eq_ignore_ascii_case("topojson") => Output::Topojson,
-            Some(e) if e.eq_ignore_ascii_case("shp") => Output::Shapefile,
-            Some(e) if e.eq_ignore_ascii_case("gpkg") => Output::Geopackage,
-            Some(e) if e.eq_ignore_ascii_case("fgb") => Output::Flatgeobuf,
-            _ => Output::Geojson,
-        }
-    });
+    let output = a
+        .output_format
+        .unwrap_or_else(|| out_path.map_or(Output::Geojson, Output::of_path));
     let file = a.input.file.as_deref();
     let format = match (a.input.example, a.input.input_format) {
         (Some(_), _) => InputFormat::Csv,
@@ -68,7 +51,8 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             | InputFormat::Topojson
             | InputFormat::Shapefile
             | InputFormat::Geopackage
-            | InputFormat::Flatgeobuf) => f,
+            | InputFormat::Flatgeobuf
+            | InputFormat::Geoparquet) => f,
             InputFormat::Csv
                 if file.is_some_and(|f| f != Path::new("-") && has_table_extension(f)) =>
             {
@@ -105,7 +89,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         (true, _) if format == InputFormat::Geojsonseq => {
             return Err(UsageError::new(&format!(
                 "newline-delimited GeoJSON is streamed and cannot be written as {}",
-                out_name(output)
+                output.name()
             ))
             .into())
         }
@@ -113,12 +97,8 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         (true, _) => {
             return Err(UsageError::new(&format!(
                 "{} is written as a file, not to standard output: give -o NAME.{}",
-                out_name(output),
-                match output {
-                    Output::Geopackage => "gpkg",
-                    Output::Flatgeobuf => "fgb",
-                    _ => "shp",
-                }
+                output.name(),
+                output.extension()
             ))
             .into())
         }

@@ -61,6 +61,8 @@ pub enum InputFormat {
     Geopackage,
     /// A FlatGeobuf file (recognised by its content too).
     Flatgeobuf,
+    /// A GeoParquet file (recognised by its content too).
+    Geoparquet,
 }
 
 /// Where control points come from and how much of them to take: what
@@ -346,7 +348,8 @@ pub fn read_source(file: Option<&Path>, max_bytes: u64) -> Result<(String, Vec<u
 }
 
 /// The format of `file`: the explicit one, else by extension, else a layer
-/// file's by its first bytes (a Shapefile, a GeoPackage, FlatGeobuf), else
+/// file's by its first bytes (a Shapefile, a GeoPackage, FlatGeobuf,
+/// Parquet), else
 /// CSV.
 #[must_use]
 pub fn format_of(file: Option<&Path>, explicit: Option<InputFormat>) -> InputFormat {
@@ -380,6 +383,7 @@ fn format_by_extension(file: Option<&Path>) -> Option<InputFormat> {
         Some("shp") => Some(InputFormat::Shapefile),
         Some("gpkg") => Some(InputFormat::Geopackage),
         Some("fgb") => Some(InputFormat::Flatgeobuf),
+        Some("parquet" | "geoparquet") => Some(InputFormat::Geoparquet),
         Some("geojsonl" | "geojsons" | "ndjson" | "geojsonseq") => Some(InputFormat::Geojsonseq),
         _ => None,
     }
@@ -407,6 +411,9 @@ pub fn sniff(bytes: &[u8]) -> InputFormat {
     if bytes.starts_with(b"fgb\x03") {
         return InputFormat::Flatgeobuf;
     }
+    if bytes.starts_with(b"PAR1") {
+        return InputFormat::Geoparquet;
+    }
     let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     let Some(&first) = text.iter().find(|b| !b.is_ascii_whitespace()) else {
         return InputFormat::Csv;
@@ -432,7 +439,7 @@ pub fn sniff(bytes: &[u8]) -> InputFormat {
 }
 
 /// The first line, ring or run of points of a layer file's features
-/// (Shapefile, GeoPackage, FlatGeobuf), as from the same features in
+/// (Shapefile, GeoPackage, FlatGeobuf, GeoParquet), as from the same features in
 /// GeoJSON.
 fn layer_points(
     file: Option<&Path>,
@@ -519,7 +526,10 @@ pub fn load(args: &Source) -> Result<Points> {
         InputFormat::Topojson => {
             bail!("{name}: TopoJSON holds a coverage: `bzspline smooth` reads it; fit, eval, sample and plot take a table, JSON, GeoJSON or a layer file")
         }
-        InputFormat::Shapefile | InputFormat::Geopackage | InputFormat::Flatgeobuf => {
+        InputFormat::Shapefile
+        | InputFormat::Geopackage
+        | InputFormat::Flatgeobuf
+        | InputFormat::Geoparquet => {
             unreachable!("read above")
         }
         InputFormat::Geojsonseq => {

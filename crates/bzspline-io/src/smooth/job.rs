@@ -33,6 +33,54 @@ pub enum Output {
     Geopackage,
     /// A FlatGeobuf file.
     Flatgeobuf,
+    /// A GeoParquet file (WKB geometries).
+    Geoparquet,
+}
+
+impl Output {
+    /// The output a file name's extension names (`.topojson`, `.shp`,
+    /// `.gpkg`, `.fgb`, `.parquet`, `.geoparquet`), GeoJSON for any other.
+    #[must_use]
+    pub fn of_path(path: &std::path::Path) -> Output {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("topojson") => Output::Topojson,
+            Some("shp") => Output::Shapefile,
+            Some("gpkg") => Output::Geopackage,
+            Some("fgb") => Output::Flatgeobuf,
+            Some("parquet" | "geoparquet") => Output::Geoparquet,
+            _ => Output::Geojson,
+        }
+    }
+
+    /// What the output is called in messages.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Output::Geopackage => "a GeoPackage",
+            Output::Flatgeobuf => "a FlatGeobuf file",
+            Output::Geoparquet => "a GeoParquet file",
+            Output::Shapefile => "a Shapefile",
+            Output::Geojson => "GeoJSON",
+            Output::Topojson => "TopoJSON",
+        }
+    }
+
+    /// The extension of a file of this output.
+    #[must_use]
+    pub fn extension(self) -> &'static str {
+        match self {
+            Output::Geopackage => "gpkg",
+            Output::Flatgeobuf => "fgb",
+            Output::Geoparquet => "parquet",
+            Output::Shapefile => "shp",
+            Output::Geojson => "geojson",
+            Output::Topojson => "topojson",
+        }
+    }
 }
 
 /// Everything a job is asked to do.

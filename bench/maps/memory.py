@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""Peak memory of `bzspline smooth` on one large coverage in every layer
+format: a mosaic of nx by ny cells (bench/dask_coverage.py's, every border
+shared by its two cells) written as GeoJSON, GeoPackage and FlatGeobuf (by
+pyogrio's GDAL) and GeoParquet (by geopandas and pyarrow), each smoothed as
+one coverage into a file of its own format.
+
+    cargo build --release -p bzspline-cli
+    python3 bench/maps/memory.py [--nx 1000] [--ny 1000] [--k 2] [--bin target/release/bzspline]
+
+Needs geopandas, pyogrio and pyarrow. Prints, per format, the input's size
+S, the peak resident memory of the command (GNU time's maximum resident set
+size), that peak over S, the seconds, and the reference the issue set: 2 S
+plus the coverage's positions (16 bytes each).
+"""
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.dirname(HERE))
+
+from dask_coverage import mosaic  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--nx", type=int, default=1000)
+    ap.add_argument("--ny", type=int, default=1000)
+    ap.add_argument("--k", type=int, default=2, help="vertices per cell side")
+    ap.add_argument("--bin", default=os.path.join(ROOT, "target/release/bzspline"))
+    ap.add_argument("--dir", default=None, help="where the files go (default: a temporary folder)")
+    args = ap.parse_args()
+
+    import geopandas
+    import numpy as np
+    import shapely
+
+    cells = mosaic(args.nx, args.ny, k=args.k)
+    n = len(cells)
+    gdf = geopandas.GeoDataFrame(
+        {"id": np.arange(n, dtype="int64"), "name": [f"cell {i}" for i in range(n)]},
+        geometry=cells, crs="EPSG:3857")
+    positions = int(shapely.get_num_coordinates(cells).sum())
+    print(f"coverage: {n:,} cells, {positions:,} positions ({args.nx} x {args.ny}, k = {args.k})")
+    with tempfile.TemporaryDirectory(dir=args.dir) as d:
+        files = {
+            "GeoJSON": os.path.join(d, "cells.geojson"),
+            "GeoPackage": os.path.join(d, "cells.gpkg"),
+            "FlatGeobuf": os.path.join(d, "cells.fgb"),
+            "GeoParquet": os.path.join(d, "cells.parquet"),
+        }
+        gdf.to_parquet(files["GeoParquet"])
+        for name, driver in [("GeoJSON", "GeoJSON"), ("GeoPackage", "GPKG"), ("FlatGeobuf", "FlatGeobuf")]:
+            gdf.to_file(files[name], driver=driver, engine="pyogrio")
+        print("| input | S, MB | peak, MB | peak / S | 2 S + positions, MB | s |")
+        print("|---|---:|---:|---:|---:|---:|")
+        for name, path in files.items():
+            out = os.path.join(d, "out" + os.path.splitext(path)[1])
+            r = subprocess.run(["/usr/bin/time", "-f", "%M %e", args.bin, "smooth", path, "-o", out],
+                               capture_output=True, text=True)
+            if r.returncode != 0:
+                sys.exit(f"{name}: {r.stderr}")
+            kb, secs = r.stderr.strip().splitlines()[-1].split()
+            size = os.path.getsize(path) / 1e6
+            peak = int(kb) / 1e3
+            ref = 2 * size + positions * 16 / 1e6
+            print(f"| {name} | {size:,.0f} | {peak:,.0f} | {peak / size:.1f} | {ref:,.0f} | {float(secs):.1f} |")
+            os.remove(out)
+
+
+if __name__ == "__main__":
+    main()
