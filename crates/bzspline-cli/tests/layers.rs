@@ -434,6 +434,83 @@ fn a_geopackage_of_several_layers_needs_one_chosen() {
 }
 
 #[test]
+#[cfg_attr(
+    not(gdal),
+    ignore = "needs GDAL's ogr2ogr and ogrinfo (apt-get install gdal-bin)"
+)]
+fn geopackages_carry_a_spatial_index_that_gdal_uses_and_keeps() {
+    let dir = tempfile::tempdir().unwrap();
+    let cells = polygons_of(dir.path(), "mosaic");
+    let doc = read_json(&cells);
+    let gpkg = path(dir.path(), "cells.gpkg");
+    succeeds(&["smooth", &cells, "-o", &gpkg]);
+    let back = files::read(Path::new(&gpkg), InputFormat::Geopackage, None, u64::MAX).unwrap();
+    let t = back.schema.name.clone();
+    let sql = |q: &str| gdal("ogrinfo", &["-ro", &gpkg, "-sql", q]);
+    assert!(
+        sql(&format!("SELECT HasSpatialIndex('{t}', 'geom')"))
+            .contains("HasSpatialIndex (Integer) = 1"),
+        "GDAL sees no spatial index"
+    );
+    // A window's features through the index, against every feature's
+    // envelope checked by brute force.
+    let features = back.features["features"].as_array().unwrap();
+    assert_eq!(features.len(), doc["features"].as_array().unwrap().len());
+    let (x0, y0, x1, y1) = (0.3, 0.2, 0.9, 0.6);
+    let want = features
+        .iter()
+        .filter(|f| {
+            let p = numbers(&f["geometry"]["coordinates"]);
+            let (xs, ys): (Vec<f64>, Vec<f64>) = p.chunks(2).map(|c| (c[0], c[1])).unzip();
+            let (a, b) = (
+                xs.iter().copied().fold(f64::INFINITY, f64::min),
+                xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            );
+            let (c, d) = (
+                ys.iter().copied().fold(f64::INFINITY, f64::min),
+                ys.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            );
+            a <= x1 && b >= x0 && c <= y1 && d >= y0
+        })
+        .count();
+    let window = sql(&format!(
+        "SELECT COUNT(*) AS n FROM \"rtree_{t}_geom\" WHERE maxx >= {x0} AND minx <= {x1} AND maxy >= {y0} AND miny <= {y1}"
+    ));
+    assert!(
+        window.contains(&format!("n (Integer) = {want}")),
+        "{window}\nwant {want}"
+    );
+    assert!(want > 0 && want < features.len());
+    // GDAL's edits keep it in step through the triggers.
+    gdal(
+        "ogrinfo",
+        &[
+            &gpkg,
+            "-sql",
+            "UPDATE cells SET geom = (SELECT geom FROM cells WHERE fid = 2) WHERE fid = 1",
+        ],
+    );
+    gdal(
+        "ogrinfo",
+        &[&gpkg, "-sql", "DELETE FROM cells WHERE fid = 3"],
+    );
+    let rows = sql(
+        "SELECT id, minx, maxx, miny, maxy FROM rtree_cells_geom WHERE id IN (1, 2, 3) ORDER BY id",
+    );
+    let boxes: Vec<f64> = rows
+        .lines()
+        .filter(|l| l.contains(" = ") && !l.contains("id ("))
+        .map(|l| l.split(" = ").nth(1).unwrap().trim().parse().unwrap())
+        .collect();
+    assert_eq!(boxes.len(), 8, "{rows}");
+    // The index holds 32-bit floats, rounded outward by each SQLite.
+    for k in 0..4 {
+        assert!((boxes[k] - boxes[k + 4]).abs() < 1e-6, "{rows}");
+    }
+    assert!(!rows.contains("id (Integer64) = 3"), "{rows}");
+}
+
+#[test]
 fn fit_reads_the_first_line_of_a_layer_file() {
     let dir = tempfile::tempdir().unwrap();
     let doc = json!({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "road"},

@@ -3,8 +3,8 @@
 //! [`Layer`] (attributes as properties in column order, the feature id left
 //! out as GDAL leaves it out, the CRS from `gpkg_spatial_ref_sys`), and a
 //! FeatureCollection written as a new GeoPackage of one layer, with the
-//! input's fields and CRS. The file is written beside its destination and
-//! renamed into place only when complete.
+//! input's fields and CRS and an R-tree spatial index. The file is written
+//! beside its destination and renamed into place only when complete.
 
 use std::path::Path;
 
@@ -579,6 +579,8 @@ fn fill(
     }
     insert += ")";
     let mut extent: Option<[f64; 4]> = None;
+    // Each feature's id and envelope, for the spatial index.
+    let mut boxes: Vec<(i64, [f64; 4])> = Vec::with_capacity(features.len());
     {
         let mut st = tx.prepare(&insert).map_err(sql)?;
         for (i, f) in features.iter().enumerate() {
@@ -620,8 +622,12 @@ fn fill(
             }
             st.execute(rusqlite::params_from_iter(values))
                 .map_err(|e| anyhow!("feature {i}: SQLite: {}", one_line(&e)))?;
+            if let Some(env) = geom::envelope(g) {
+                boxes.push((tx.last_insert_rowid(), env));
+            }
         }
     }
+    spatial_index(&tx, name, fid, geom_col, &boxes).map_err(sql)?;
     let [x0, x1, y0, y1] = extent.map_or([None; 4], |e| e.map(Some));
     tx.execute(
         "INSERT INTO gpkg_contents (table_name, data_type, identifier, min_x, min_y, max_x, max_y, srs_id) VALUES (?1, 'features', ?1, ?2, ?3, ?4, ?5, ?6)",
@@ -635,6 +641,59 @@ fn fill(
     .map_err(sql)?;
     tx.commit().map_err(sql)?;
     Ok(())
+}
+
+/// The GeoPackage R-tree spatial index extension of a layer (as GDAL
+/// writes it: the `rtree_<table>_<column>` table of every feature's
+/// envelope, its row in `gpkg_extensions`, and the specification's triggers
+/// that keep it in step when another program edits the layer; they call
+/// `ST_MinX` and the like, which GDAL and QGIS provide).
+fn spatial_index(
+    tx: &rusqlite::Transaction,
+    table: &str,
+    fid: &str,
+    geom: &str,
+    boxes: &[(i64, [f64; 4])],
+) -> rusqlite::Result<()> {
+    let rtree = format!("rtree_{table}_{geom}");
+    let (t, i, c, r) = (quote(table), quote(fid), quote(geom), quote(&rtree));
+    tx.execute_batch(&format!(
+        "CREATE VIRTUAL TABLE {r} USING rtree(id, minx, maxx, miny, maxy);
+         CREATE TABLE IF NOT EXISTS gpkg_extensions (table_name TEXT, column_name TEXT, extension_name TEXT NOT NULL, definition TEXT NOT NULL, scope TEXT NOT NULL, CONSTRAINT ge_tce UNIQUE (table_name, column_name, extension_name));"
+    ))?;
+    {
+        let mut st = tx.prepare(&format!("INSERT INTO {r} VALUES (?1, ?2, ?3, ?4, ?5)"))?;
+        for (id, [x0, x1, y0, y1]) in boxes {
+            st.execute(params![id, x0, x1, y0, y1])?;
+        }
+    }
+    tx.execute(
+        "INSERT INTO gpkg_extensions VALUES (?1, ?2, 'gpkg_rtree_index', 'http://www.geopackage.org/spec120/#extension_rtree', 'write-only')",
+        params![table, geom],
+    )?;
+    let trigger = |suffix: &str| quote(&format!("{rtree}_{suffix}"));
+    let envelope =
+        format!("NEW.{i}, ST_MinX(NEW.{c}), ST_MaxX(NEW.{c}), ST_MinY(NEW.{c}), ST_MaxY(NEW.{c})");
+    tx.execute_batch(&format!(
+        "CREATE TRIGGER {insert} AFTER INSERT ON {t} WHEN (NEW.{c} NOT NULL AND NOT ST_IsEmpty(NEW.{c}))
+         BEGIN INSERT OR REPLACE INTO {r} VALUES ({envelope}); END;
+         CREATE TRIGGER {update1} AFTER UPDATE OF {c} ON {t} WHEN OLD.{i} = NEW.{i} AND (NEW.{c} NOTNULL AND NOT ST_IsEmpty(NEW.{c}))
+         BEGIN INSERT OR REPLACE INTO {r} VALUES ({envelope}); END;
+         CREATE TRIGGER {update2} AFTER UPDATE OF {c} ON {t} WHEN OLD.{i} = NEW.{i} AND (NEW.{c} ISNULL OR ST_IsEmpty(NEW.{c}))
+         BEGIN DELETE FROM {r} WHERE id = OLD.{i}; END;
+         CREATE TRIGGER {update3} AFTER UPDATE ON {t} WHEN OLD.{i} != NEW.{i} AND (NEW.{c} NOTNULL AND NOT ST_IsEmpty(NEW.{c}))
+         BEGIN DELETE FROM {r} WHERE id = OLD.{i}; INSERT OR REPLACE INTO {r} VALUES ({envelope}); END;
+         CREATE TRIGGER {update4} AFTER UPDATE ON {t} WHEN OLD.{i} != NEW.{i} AND (NEW.{c} ISNULL OR ST_IsEmpty(NEW.{c}))
+         BEGIN DELETE FROM {r} WHERE id IN (OLD.{i}, NEW.{i}); END;
+         CREATE TRIGGER {delete} AFTER DELETE ON {t} WHEN OLD.{c} NOT NULL
+         BEGIN DELETE FROM {r} WHERE id = OLD.{i}; END;",
+        insert = trigger("insert"),
+        update1 = trigger("update1"),
+        update2 = trigger("update2"),
+        update3 = trigger("update3"),
+        update4 = trigger("update4"),
+        delete = trigger("delete"),
+    ))
 }
 
 #[cfg(test)]
