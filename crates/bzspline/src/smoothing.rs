@@ -4,7 +4,10 @@
 //! chosen by generalized cross-validation; one block-tridiagonal solve per
 //! `lambda`, O(N) time and memory, the trace of the influence matrix included.
 
+mod posterior;
 mod system;
+
+pub use posterior::{band_z, normal_quantile, Posterior};
 
 use crate::error::{Error, Field};
 use crate::method::power_of_two_scale;
@@ -45,6 +48,105 @@ pub struct Smoothed<T> {
     /// The effective degrees of freedom: the trace of the influence matrix
     /// (from 2 for the straight line to `n` for interpolation).
     pub dof: f64,
+    /// What the fit's standard errors and confidence bands need
+    /// (`docs/method.md` §13).
+    pub posterior: Posterior,
+}
+
+impl Smoothed<crate::Spline> {
+    /// The standard error of the fit at `x`: the square root of the
+    /// Bayesian posterior variance of the penalised fit (Wahba's),
+    /// `sigma^2 b(x)^T M^-1 b(x)` with `M` the matrix the fit factored and
+    /// `sigma^2 = RSS / (n - dof)`. O(log N) a point.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::OutOfDomain`] for `x` outside the knots (or not finite);
+    /// [`Error::InvalidArgument`] when the fit passes through its points
+    /// (`lambda = 0`): no residual is left to estimate the noise.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Alphas, Smoothing, Spline};
+    /// let x: Vec<f64> = (0..200).map(|i| i as f64 / 199.0).collect();
+    /// let y: Vec<f64> = x.iter().enumerate()
+    ///     .map(|(i, &t)| (6.0 * t).sin() + if i % 2 == 0 { 0.2 } else { -0.2 })
+    ///     .collect();
+    /// let s = Spline::smoothing(&x, &y, None, Alphas::default(), Smoothing::Gcv)?;
+    /// let (lo, hi) = s.band(0.5, 0.95)?;
+    /// assert!(lo < s.fit.eval(0.5)? && s.fit.eval(0.5)? < hi);
+    /// assert!(hi - lo < 0.2 && s.se(0.5)? > 0.0);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn se(&self, x: f64) -> Result<f64, Error> {
+        self.posterior.se(x, 0)
+    }
+
+    /// [`Smoothed::se`] at every `x`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Smoothed::se`], for the first `x` that has none.
+    pub fn se_many(&self, xs: &[f64]) -> Result<Vec<f64>, Error> {
+        let s2 = self.posterior.noise_variance()?[0];
+        xs.iter()
+            .map(|&x| Ok((s2 * self.posterior.unit_variance(x)?).sqrt()))
+            .collect()
+    }
+
+    /// The pointwise confidence band at `x`: `S(x) -+ z se(x)` with `z` the
+    /// standard normal quantile of `(1 + level) / 2` (1.96 at 0.95). Across
+    /// the data's points the band covers the true curve at about `level` of
+    /// them on average (an across-the-function property, as for mgcv's).
+    ///
+    /// # Errors
+    ///
+    /// As [`Smoothed::se`]; [`Error::InvalidArgument`] for a level outside
+    /// `(0, 1)`.
+    pub fn band(&self, x: f64, level: f64) -> Result<(f64, f64), Error> {
+        let z = band_z(level)?;
+        let (y, se) = (self.fit.eval(x)?, self.se(x)?);
+        Ok((y - z * se, y + z * se))
+    }
+
+    /// [`Smoothed::band`] at every `x`: the lower and the upper edges.
+    ///
+    /// # Errors
+    ///
+    /// As [`Smoothed::band`].
+    pub fn band_many(&self, xs: &[f64], level: f64) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        let z = band_z(level)?;
+        let se = self.se_many(xs)?;
+        let mut lo = Vec::with_capacity(xs.len());
+        let mut hi = Vec::with_capacity(xs.len());
+        for (&x, s) in xs.iter().zip(se) {
+            let y = self.fit.eval(x)?;
+            lo.push(y - z * s);
+            hi.push(y + z * s);
+        }
+        Ok((lo, hi))
+    }
+}
+
+impl Smoothed<crate::Curve> {
+    /// The standard error of each coordinate of the smoothed curve at the
+    /// parameter `t` (the curve's own parameter, as its knots run), as
+    /// [`Smoothed::se`] gives for a spline: every coordinate shares the
+    /// matrix, each has its own noise variance.
+    ///
+    /// # Errors
+    ///
+    /// As [`Smoothed::se`], with `t` outside the knots out of domain.
+    pub fn se(&self, t: f64) -> Result<Vec<f64>, Error> {
+        let v = self.posterior.unit_variance(t)?;
+        Ok(self
+            .posterior
+            .noise_variance()?
+            .iter()
+            .map(|s2| (s2 * v).sqrt())
+            .collect())
+    }
 }
 
 /// A weight below this, relative to the mean weight, counts as none where
@@ -58,6 +160,7 @@ pub(crate) struct Fit {
     pub(crate) lambda: f64,
     pub(crate) gcv: f64,
     pub(crate) dof: f64,
+    pub(crate) posterior: Posterior,
 }
 
 /// Checks the weights (one per point, finite, `>= 0`, at least two positive)
@@ -174,11 +277,17 @@ pub(crate) fn fit(
     if !(dof > 1.0 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
         return Err(ill_conditioned());
     }
+    // §13: sigma^2 = sum_j w_j r_j^2 / (n - dof) with the weights of mean 1.
+    let residual_dof = positive as f64 - dof;
+    let sigma2 = (residual_dof > 1e-9 * positive as f64)
+        .then(|| rss.iter().map(|r| r / (mean_w * residual_dof)).collect());
+    let posterior = Posterior::new(knots, alphas, f.covariances(), sigma2);
     Ok(Fit {
         controls,
         lambda,
-        gcv: gcv_score(rss / dim as f64, dof, positive),
+        gcv: gcv_score(rss.iter().sum::<f64>() / dim as f64, dof, positive),
         dof,
+        posterior,
     })
 }
 
@@ -261,7 +370,8 @@ fn choose(
 }
 
 /// Solves every coordinate with the factored system: the control values
-/// (flat, in the data's units) and the weighted residual sum of squares.
+/// (flat, in the data's units) and each coordinate's weighted residual sum
+/// of squares.
 /// Each solution must be the method's spline of its control values (its knot
 /// values, solved again by the method, are the fitted ones): intervals of
 /// widths many decades apart under a large lambda can defeat the
@@ -272,11 +382,11 @@ fn controls(
     knots: &[f64],
     alphas: &[f64],
     weights: &[f64],
-) -> Result<(Vec<f64>, f64), Error> {
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
     let (n, dim) = (knots.len(), coords.len());
     let mut out = vec![0.0; n * dim];
     let (mut phi, mut d, mut g) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut rss = 0.0;
+    let mut rss = vec![0.0; dim];
     for (c, (scale, y)) in coords.iter().enumerate() {
         f.solve(y, &mut phi, &mut d);
         for i in 0..n {
@@ -288,7 +398,7 @@ fn controls(
             }
             out[i * dim + c] = g[i] * scale;
             let r = (y[i] - phi[i]) * scale;
-            rss += weights[i] * r * r;
+            rss[c] += weights[i] * r * r;
         }
         if !consistent(knots, &g, alphas, &phi) {
             return Err(ill_conditioned());
@@ -629,6 +739,7 @@ impl crate::Spline {
             lambda: fit.lambda,
             gcv: fit.gcv,
             dof: fit.dof,
+            posterior: fit.posterior,
         })
     }
 }

@@ -227,6 +227,7 @@ impl<'a> CurveBuilder<'a> {
             lambda: fit.lambda,
             gcv: fit.gcv,
             dof: fit.dof,
+            posterior: fit.posterior,
         })
     }
 

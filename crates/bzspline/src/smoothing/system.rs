@@ -463,6 +463,90 @@ impl<'a> Factored<'a> {
         d[n - 1] = 0.0;
     }
 
+    /// The posterior covariance (over `sigma^2`) of each knot's value and
+    /// deviation, and of those of neighbouring knots, from the blocks of the
+    /// inverse that the recurrence of [`Factored::trace`] passes through
+    /// (`docs/method.md` §13): at knot `k`, `[Z(phi_k, phi_k), Z(phi_k, d_k),
+    /// Z(d_k, d_k), Z(phi_k, phi_{k+1}), Z(phi_k, d_{k+1}), Z(d_k, phi_{k+1}),
+    /// Z(d_k, d_{k+1})]` (the last four zero at `N - 1`; `d_0 = d_{N-1} = 0`
+    /// have none). The off-diagonal blocks follow from `Z L = L^-T D^-1`
+    /// being block upper triangular: `Z_{b+1,b} = -Z_{b+1} L_{b+1,b}`.
+    pub(crate) fn covariances(&self) -> Vec<[f64; 7]> {
+        let g = self.grid;
+        let n = g.n();
+        let mut out = vec![[0.0; 7]; n];
+        let last = self.inv.len() - 1;
+        let mut zm = self.inv[last];
+        out[n - 1][0] = zm[0][0];
+        for b in (0..last).rev() {
+            let k = g.head + 1 + b;
+            let l = link_mul(&g.link(k + 1, self.lambda), &self.inv[b]);
+            // Z_{k+1,k} = -Z_{k+1} L: rows knot k+1, columns knot k.
+            let cross = mul(&zm, &l);
+            let mut next = t_mul(&l, &cross);
+            for i in 0..3 {
+                for j in 0..3 {
+                    next[i][j] += self.inv[b][i][j];
+                }
+            }
+            zm = next;
+            out[k] = [
+                zm[0][0],
+                zm[0][1],
+                zm[1][1],
+                -cross[0][0],
+                -cross[1][0],
+                -cross[0][1],
+                -cross[1][1],
+            ];
+        }
+        // The head: with L = B S_head^-1 (3 x size, B meeting the head's last
+        // knot only), Z_head = S_head^-1 + L^T Z L and Z_{head+1,head} = -Z L.
+        let sz = g.head_size();
+        let tail = sz - 3;
+        let b = g.link(g.head + 1, self.lambda);
+        let lcol = |i: usize| -> [f64; 3] {
+            [0, 1, 2].map(|r| {
+                (0..3)
+                    .map(|c| b[r][c] * self.head_inv[(tail + c) * sz + i])
+                    .sum()
+            })
+        };
+        let cols: Vec<[f64; 3]> = (0..sz).map(lcol).collect();
+        let zl: Vec<[f64; 3]> = cols.iter().map(|c| apply(&zm, c)).collect();
+        let z = |i: usize, j: usize| -> f64 {
+            self.head_inv[i * sz + j] + (0..3).map(|r| cols[i][r] * zl[j][r]).sum::<f64>()
+        };
+        // Positions of phi_k and d_k in the head (d_0 has none).
+        let phi_at = |k: usize| if k == 0 { 0 } else { 1 + 3 * (k - 1) };
+        let d_at = |k: usize| (k > 0).then(|| 2 + 3 * (k - 1));
+        let zz = |a: Option<usize>, c: Option<usize>| match (a, c) {
+            (Some(a), Some(c)) => z(a, c),
+            _ => 0.0,
+        };
+        for k in 0..=g.head {
+            let (p, d) = (Some(phi_at(k)), d_at(k));
+            out[k][0] = zz(p, p);
+            out[k][1] = zz(p, d);
+            out[k][2] = zz(d, d);
+            if k < g.head {
+                let (p1, d1) = (Some(phi_at(k + 1)), d_at(k + 1));
+                out[k][3] = zz(p, p1);
+                out[k][4] = zz(p, d1);
+                out[k][5] = zz(d, p1);
+                out[k][6] = zz(d, d1);
+            } else {
+                // Against knot head + 1: -(Z L)[row of knot head + 1][column].
+                let at = |i: Option<usize>, r: usize| i.map_or(0.0, |i| -zl[i][r]);
+                out[k][3] = at(p, 0);
+                out[k][4] = if g.head + 1 == n - 1 { 0.0 } else { at(p, 1) };
+                out[k][5] = at(d, 0);
+                out[k][6] = if g.head + 1 == n - 1 { 0.0 } else { at(d, 1) };
+            }
+        }
+        out
+    }
+
     /// The trace of the influence matrix, `sum_j w_j (H^-1)[phi_j, phi_j]`,
     /// from the diagonal blocks of the inverse, `Z_b = S_b^-1 + L_{b+1}^T
     /// Z_{b+1} L_{b+1}` with `L_{b+1} = B_{b+1} S_b^-1`, without forming any
