@@ -20,6 +20,9 @@ vd=$(mktemp -d)
 (cd "$vd" && npm pack --silent vega-datasets@2.11.0 >/dev/null && tar xzf vega-datasets-2.11.0.tgz)
 "$bz" plot "$vd/package/data/sp500-2000.csv" --x date --y close \
     --title "S&P 500, daily close: 5,104 points drawn as a chart" -o docs/dense.png
+# band.png: the yearly global temperature anomaly, smoothed, with its 95 % band.
+"$bz" plot "$vd/package/data/global-temp.csv" --smooth auto --band 0.95 \
+    --title "Global temperature anomaly (°C), yearly: smoothed, with its 95 % band" -o docs/band.png
 rm -rf "$vd"
 python3 docs/make_compare.py
 python3 docs/make_coverage.py   # coverage.png needs rsvg-convert (apt-get install librsvg2-bin)

@@ -189,6 +189,22 @@ fn param_parser() -> impl clap::builder::TypedValueParser<Value = bzspline::Para
         .map(|s| s.parse().unwrap_or_default())
 }
 
+/// A confidence band of a smoothing fit.
+#[derive(Debug, Clone, Args)]
+pub struct BandArgs {
+    /// With --smooth, for y(x): the pointwise confidence band at LEVEL (0.95
+    /// for 95 %) from the fit's posterior standard error, `S(x) -+ z se(x)`;
+    /// `eval` and `sample` add the columns `lo` and `hi`, `plot` shades it.
+    #[arg(long, value_name = "LEVEL", requires = "smooth", value_parser = band_level)]
+    pub band: Option<f64>,
+}
+
+/// `--band`: a level the library accepts ([`bzspline::band_z`]).
+fn band_level(s: &str) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    bzspline::band_z(v).map(|_| v).map_err(|e| e.to_string())
+}
+
 /// Where the result goes.
 #[derive(Debug, Clone, Args)]
 pub struct OutputArgs {
@@ -276,6 +292,8 @@ pub struct EvalArgs {
     /// Outside the span: error, clamp to the end values, or extend the end cubics.
     #[arg(long, value_name = "POLICY", default_value = "error", value_parser = extrapolate_parser())]
     pub extrapolate: bzspline::Extrapolate,
+    #[command(flatten)]
+    pub band: BandArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = TableFormat::Csv)]
     pub format: TableFormat,
@@ -307,6 +325,8 @@ pub struct SampleArgs {
     #[arg(long, value_name = "K", value_delimiter = ',',
           value_parser = clap::value_parser!(u32).range(1..=2))]
     pub derivative: Vec<u32>,
+    #[command(flatten)]
+    pub band: BandArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = TableFormat::Csv)]
     pub format: TableFormat,

@@ -11,9 +11,9 @@ use serde_json::{json, Value};
 use crate::cli::{
     usage, Abscissa, EvalArgs, FitArgs, FitFormat, SampleArgs, SmoothArgs, TableFormat,
 };
-use crate::fit::{fit_points, fit_points_reported};
+use crate::fit::fit_points_reported;
 use crate::input;
-use crate::model::{self, Fitted, Mode};
+use crate::model::{self, Fitted, Mode, Shape, SmoothingReport};
 use crate::output;
 use crate::time::{self, TimeKind};
 
@@ -247,6 +247,41 @@ fn row_at(
     }
 }
 
+/// The level of `--band`, checked against the shape: a band is of a
+/// smoothing fit of y(x) (clap has made sure of `--smooth`).
+pub(crate) fn band_of(shape: &Shape, band: Option<f64>) -> Result<Option<f64>> {
+    if band.is_some() && shape.mode == Mode::Curve {
+        usage!("--band applies to y(x) only, not to curves");
+    }
+    Ok(band)
+}
+
+/// Appends the band's `lo` and `hi` at `x` to a row whose second number is
+/// the fit's value there.
+fn with_band(
+    row: &mut Vec<f64>,
+    level: Option<f64>,
+    report: Option<&SmoothingReport>,
+    x: f64,
+) -> std::result::Result<(), bzspline::Error> {
+    let (Some(level), Some(r)) = (level, report) else {
+        return Ok(());
+    };
+    let (lo, hi) = r.posterior.band(row[1], x, level, 0)?;
+    row.push(lo);
+    row.push(hi);
+    Ok(())
+}
+
+/// The columns with the band's `lo` and `hi` after them, when one is asked.
+fn band_columns(mut columns: Vec<String>, band: Option<f64>) -> Vec<String> {
+    if band.is_some() {
+        columns.push("lo".to_owned());
+        columns.push("hi".to_owned());
+    }
+    columns
+}
+
 fn eval(a: &EvalArgs) -> Result<()> {
     let shape = a.shape.validate()?;
     if shape.mode == Mode::Curve && a.extrapolate != bzspline::Extrapolate::Error {
@@ -279,8 +314,10 @@ fn eval(a: &EvalArgs) -> Result<()> {
         }
         (None, None) => usage!("give --at X1,... or --at-file FILE"),
     };
+    let band = band_of(&shape, a.band.band)?;
     let points = a.input.load()?;
-    let fitted = match fit_points(&points, &shape)? {
+    let (fitted, report) = fit_points_reported(&points, &shape)?;
+    let fitted = match fitted {
         Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate)),
         other => other,
     };
@@ -312,7 +349,9 @@ fn eval(a: &EvalArgs) -> Result<()> {
     }
     let mut rows = Vec::with_capacity(queries.len());
     for (x, pos) in queries.iter().zip(&qpos) {
-        let row = row_at(&fitted, *x, true, &a.derivative).map_err(|e| anyhow!("{pos}: {e}"))?;
+        let mut row =
+            row_at(&fitted, *x, true, &a.derivative).map_err(|e| anyhow!("{pos}: {e}"))?;
+        with_band(&mut row, band, report.as_ref(), *x).map_err(|e| anyhow!("{pos}: {e}"))?;
         if !row.iter().all(|v| v.is_finite()) {
             bail!("{pos}: the result at {x} overflows a double");
         }
@@ -321,7 +360,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
     let names = points.names.as_deref();
     let time = points.time.filter(|_| shape.mode == Mode::Function);
     let text = table(
-        &columns(&fitted, names, true, &a.derivative),
+        &band_columns(columns(&fitted, names, true, &a.derivative), band),
         &rows,
         time,
         a.format,
@@ -383,8 +422,9 @@ fn params_by_step(f: &Fitted, step: f64) -> std::result::Result<Vec<f64>, bzspli
 fn sample(a: &SampleArgs) -> Result<()> {
     // --n, --step and --tolerance are checked as clap parses them.
     let shape = a.shape.validate()?;
+    let band = band_of(&shape, a.band.band)?;
     let points = a.input.load()?;
-    let fitted = fit_points(&points, &shape)?;
+    let (fitted, report) = fit_points_reported(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
     let (lo, hi) = fitted.curve().domain();
     let params: Vec<f64> = if let Some(n) = a.n {
@@ -411,12 +451,14 @@ fn sample(a: &SampleArgs) -> Result<()> {
     };
     let mut rows = Vec::with_capacity(params.len());
     for p in params {
-        rows.push(row_at(&fitted, p, false, &a.derivative).map_err(lib)?);
+        let mut row = row_at(&fitted, p, false, &a.derivative).map_err(lib)?;
+        with_band(&mut row, band, report.as_ref(), p).map_err(lib)?;
+        rows.push(row);
     }
     let names = points.names.as_deref();
     let time = points.time.filter(|_| shape.mode == Mode::Function);
     let text = table(
-        &columns(&fitted, names, false, &a.derivative),
+        &band_columns(columns(&fitted, names, false, &a.derivative), band),
         &rows,
         time,
         a.format,

@@ -93,6 +93,125 @@ fn eval_and_sample_use_the_fit() {
 }
 
 #[test]
+fn bands_are_the_librarys_and_wrap_the_fit() {
+    let (csv, x, y) = noisy(120);
+    let s = Spline::smoothing(&x, &y, None, Alphas::default(), Smoothing::Gcv).unwrap();
+    let at = [0.0, 0.5, 1.7, 3.9, x[x.len() - 1]];
+    let list: Vec<String> = at.iter().map(f64::to_string).collect();
+    let out = ok_stdin(
+        &[
+            "eval",
+            "--smooth",
+            "auto",
+            "--band",
+            "0.9",
+            "--at",
+            &list.join(","),
+        ],
+        &csv,
+    );
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("x,y,lo,hi"));
+    for (line, &t) in lines.zip(&at) {
+        let v: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        let (lo, hi) = s.band(t, 0.9).unwrap();
+        assert_eq!(v, [t, s.fit.eval(t).unwrap(), lo, hi], "at {t}");
+        assert!(v[2] < v[1] && v[1] < v[3]);
+    }
+    let out = ok_stdin(
+        &[
+            "sample", "--smooth", "auto", "--band", "0.95", "-n", "7", "--format", "json",
+        ],
+        &csv,
+    );
+    let v: Value = serde_json::from_str(&out).unwrap();
+    let (lo, hi, mid) = (numbers(&v["lo"]), numbers(&v["hi"]), numbers(&v["y"]));
+    assert_eq!(lo.len(), 7);
+    // A 95 % band is wider than a 90 % one, by the ratio of their z.
+    for (i, t) in numbers(&v["x"]).iter().enumerate() {
+        let (a, b) = s.band(*t, 0.9).unwrap();
+        let ratio = (hi[i] - lo[i]) / (b - a);
+        assert!(
+            (ratio - 1.959_963_984_540_054 / 1.644_853_626_951_472_2).abs() < 1e-9,
+            "{ratio}"
+        );
+        assert!(lo[i] < mid[i] && mid[i] < hi[i]);
+    }
+    // The plot shades it under the curve, and says so.
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("noisy.csv");
+    let fig = dir.path().join("band.svg");
+    std::fs::write(&data, &csv).unwrap();
+    let o = run(
+        &[
+            "plot",
+            data.to_str().unwrap(),
+            "--smooth",
+            "auto",
+            "--band",
+            "0.95",
+            "-o",
+            fig.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let svg = std::fs::read_to_string(&fig).unwrap();
+    assert!(svg.contains(r#"fill-opacity="0.18" stroke="none" points=""#));
+    assert!(svg.contains(">95 % band<"), "no legend entry");
+}
+
+#[test]
+fn bands_are_refused_where_there_are_none() {
+    let (csv, _, _) = noisy(40);
+    for (args, code, want) in [
+        (&["eval", "--band", "0.95", "--at", "1"][..], 2, "--smooth"),
+        (
+            &["eval", "--smooth", "auto", "--band", "95", "--at", "1"][..],
+            2,
+            "strictly between 0 and 1",
+        ),
+        (
+            &["eval", "--smooth", "auto", "--band", "0", "--at", "1"][..],
+            2,
+            "strictly between 0 and 1",
+        ),
+        (
+            &[
+                "sample", "--smooth", "auto", "--band", "0.9", "--curve", "-n", "3",
+            ][..],
+            2,
+            "y(x) only",
+        ),
+        (
+            &["sample", "--smooth", "0", "--band", "0.9", "-n", "3"][..],
+            1,
+            "no residual degrees of freedom",
+        ),
+        (
+            &[
+                "eval",
+                "--smooth",
+                "auto",
+                "--band",
+                "0.9",
+                "--at",
+                "99",
+                "--extrapolate",
+                "clamp",
+            ][..],
+            1,
+            "--at value 1",
+        ),
+    ] {
+        let o = run(args, Some(csv.as_bytes()));
+        assert_eq!(o.code, code, "{args:?}: {}", o.stderr);
+        assert!(o.stderr.contains(want), "{args:?}: {}", o.stderr);
+        assert!(o.stdout.is_empty(), "{args:?}");
+    }
+}
+
+#[test]
 fn curves_smooth_on_their_parameters() {
     let (csv, x, y) = noisy(60);
     let out = ok_stdin(
@@ -183,4 +302,34 @@ fn bad_smoothing_is_refused() {
         "{}",
         o.stderr
     );
+}
+
+/// The guide's noisy-data section (`docs/command.md`) shows this output;
+/// keep it true.
+#[test]
+fn the_guides_smoothing_output_is_current() {
+    let guide = common::guide();
+    let noisy = common::fixture("noisy.csv");
+    let noisy = noisy.to_str().unwrap();
+    for args in [
+        &["eval", noisy, "--smooth", "auto", "--at", "1.5,4.7,8"][..],
+        &[
+            "eval",
+            noisy,
+            "--smooth",
+            "auto",
+            "--band",
+            "0.95",
+            "--at",
+            "1.5,4.7,8",
+        ][..],
+    ] {
+        let o = run(args, None);
+        assert_eq!(o.code, 0, "{}", o.stderr);
+        assert!(
+            guide.contains(&o.stdout),
+            "the guide's output of {args:?} is stale:\n{}",
+            o.stdout
+        );
+    }
 }

@@ -83,8 +83,9 @@ pub struct FitSpec<'a> {
 }
 
 /// How a smoothing fit came out: its `lambda`, GCV score and degrees of
-/// freedom (the `lambda`, `gcv` and `dof` keys of the `fit` object).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// freedom (the `lambda`, `gcv` and `dof` keys of the `fit` object), and what
+/// its confidence bands need.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SmoothingReport {
     /// The `lambda` used (chosen, under `auto`).
     pub lambda: f64,
@@ -92,6 +93,9 @@ pub struct SmoothingReport {
     pub gcv: f64,
     /// The effective degrees of freedom (trace of the influence matrix).
     pub dof: f64,
+    /// The fit's posterior, for standard errors and bands.
+    #[serde(skip)]
+    pub posterior: bzspline::Posterior,
 }
 
 impl<T> From<&bzspline::Smoothed<T>> for SmoothingReport {
@@ -100,6 +104,7 @@ impl<T> From<&bzspline::Smoothed<T>> for SmoothingReport {
             lambda: s.lambda,
             gcv: s.gcv,
             dof: s.dof,
+            posterior: s.posterior.clone(),
         }
     }
 }

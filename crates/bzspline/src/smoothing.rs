@@ -105,9 +105,7 @@ impl Smoothed<crate::Spline> {
     /// As [`Smoothed::se`]; [`Error::InvalidArgument`] for a level outside
     /// `(0, 1)`.
     pub fn band(&self, x: f64, level: f64) -> Result<(f64, f64), Error> {
-        let z = band_z(level)?;
-        let (y, se) = (self.fit.eval(x)?, self.se(x)?);
-        Ok((y - z * se, y + z * se))
+        self.posterior.band(self.fit.eval(x)?, x, level, 0)
     }
 
     /// [`Smoothed::band`] at every `x`: the lower and the upper edges.

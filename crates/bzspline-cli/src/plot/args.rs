@@ -114,6 +114,7 @@ impl FigureArgs {
             x_time: None,
             through: false,
             smoothing: false,
+            band_level: None,
         }
     }
 }

@@ -7,7 +7,7 @@ use clap::Args;
 
 use super::{read_overlay, render_pdf, render_png, render_svg, FigureArgs, PlotData};
 use crate::cli::{check_alpha, usage, InputArgs, OutputArgs, ShapeArgs};
-use crate::fit::fit_points;
+use crate::fit::{fit_points, fit_points_reported};
 use crate::model::{Fitted, Mode};
 use crate::output;
 
@@ -24,6 +24,8 @@ pub struct PlotArgs {
     pub output: OutputArgs,
     #[command(flatten)]
     pub figure: FigureArgs,
+    #[command(flatten)]
+    pub band: crate::cli::BandArgs,
 }
 
 /// Runs `plot`: without a file or `--example`, draws the paper's Example 1.
@@ -48,12 +50,22 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         source.example = Some(1);
     }
     let points = source.load()?;
+    let band = crate::commands::band_of(&shape, a.band.band)?;
     let sweep = &a.figure.alpha_sweep;
     let mut data = Vec::new();
     if sweep.is_empty() {
         let label = (!a.figure.overlay.is_empty()).then(|| "bzspline".to_owned());
-        data.push(plot_data(&fit_points(&points, &shape)?, label)?);
+        let (fitted, report) = fit_points_reported(&points, &shape)?;
+        let mut one = plot_data(&fitted, label)?;
+        if let (Some(level), Some(r), Fitted::Function(s)) = (band, &report, &fitted) {
+            one.band = band_samples(s, &r.posterior, level)
+                .map_err(|e| anyhow!("{}: {e}", points.source))?;
+        }
+        data.push(one);
     } else {
+        if band.is_some() {
+            usage!("--band draws the band of one fit: leave out --alpha-sweep");
+        }
         if a.shape.alpha.is_some() || a.shape.alphas.is_some() {
             usage!("--alpha-sweep draws one curve per alpha: leave out --alpha and --alphas");
         }
@@ -78,6 +90,7 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     opts.through = shape.through;
     opts.show_knots |= shape.through;
     // A smoothing fit: the data as points, the fitted control polygon faint.
+    opts.band_level = band;
     if shape.smoothing.is_some() {
         opts.smoothing = true;
         opts.show_points = false;
@@ -98,6 +111,31 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         Figure::Pdf => render_pdf(&data, &opts)?,
     };
     output::emit(out, &bytes)
+}
+
+/// A band of a smoothing fit of y(x) to shade: at 600 abscissas evenly
+/// spaced and, up to 2,000 of them, at every knot (where the standard error
+/// has its kinks).
+fn band_samples(
+    s: &bzspline::Spline,
+    posterior: &bzspline::Posterior,
+    level: f64,
+) -> std::result::Result<Vec<[f64; 3]>, bzspline::Error> {
+    let knots = s.knots();
+    let (lo, hi) = (knots[0], knots[knots.len() - 1]);
+    let mut xs: Vec<f64> = (0..=600)
+        .map(|i| lo + (hi - lo) * f64::from(i) / 600.0)
+        .chain(knots.iter().copied().filter(|_| knots.len() <= 2000))
+        .map(|x| x.clamp(lo, hi))
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    xs.into_iter()
+        .map(|x| {
+            let (a, b) = posterior.band(s.eval(x)?, x, level, 0)?;
+            Ok([x, a, b])
+        })
+        .collect()
 }
 
 /// The file formats of a figure.

@@ -46,6 +46,9 @@ pub struct PlotData {
     pub knot_points: Vec<[f64; 2]>,
     /// Data a smoothing fit approximates, drawn as small points.
     pub observations: Vec<[f64; 2]>,
+    /// A confidence band of a smoothing fit, `[x, lo, hi]` in order of x,
+    /// shaded under the curve.
+    pub band: Vec<[f64; 3]>,
 }
 
 impl PlotData {
@@ -75,6 +78,7 @@ impl PlotData {
                 .collect(),
             knot_points: zip(s.knots(), &s.knot_values()),
             observations: Vec::new(),
+            band: Vec::new(),
         }
     }
 
@@ -117,6 +121,7 @@ impl PlotData {
                 .collect(),
             knot_points: c.knot_points().iter().filter_map(|p| xy(p)).collect(),
             observations: Vec::new(),
+            band: Vec::new(),
         })
     }
 
@@ -181,6 +186,8 @@ pub struct PlotOptions {
     /// The curves pass through the points (the interpolating variant): the
     /// knot points are the data and the control polygon is the solved one.
     pub through: bool,
+    /// The level of the confidence band drawn (0.95), for the legend.
+    pub band_level: Option<f64>,
     /// The curves are smoothing fits of their observations: the control
     /// polygon is the fitted one, drawn faint.
     pub smoothing: bool,
@@ -215,6 +222,7 @@ impl Default for PlotOptions {
             dense: false,
             through: false,
             smoothing: false,
+            band_level: None,
         }
     }
 }

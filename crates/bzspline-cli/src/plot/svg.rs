@@ -93,6 +93,8 @@ enum Key {
     Ring(String),
     Square(String),
     Area,
+    /// A confidence band, in its curve's colour.
+    Band(String),
 }
 
 /// The figure of one or more curves as an SVG document.
@@ -145,6 +147,10 @@ fn axes(
         d.control.iter().copied().for_each(&mut grow);
         d.tangent_points.iter().copied().for_each(&mut grow);
         d.observations.iter().copied().for_each(&mut grow);
+        for &[x, lo, hi] in &d.band {
+            grow([x, lo]);
+            grow([x, hi]);
+        }
     }
     // At most one tick per 55 px across and per 45 px up (the values are small).
     let x_ticks = ((width - 120.0) / 55.0).clamp(2.0, 12.0) as usize;
@@ -231,6 +237,12 @@ fn legend(
                 width: 2.4,
             },
             label,
+        ));
+    }
+    if let Some(level) = opts.band_level {
+        keys.push((
+            Key::Band(color(0).into()),
+            format!("{} % band", Num(level * 100.0)),
         ));
     }
     let tangent_color = if data.len() == 1 { color(0) } else { AXIS };
@@ -486,6 +498,24 @@ fn draw_data(
                 s,
                 r#"<line x1="{x0}" y1="{y}" x2="{x1}" y2="{y}" stroke="{AXIS}" stroke-width="1.2" stroke-dasharray="2 3"/>"#
             );
+        }
+    }
+    for (i, d) in data.iter().enumerate() {
+        if d.band.len() >= 2 {
+            // The band: its upper edge left to right, its lower edge back.
+            let edge: Vec<[f64; 2]> = d
+                .band
+                .iter()
+                .map(|b| [b[0], b[2]])
+                .chain(d.band.iter().rev().map(|b| [b[0], b[1]]))
+                .collect();
+            let _ = write!(
+                s,
+                r#"<polygon fill="{}" fill-opacity="0.18" stroke="none" points=""#,
+                color(i)
+            );
+            write_points(s, f, &edge);
+            let _ = writeln!(s, r#""/>"#);
         }
     }
     for d in data {
@@ -830,6 +860,14 @@ fn write_key(s: &mut String, (key, text): &(Key, String), x: f64, y: f64, sym: f
                 r#"<rect x="{}" y="{}" width="7" height="7" fill="{c}" transform="rotate(45 {xm} {yy})"/>"#,
                 Num(x + sym / 2.0 - 3.5),
                 Num(y - 3.5)
+            );
+        }
+        Key::Band(c) => {
+            let _ = writeln!(
+                s,
+                r#"<rect x="{x0}" y="{}" width="{}" height="12" fill="{c}" fill-opacity="0.18"/>"#,
+                Num(y - 6.0),
+                Num(sym)
             );
         }
         Key::Area => {

@@ -107,6 +107,20 @@ impl Posterior {
         })?;
         Ok((s2 * self.unit_variance(x)?).sqrt())
     }
+
+    /// The confidence band at `x` around the fit's value `value` there (of
+    /// coordinate `coord`): `value -+ z se(x)` with `z` the standard normal
+    /// quantile of `(1 + level) / 2`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Posterior::se`]; [`Error::InvalidArgument`] for a level outside
+    /// `(0, 1)`.
+    pub fn band(&self, value: f64, x: f64, level: f64, coord: usize) -> Result<(f64, f64), Error> {
+        let z = band_z(level)?;
+        let se = self.se(x, coord)?;
+        Ok((value - z * se, value + z * se))
+    }
 }
 
 /// How `S(x)` on a piece, at `t = (x - tau_k) / h_k`, weighs
