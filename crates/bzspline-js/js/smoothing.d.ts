@@ -43,7 +43,21 @@ export interface CurveSmoothingOptions {
  * sum w (S(x) - y)^2 + lam * integral S''^2, lam chosen by generalized
  * cross-validation when omitted. O(n). A `Spline` of the `bzspline` entry.
  */
-export function smoothingSpline(x: Numbers, y: Numbers, options?: SmoothingOptions): Spline & Fit;
+export function smoothingSpline(x: Numbers, y: Numbers, options?: SmoothingOptions): Spline & Fit & Bands;
+
+/** A smoothing spline's standard errors and confidence bands. */
+export interface Bands {
+  /**
+   * The standard error of the fit at x (within the knots): the Bayesian
+   * posterior of the penalised fit, noise variance RSS / (n - dof). Throws a
+   * RangeError for a fit through every point (lam 0) or x outside the knots.
+   */
+  se(x: number): number;
+  se(x: Numbers): Float64Array;
+  /** The pointwise confidence band at `level` (default 0.95): S(x) -+ z se(x). */
+  band(x: number, level?: number): { lo: number; hi: number };
+  band(x: Numbers, level?: number): { lo: Float64Array; hi: Float64Array };
+}
 
 /**
  * The smoothing curve of noisy points (open, one lam for every coordinate),

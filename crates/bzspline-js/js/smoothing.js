@@ -3,7 +3,8 @@
 // WebAssembly module of its own) gives the control values (points) and the
 // knots; the result is the core's `Spline` (`Curve`) built on them, which is
 // the fit bit for bit (a smoothing spline is the method's spline of its
-// control values), with the fit's `lam`, `gcv` and `dof` as properties.
+// control values), with the fit's `lam`, `gcv` and `dof` as properties, and
+// a spline's standard error `se(x)` and confidence band `band(x, level)`.
 import { Spline, Curve } from "./index.js";
 import init, { initSync, splineFit, curveFit } from "../wasm/smoothing.js";
 import { load } from "./load.js";
@@ -26,10 +27,31 @@ function report(object, fit) {
 export function smoothingSpline(x, y, options) {
   const fit = splineFit(x, y, options);
   const o = options ?? {};
-  return report(
+  const s = report(
     new Spline(fit.x, fit.controls, { alpha: o.alpha, alphas: o.alphas, extrapolate: o.extrapolate }),
     fit,
   );
+  const posterior = fit.posterior;
+  return Object.defineProperties(s, {
+    // The fit's standard error at x (a number, or a Float64Array for an array).
+    se: {
+      value(at) {
+        const one = typeof at === "number";
+        const out = posterior.se(one ? [at] : at);
+        return one ? out[0] : out;
+      },
+    },
+    // The confidence band at x: { lo, hi }, numbers or Float64Arrays.
+    band: {
+      value(at, level = 0.95) {
+        const one = typeof at === "number";
+        const xs = Float64Array.from(one ? [at] : at);
+        const both = posterior.band(s.at(xs), xs, level);
+        const n = xs.length;
+        return one ? { lo: both[0], hi: both[1] } : { lo: both.subarray(0, n), hi: both.subarray(n) };
+      },
+    },
+  });
 }
 
 /**

@@ -19,12 +19,56 @@ fn report(o: &Object, lambda: f64, gcv: f64, dof: f64) {
     set(o, "dof", dof.into());
 }
 
+/// What a smoothing spline's standard errors and bands need
+/// ([`bzspline::Posterior`]), held by the fit's object.
+#[wasm_bindgen]
+pub struct Posterior {
+    inner: bzspline::Posterior,
+}
+
+#[wasm_bindgen]
+impl Posterior {
+    /// The standard error of the fit at each x (within the knots).
+    pub fn se(&self, xs: &JsValue) -> Result<Float64Array, JsValue> {
+        let xs = numbers(xs, "x")?;
+        let mut out = Vec::with_capacity(xs.len());
+        for (i, &x) in xs.iter().enumerate() {
+            out.push(self.inner.se(x, 0).map_err(|e| at_index(i, &e))?);
+        }
+        Ok(Float64Array::from(out.as_slice()))
+    }
+
+    /// The band at `level` around the fit's `values` at `xs`: the lower
+    /// edges, then the upper, in one array of twice their length.
+    pub fn band(&self, values: &[f64], xs: &[f64], level: f64) -> Result<Float64Array, JsValue> {
+        let n = xs.len();
+        let mut out = vec![0.0; 2 * n];
+        for (i, (&v, &x)) in values.iter().zip(xs).enumerate() {
+            let (lo, hi) = self.inner.band(v, x, level, 0).map_err(|e| match e {
+                bzspline::Error::InvalidArgument { .. } => lib_error(e),
+                e => at_index(i, &e),
+            })?;
+            out[i] = lo;
+            out[n + i] = hi;
+        }
+        Ok(Float64Array::from(out.as_slice()))
+    }
+}
+
+/// A library error at `x[i]`, as a `RangeError` naming the index.
+fn at_index(i: usize, e: &bzspline::Error) -> JsValue {
+    match e {
+        bzspline::Error::InvalidArgument { .. } => lib_error(e.clone()),
+        _ => crate::args::range_error(format!("x[{i}]: {e}")),
+    }
+}
+
 /// `splineFit(x, y, {w, lam, alpha, alphas})`: the smoothing spline of the
 /// data in the method's basis (`bzspline::Spline::smoothing`) as
-/// `{x, controls, lam, gcv, dof}`: knots, control values, the `lam` used (the
-/// one chosen by generalized cross-validation when `lam` is omitted or null),
-/// its score and effective degrees of freedom. `w`: one weight per point,
-/// finite and >= 0 (default 1).
+/// `{x, controls, lam, gcv, dof, posterior}`: knots, control values, the
+/// `lam` used (the one chosen by generalized cross-validation when `lam` is
+/// omitted or null), its score and effective degrees of freedom, and what
+/// its bands need. `w`: one weight per point, finite and >= 0 (default 1).
 #[wasm_bindgen(js_name = splineFit)]
 pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     let x = numbers(x, "x")?;
@@ -42,6 +86,14 @@ pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object,
         Float64Array::from(fit.fit.values()).into(),
     );
     report(&out, fit.lambda, fit.gcv, fit.dof);
+    set(
+        &out,
+        "posterior",
+        Posterior {
+            inner: fit.posterior,
+        }
+        .into(),
+    );
     Ok(out)
 }
 

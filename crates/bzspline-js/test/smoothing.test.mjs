@@ -116,3 +116,46 @@ test("the options reach the spline: alpha, alphas, extrapolate; repeats in a cur
   assert.deepEqual(Array.from(c.alphas), legs);
   assert.deepEqual(c.knots, smoothingCurve(pts, { lam, param: Float64Array.from(x) }).knots);
 });
+
+test("bands are the command's, bit for bit, around the fit", () => {
+  assert.ok(existsSync(bin), `${bin} is missing: cargo build -p bzspline-cli`);
+  const { x, y } = noisy(200, 4);
+  const table = "x,y\n" + x.map((v, i) => `${v},${y[i]}`).join("\n") + "\n";
+  const at = [x[0], 1.5, 4.25, x[x.length - 1]];
+  const rows = execFileSync(
+    bin,
+    ["eval", "--input-format", "csv", "--smooth", "auto", "--band", "0.9", "--at", at.join(",")],
+    { input: table },
+  )
+    .toString()
+    .trim()
+    .split("\n")
+    .slice(1)
+    .map((l) => l.split(",").map(Number));
+  const s = smoothingSpline(x, y);
+  const { lo, hi } = s.band(at, 0.9);
+  assert.ok(lo instanceof Float64Array && hi.length === at.length);
+  at.forEach((t, i) => {
+    assert.deepEqual([lo[i], hi[i]], [rows[i][2], rows[i][3]], `at ${t}`);
+    assert.ok(lo[i] < s.at(t) && s.at(t) < hi[i]);
+    const one = s.band(t, 0.9);
+    assert.deepEqual([one.lo, one.hi], [lo[i], hi[i]]);
+  });
+  // A 95 % band is wider by the ratio of the normal quantiles.
+  const se = s.se(at);
+  const wide = s.band(at);
+  at.forEach((_, i) => {
+    close(wide.hi[i] - wide.lo[i], 2 * 1.959963984540054 * se[i], 1e-12, "95 % width");
+  });
+  assert.equal(typeof s.se(2), "number");
+});
+
+test("bands are refused where there are none", () => {
+  const { x, y } = noisy(50, 5);
+  const s = smoothingSpline(x, y);
+  assert.throws(() => s.band([1], 1.5), (e) => e instanceof RangeError && /strictly between 0 and 1/.test(e.message));
+  assert.throws(() => s.se([1, 1e6]), (e) => e instanceof RangeError && /x\[1\]/.test(e.message));
+  const exact = smoothingSpline(x, y, { lam: 0 });
+  assert.throws(() => exact.se(1), /no residual degrees of freedom/);
+  assert.equal(new Spline([0, 1, 2], [0, 1, 0]).band, undefined);
+});

@@ -17,6 +17,11 @@ const sv: number = sm.at(1.5);
 smoothingSpline([0, 1, 2], [0, 1, 0], { lam: 0.5, alpha: 1 / 3 });
 // @ts-expect-error: lam is a number (or omitted for cross-validation)
 smoothingSpline([0, 1, 2], [0, 1, 0], { lam: "auto" });
+const seOne: number = sm.se(1);
+const seMany: Float64Array = sm.se([0.5, 1]);
+const bandMany: Float64Array = sm.band([0.5, 1], 0.9).lo;
+const bandOne: number = sm.band(1).hi;
+void [seOne, seMany, bandMany, bandOne];
 const sc: number = smoothingCurve([[0, 0], [1, 1], [2, 0]], { param: [0, 1, 2], lam: 1 }).dof;
 // @ts-expect-error: a plain spline reports no fit
 new Spline([0, 1], [0, 1]).lam;

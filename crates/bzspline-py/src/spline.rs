@@ -80,9 +80,45 @@ pub(crate) struct Spline {
     offset: f64,
     /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
     smoothing: Option<[f64; 3]>,
+    /// For a smoothing fit: what its standard errors need.
+    posterior: Option<Arc<bzspline::Posterior>>,
+}
+
+/// A posterior as a pickle holds it: knots, alphas, covariances, noise.
+type PosteriorTuple = (Vec<f64>, Vec<f64>, Vec<[f64; 7]>, Option<Vec<f64>>);
+
+/// A band's lower and upper edges.
+type Edges<'py> = (Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArrayDyn<f64>>);
+
+/// The standard error at every x, naming the index of one outside the
+/// knots.
+fn standard_errors(p: &bzspline::Posterior, xs: &[f64]) -> PyResult<Vec<f64>> {
+    let s2 = p.noise_variance().map_err(value_error)?[0];
+    xs.iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            p.unit_variance(x)
+                .map(|v| (s2 * v).sqrt())
+                .map_err(|e| PyValueError::new_err(format!("x[{i}]: {e}")))
+        })
+        .collect()
 }
 
 impl Spline {
+    /// The posterior of a smoothing fit evaluated as itself (not a
+    /// derivative or antiderivative of one).
+    fn posterior_of_values(&self) -> PyResult<&bzspline::Posterior> {
+        match (&self.posterior, self.nu) {
+            (Some(p), 0) => Ok(p),
+            (Some(_), _) => Err(PyValueError::new_err(
+                "se and band are of the smoothing fit's values, not of its derivatives",
+            )),
+            (None, _) => Err(PyValueError::new_err(
+                "se and band are for a spline from bzspline.smoothing_spline",
+            )),
+        }
+    }
+
     /// The same spline evaluating order `nu` (with its antiderivative when
     /// `nu` is -1), less `offset`.
     fn of_order(
@@ -100,6 +136,7 @@ impl Spline {
             anti,
             offset,
             smoothing: self.smoothing,
+            posterior: self.posterior.clone(),
         }
     }
 
@@ -228,6 +265,7 @@ impl Spline {
                 anti: None,
                 offset: 0.0,
                 smoothing: None,
+                posterior: None,
             })
         })
     }
@@ -538,6 +576,114 @@ impl Spline {
         self.offset
     }
 
+    /// The standard error of a smoothing fit at ``x``: the square root of
+    /// the Bayesian posterior variance of the penalised fit (Wahba's, as R's
+    /// mgcv gives with ``predict(..., se.fit=TRUE)``), with the noise
+    /// variance estimated as the weighted residual sum of squares over
+    /// ``n - dof``. O(N) once with the fit, then O(log N) a point.
+    ///
+    /// Parameters
+    /// ----------
+    /// x : array_like
+    ///     Points within the knots.
+    ///
+    /// Returns
+    /// -------
+    /// ndarray
+    ///     The standard errors, of the shape of ``x``.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     For a spline that is not from :func:`bzspline.smoothing_spline`
+    ///     (or is a derivative of one), a fit through every point
+    ///     (``lam=0``), or an ``x`` outside the knots (its index named).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import numpy as np, bzspline
+    /// >>> x = np.linspace(0, 1, 200)
+    /// >>> y = np.sin(6 * x) + np.random.default_rng(0).normal(0, 0.2, 200)
+    /// >>> s = bzspline.smoothing_spline(x, y)
+    /// >>> bool(0 < s.se(0.5) < 0.1)
+    /// True
+    fn se<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        guard(|| {
+            let p = self.posterior_of_values()?;
+            let (xs, shape) = floats(x, "x")?;
+            let se = py.allow_threads(|| standard_errors(p, &xs))?;
+            PyArray1::from_vec(py, se).reshape(shape)
+        })
+    }
+
+    /// The pointwise confidence band of a smoothing fit at ``x``:
+    /// ``s(x) -+ z * s.se(x)`` with ``z`` the standard normal quantile of
+    /// ``(1 + level) / 2``. Across the data's points it covers the true
+    /// curve at about ``level`` of them on average.
+    ///
+    /// Parameters
+    /// ----------
+    /// x : array_like
+    ///     Points within the knots.
+    /// level : float, default 0.95
+    ///     Strictly between 0 and 1.
+    ///
+    /// Returns
+    /// -------
+    /// (ndarray, ndarray)
+    ///     The lower and upper edges, each of the shape of ``x``.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     As :meth:`se`, and for a level outside (0, 1).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import numpy as np, bzspline
+    /// >>> x = np.linspace(0, 1, 200)
+    /// >>> y = np.sin(6 * x) + np.random.default_rng(0).normal(0, 0.2, 200)
+    /// >>> lo, hi = bzspline.smoothing_spline(x, y).band(x, level=0.9)
+    /// >>> bool(np.all(lo < hi))
+    /// True
+    #[pyo3(signature = (x, level=0.95))]
+    fn band<'py>(
+        &self,
+        py: Python<'py>,
+        x: &Bound<'py, PyAny>,
+        level: f64,
+    ) -> PyResult<Edges<'py>> {
+        guard(|| {
+            let p = self.posterior_of_values()?;
+            let (xs, shape) = floats(x, "x")?;
+            let s = &self.inner;
+            let (lo, hi) = py.allow_threads(|| -> PyResult<(Vec<f64>, Vec<f64>)> {
+                let mut lo = Vec::with_capacity(xs.len());
+                let mut hi = Vec::with_capacity(xs.len());
+                for (i, &x) in xs.iter().enumerate() {
+                    let at = |e: bzspline::Error| PyValueError::new_err(format!("x[{i}]: {e}"));
+                    let (a, b) =
+                        p.band(s.eval(x).map_err(at)?, x, level, 0)
+                            .map_err(|e| match e {
+                                bzspline::Error::InvalidArgument { .. } => value_error(e),
+                                e => at(e),
+                            })?;
+                    lo.push(a);
+                    hi.push(b);
+                }
+                Ok((lo, hi))
+            })?;
+            Ok((
+                PyArray1::from_vec(py, lo).reshape(shape.clone())?,
+                PyArray1::from_vec(py, hi).reshape(shape)?,
+            ))
+        })
+    }
+
     /// For a spline from :func:`bzspline.smoothing_spline`: the ``lam`` used
     /// (the one chosen by cross-validation when none was given); else None.
     #[getter]
@@ -585,6 +731,7 @@ impl Spline {
                 self.nu.into_pyobject(py)?.into_any(),
                 self.offset.into_pyobject(py)?.into_any(),
                 self.smoothing.into_pyobject(py)?.into_any(),
+                posterior_arg(py, self.posterior.as_deref())?,
             ],
         )?;
         Ok((restore, args))
@@ -609,7 +756,7 @@ impl Spline {
 /// A spline (or its derivative of order `nu`) from the parts `__reduce__`
 /// gives: how a pickled `Spline` is rebuilt.
 #[pyfunction]
-#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0, smoothing=None))]
+#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0, smoothing=None, posterior=None))]
 #[allow(clippy::too_many_arguments)] // the parts of a pickled Spline
 pub(crate) fn _spline_from_parts(
     py: Python<'_>,
@@ -621,16 +768,55 @@ pub(crate) fn _spline_from_parts(
     nu: i32,
     offset: f64,
     smoothing: Option<[f64; 3]>,
+    posterior: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Spline> {
     let s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
     let anti = (nu < 0).then(|| Arc::new(s.inner.antiderivative()));
+    let posterior = match posterior.filter(|p| !p.is_none()) {
+        None => None,
+        Some(p) => {
+            let (knots, alphas, cov, sigma2): PosteriorTuple = p.extract()?;
+            Some(Arc::new(
+                bzspline::Posterior::from_parts(bzspline::PosteriorParts {
+                    knots: &knots,
+                    alphas: &alphas,
+                    cov: &cov,
+                    noise: sigma2.as_deref(),
+                })
+                .map_err(value_error)?,
+            ))
+        }
+    };
     Ok(Spline {
         nu: nu.max(-1),
         anti,
         offset,
         smoothing,
+        posterior,
         ..s
     })
+}
+
+/// A posterior as `__reduce__` passes it: `(knots, alphas, covariances,
+/// noise variances)` as lists, or None.
+fn posterior_arg<'py>(
+    py: Python<'py>,
+    p: Option<&bzspline::Posterior>,
+) -> PyResult<Bound<'py, PyAny>> {
+    match p {
+        None => Ok(py.None().into_bound(py)),
+        Some(p) => {
+            let parts = p.parts();
+            Ok((
+                parts.knots.to_vec(),
+                parts.alphas.to_vec(),
+                parts.cov.to_vec(),
+                parts.noise.map(<[f64]>::to_vec),
+            )
+                .into_pyobject(py)?
+                .into_any())
+        }
+    }
 }
 
 /// A contiguous copy (or the data itself) of a 1-D float array argument.
@@ -722,6 +908,7 @@ pub(crate) fn smoothing_spline(
             anti: None,
             offset: 0.0,
             smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
+            posterior: Some(Arc::new(fit.posterior)),
         })
     })
 }

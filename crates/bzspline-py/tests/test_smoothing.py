@@ -124,3 +124,66 @@ def test_a_noisy_track_is_smoothed_on_its_times():
     assert np.array_equal(r(t), c(t))
     with pytest.raises(ValueError, match=r"weights\[1\]"):
         bzspline.smoothing_curve(track[:5], w=[1, -1, 1, 1, 1])
+
+
+def _dense_se(x, y, w, lam, s):
+    """sigma * sqrt(b^T M^-1 b) with M = B^T W B + lam R assembled from the
+    method's basis splines (control values e_k) and R by two-point
+    Gauss-Legendre on each piece (exact: S'' is linear there)."""
+    n = len(x)
+    basis = [bzspline.Spline(x, np.eye(n)[k]) for k in range(n)]
+    B = np.array([b(x) for b in basis])                      # B[k, j] = B_k(x_j)
+    g = np.array([-1, 1]) / np.sqrt(3)
+    mid, half = (x[1:] + x[:-1]) / 2, (x[1:] - x[:-1]) / 2
+    q = (mid[:, None] + half[:, None] * g).ravel()           # quadrature points
+    qw = np.repeat(half, 2)
+    D2 = np.array([b(q, 2) for b in basis])
+    M = (B * w) @ B.T + lam * (D2 * qw) @ D2.T
+    rss = np.sum(w * (y - s(x)) ** 2)
+    sigma2 = rss / (np.count_nonzero(w) - s.dof)
+    at = np.linspace(x[0], x[-1], 37)
+    b = np.array([bb(at) for bb in basis])
+    return at, np.sqrt(sigma2 * np.einsum("ki,ki->i", b, np.linalg.solve(M, b)))
+
+
+def test_standard_errors_are_the_dense_posterior_variance():
+    rng = np.random.default_rng(5)
+    for n in (8, 15, 30):
+        x = np.sort(rng.uniform(0, 3, n))
+        y = np.cos(2 * x) + rng.normal(0, 0.2, n)
+        w = rng.uniform(0.5, 2, n)
+        s = bzspline.smoothing_spline(x, y, w, lam=0.01)
+        at, want = _dense_se(x, y, w, 0.01, s)
+        assert np.allclose(s.se(at), want, rtol=1e-9, atol=0)
+        lo, hi = s.band(at, level=0.95)
+        assert np.allclose(hi - s(at), 1.959963984540054 * want, rtol=1e-9)
+        assert np.allclose(s(at) - lo, 1.959963984540054 * want, rtol=1e-9)
+
+
+def test_the_band_covers_the_truth_about_as_often_as_it_says():
+    rng = np.random.default_rng(11)
+    x = np.linspace(0, 1, 400)
+    truth = np.sin(2 * np.pi * x) + 0.5 * x
+    covered = [np.mean((lo <= truth) & (truth <= hi))
+               for lo, hi in (bzspline.smoothing_spline(x, truth + rng.normal(0, 0.3, x.size)).band(x)
+                              for _ in range(100))]
+    assert 0.92 <= np.mean(covered) <= 0.985
+
+
+def test_bands_survive_pickling_and_are_refused_where_there_are_none():
+    x = np.linspace(0, 1, 50)
+    y = np.sin(4 * x) + np.random.default_rng(2).normal(0, 0.1, 50)
+    s = bzspline.smoothing_spline(x, y)
+    t = pickle.loads(pickle.dumps(s))
+    assert np.array_equal(t.se(x), s.se(x)) and s.se(x).shape == (50,)
+    assert s.se(0.5).shape == () and s.se([[0.1, 0.2]]).shape == (1, 2)
+    with pytest.raises(ValueError, match=r"x\[1\]: x = 2"):
+        s.se([0.5, 2.0])
+    with pytest.raises(ValueError, match="strictly between 0 and 1"):
+        s.band(x, level=95)
+    with pytest.raises(ValueError, match="smoothing_spline"):
+        bzspline.Spline(x, y).se(0.5)
+    with pytest.raises(ValueError, match="derivatives"):
+        s.derivative().se(0.5)
+    with pytest.raises(ValueError, match="no residual degrees of freedom"):
+        bzspline.smoothing_spline(x, y, lam=0).band(x)

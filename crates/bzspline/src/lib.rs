@@ -114,7 +114,7 @@ pub use curve::{
 };
 pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
-pub use smoothing::{band_z, normal_quantile, Posterior, Smoothed, Smoothing};
+pub use smoothing::{band_z, normal_quantile, Posterior, PosteriorParts, Smoothed, Smoothing};
 pub use spline::{
     check_alpha, AlphaChoice, Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline,
     UnknownExtrapolation, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,

@@ -7,7 +7,7 @@
 mod posterior;
 mod system;
 
-pub use posterior::{band_z, normal_quantile, Posterior};
+pub use posterior::{band_z, normal_quantile, Posterior, PosteriorParts};
 
 use crate::error::{Error, Field};
 use crate::method::power_of_two_scale;

@@ -36,6 +36,60 @@ impl Posterior {
         }
     }
 
+    /// What the posterior holds, to store it (a pickle).
+    #[must_use]
+    pub fn parts(&self) -> PosteriorParts<'_> {
+        PosteriorParts {
+            knots: &self.knots,
+            alphas: &self.alphas,
+            cov: &self.cov,
+            noise: self.sigma2.as_deref(),
+        }
+    }
+
+    /// A posterior from its [`Posterior::parts`].
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidArgument`] when the lengths disagree (fewer than 2
+    /// knots, alphas not one fewer, covariances not one a knot), the knots
+    /// do not increase, a number is not finite, or a noise variance is
+    /// negative.
+    pub fn from_parts(parts: PosteriorParts<'_>) -> Result<Posterior, Error> {
+        let PosteriorParts {
+            knots,
+            alphas,
+            cov,
+            noise: sigma2,
+        } = parts;
+        let bad = |what| {
+            Err(Error::InvalidArgument {
+                what,
+                value: knots.len() as f64,
+            })
+        };
+        if knots.len() < 2 || alphas.len() + 1 != knots.len() || cov.len() != knots.len() {
+            return bad("a posterior's knots, alphas and covariances do not agree in length");
+        }
+        let finite = knots
+            .iter()
+            .chain(alphas)
+            .chain(cov.iter().flatten())
+            .all(|v| v.is_finite())
+            && knots.windows(2).all(|w| w[0] < w[1]);
+        let noise_ok =
+            sigma2.is_none_or(|s| !s.is_empty() && s.iter().all(|v| v.is_finite() && *v >= 0.0));
+        if !finite || !noise_ok {
+            return bad("a posterior's numbers must be finite (noise variances >= 0)");
+        }
+        Ok(Posterior {
+            knots: knots.to_vec(),
+            alphas: alphas.to_vec(),
+            cov: cov.to_vec(),
+            sigma2: sigma2.map(<[f64]>::to_vec),
+        })
+    }
+
     /// The noise variance estimated for each coordinate (one for a spline
     /// y(x)), `sum_j w_j r_j^2 / (mean(w) (n - dof))` with `n` the points of
     /// positive weight: the variance of a point of mean weight.
@@ -121,6 +175,23 @@ impl Posterior {
         let se = self.se(x, coord)?;
         Ok((value - z * se, value + z * se))
     }
+}
+
+/// The parts of a [`Posterior`], as [`Posterior::parts`] gives them and
+/// [`Posterior::from_parts`] takes them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PosteriorParts<'a> {
+    /// The knots (the curve's parameters for a curve).
+    pub knots: &'a [f64],
+    /// One alpha per interval.
+    pub alphas: &'a [f64],
+    /// Per knot, the posterior covariances over `sigma^2` of its value and
+    /// deviation and of those of the next knot: `(phi, phi)`, `(phi, d)`,
+    /// `(d, d)`, then `(phi, phi')`, `(phi, d')`, `(d, phi')`, `(d, d')`.
+    pub cov: &'a [[f64; 7]],
+    /// The noise variance of each coordinate; `None` for a fit that
+    /// interpolates.
+    pub noise: Option<&'a [f64]>,
 }
 
 /// How `S(x)` on a piece, at `t = (x - tau_k) / h_k`, weighs
