@@ -1,6 +1,8 @@
 //! Times the smoothing spline with lambda chosen by cross-validation on noisy
 //! samples of a sine, and prints its error to the true function beside the
-//! data's: `cargo run --release --example smoothing -- [N ...]`.
+//! data's; then the 95 % confidence band at every data point, its time
+//! against the fit's, and how much of the true curve it covers:
+//! `cargo run --release --example smoothing -- [N ...]`.
 
 use bzspline::{Alphas, Smoothing, Spline};
 use std::time::Instant;
@@ -28,8 +30,8 @@ fn main() {
         (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
     };
     println!(
-        "{:>9} {:>10} {:>12} {:>12} {:>8} {:>10}",
-        "n", "time ms", "mse fit", "mse data", "dof", "lambda"
+        "{:>9} {:>10} {:>12} {:>12} {:>8} {:>10} {:>9} {:>9} {:>9}",
+        "n", "time ms", "mse fit", "mse data", "dof", "lambda", "band ms", "band/fit", "covered"
     );
     for n in sizes {
         let x: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
@@ -49,12 +51,22 @@ fn main() {
                 .sum::<f64>()
                 / n as f64
         };
+        let start = Instant::now();
+        let (lo, hi) = s.band_many(&x, 0.95).expect("band");
+        let band_ms = start.elapsed().as_secs_f64() * 1e3;
+        let covered = truth
+            .iter()
+            .zip(lo.iter().zip(&hi))
+            .filter(|(t, (a, b))| *a <= *t && *t <= *b)
+            .count() as f64
+            / n as f64;
         println!(
-            "{n:>9} {ms:>10.1} {:>12.3e} {:>12.3e} {:>8.1} {:>10.3e}",
+            "{n:>9} {ms:>10.1} {:>12.3e} {:>12.3e} {:>8.1} {:>10.3e} {band_ms:>9.1} {:>9.2} {covered:>9.3}",
             mse(&fit),
             mse(&y),
             s.dof,
-            s.lambda
+            s.lambda,
+            band_ms / ms
         );
     }
 }
