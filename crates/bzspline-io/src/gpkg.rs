@@ -595,20 +595,13 @@ fn fill(
                         Some([a, b, c, d]) => [a.min(x0), b.max(x1), c.min(y0), d.max(y1)],
                     });
                 }
-                let dims = if geom::has_z(g) {
-                    geozero::CoordDimensions::xyz()
-                } else {
-                    geozero::CoordDimensions::xy()
-                };
-                let mut bytes = Vec::new();
-                let mut w = geozero::wkb::WkbWriter::with_opts(
-                    &mut bytes,
+                let bytes = geom::to_wkb(
+                    g,
                     geozero::wkb::WkbDialect::Geopackage,
-                    dims,
                     Some(srs_id),
                     env.map_or_else(Vec::new, |e| e.to_vec()),
-                );
-                geom::emit(g, &mut w).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
+                )
+                .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
                 Sql::Blob(bytes)
             };
             let mut values = Vec::with_capacity(fields.len() + 1);
@@ -776,6 +769,25 @@ mod tests {
         ]));
         write(&path, &input, None).unwrap();
         let conn = Connection::open(&path).unwrap();
+        // The spatial index's triggers call ST_IsEmpty and the like, which
+        // GDAL and QGIS provide and plain SQLite does not: without them no
+        // UPDATE of the layer can be prepared, as for GDAL's own files.
+        let e = conn
+            .execute("UPDATE t SET name = 7, x = 2", [])
+            .unwrap_err();
+        assert!(e.to_string().contains("ST_IsEmpty"), "{e}");
+        let triggers: Vec<String> = conn
+            .prepare("SELECT name FROM sqlite_master WHERE type = 'trigger'")
+            .unwrap()
+            .query_map([], |r| r.get(0))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap();
+        assert_eq!(triggers.len(), 6);
+        for t in triggers {
+            conn.execute(&format!("DROP TRIGGER {}", quote(&t)), [])
+                .unwrap();
+        }
         conn.execute("UPDATE t SET name = 7, x = 2", []).unwrap();
         drop(conn);
         let layer = read(&path, None, u64::MAX).unwrap();
