@@ -423,6 +423,29 @@ fn polygon<P: GeomProcessor>(c: &Value, p: &mut P, tagged: bool, idx: usize) -> 
     p.polygon_end(tagged, idx)
 }
 
+/// A GeoJSON geometry as WKB of `dialect` (ISO WKB; GeoPackage's with its
+/// `srid` and `envelope`), with z when any position has z.
+///
+/// # Errors
+///
+/// As [`emit`].
+pub fn to_wkb(
+    g: &Value,
+    dialect: geozero::wkb::WkbDialect,
+    srid: Option<i32>,
+    envelope: Vec<f64>,
+) -> Result<Vec<u8>> {
+    let dims = if has_z(g) {
+        geozero::CoordDimensions::xyz()
+    } else {
+        geozero::CoordDimensions::xy()
+    };
+    let mut bytes = Vec::new();
+    let mut w = geozero::wkb::WkbWriter::with_opts(&mut bytes, dialect, dims, srid, envelope);
+    emit(g, &mut w)?;
+    Ok(bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -442,21 +465,7 @@ mod tests {
                 {"type": "LineString", "coordinates": [[0.0, 0.0], [1.0, 1.0]]}]}),
         ];
         for g in geoms {
-            let z = has_z(&g);
-            let dims = if z {
-                geozero::CoordDimensions::xyz()
-            } else {
-                geozero::CoordDimensions::xy()
-            };
-            let mut bytes = Vec::new();
-            let mut w = geozero::wkb::WkbWriter::with_opts(
-                &mut bytes,
-                geozero::wkb::WkbDialect::Wkb,
-                dims,
-                None,
-                Vec::new(),
-            );
-            emit(&g, &mut w).unwrap();
+            let bytes = to_wkb(&g, geozero::wkb::WkbDialect::Wkb, None, Vec::new()).unwrap();
             let mut back = ToJson::new(true);
             geozero::wkb::process_wkb_geom(&mut bytes.as_slice(), &mut back).unwrap();
             assert_eq!(back.finish(), g);

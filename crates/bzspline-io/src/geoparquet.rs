@@ -757,20 +757,7 @@ fn write_to<W: std::io::Write + Send>(out: W, fc: &Value, schema: Option<&Schema
                 defs.push(0);
                 continue;
             }
-            let dims = if geom::has_z(g) {
-                geozero::CoordDimensions::xyz()
-            } else {
-                geozero::CoordDimensions::xy()
-            };
-            let mut bytes = Vec::new();
-            let mut w = geozero::wkb::WkbWriter::with_opts(
-                &mut bytes,
-                geozero::wkb::WkbDialect::Wkb,
-                dims,
-                None,
-                Vec::new(),
-            );
-            geom::emit(g, &mut w)
+            let bytes = geom::to_wkb(g, geozero::wkb::WkbDialect::Wkb, None, Vec::new())
                 .map_err(|e| anyhow!("feature {}: {}", first + i, one_line(&e)))?;
             values.push(ByteArray::from(bytes));
             defs.push(1);

@@ -10,58 +10,17 @@
 mod common;
 
 use bzspline::{Alphas, Curve, Error, Field, Param, Smoothing, Spline};
-use common::{gauss_solve, max_abs, Rng};
-
-/// The basis splines `B_k` (control values `e_k`) on `x` with `alphas`.
-fn basis(x: &[f64], alphas: &[f64]) -> Vec<Spline> {
-    let n = x.len();
-    (0..n)
-        .map(|k| {
-            let mut e = vec![0.0; n];
-            e[k] = 1.0;
-            Spline::with_alphas(x, &e, alphas).unwrap()
-        })
-        .collect()
-}
-
-/// `int B_i'' B_k''`: on each piece both are linear, so the integral is
-/// `h (a0 b0 + (a0 b1 + a1 b0) / 2 + a1 b1) / 3` from their end values.
-fn gram(x: &[f64], b: &[Spline]) -> Vec<f64> {
-    let n = x.len();
-    let second = |s: &Spline, k: usize| {
-        let c = s.power_coefficients(k).unwrap();
-        let h = x[k + 1] - x[k];
-        (2.0 * c[2], 2.0 * c[2] + 6.0 * c[3] * h)
-    };
-    let mut r = vec![0.0; n * n];
-    for k in 0..n - 1 {
-        let h = x[k + 1] - x[k];
-        for i in 0..n {
-            let (a0, a1) = second(&b[i], k);
-            for j in 0..n {
-                let (b0, b1) = second(&b[j], k);
-                r[i * n + j] += h * (a0 * b0 + 0.5 * (a0 * b1 + a1 * b0) + a1 * b1) / 3.0;
-            }
-        }
-    }
-    r
-}
+use common::{basis, gauss_solve, max_abs, normal_matrix, Rng};
 
 /// The dense solution: control values and the trace of the influence matrix.
 fn dense(x: &[f64], y: &[f64], w: &[f64], alphas: &[f64], lambda: f64) -> (Vec<f64>, f64) {
     let n = x.len();
     let b = basis(x, alphas);
     let kv: Vec<Vec<f64>> = b.iter().map(Spline::knot_values).collect(); // kv[k][j] = B_k(x_j)
-    let r = gram(x, &b);
-    let mut m = vec![0.0; n * n];
-    let mut rhs = vec![0.0; n];
-    for i in 0..n {
-        for k in 0..n {
-            let s: f64 = (0..n).map(|j| kv[i][j] * w[j] * kv[k][j]).sum();
-            m[i * n + k] = s + lambda * r[i * n + k];
-        }
-        rhs[i] = (0..n).map(|j| kv[i][j] * w[j] * y[j]).sum();
-    }
+    let m = normal_matrix(x, w, &b, lambda);
+    let rhs: Vec<f64> = (0..n)
+        .map(|i| (0..n).map(|j| kv[i][j] * w[j] * y[j]).sum())
+        .collect();
     let f = gauss_solve(m.clone(), rhs).unwrap();
     // tr(A) = sum_j w_j (B M^-1 B^T)_jj: column j of M^-1 B^T W e_j.
     let mut tr = 0.0;

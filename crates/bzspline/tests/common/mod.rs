@@ -162,3 +162,47 @@ pub fn gauss_solve(mut a: Vec<f64>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     }
     Some(x)
 }
+
+/// The basis splines `B_k` (control values `e_k`) on `x` with `alphas`.
+pub fn basis(x: &[f64], alphas: &[f64]) -> Vec<bzspline::Spline> {
+    let n = x.len();
+    (0..n)
+        .map(|k| {
+            let mut e = vec![0.0; n];
+            e[k] = 1.0;
+            bzspline::Spline::with_alphas(x, &e, alphas).unwrap()
+        })
+        .collect()
+}
+
+/// The smoothing spline's normal matrix `M = B^T W B + lambda R`, row-major,
+/// assembled densely from the basis splines `b` (`B` their knot values, `R`
+/// the Gram matrix of their second derivatives: on each piece both are
+/// linear, so `int B_i'' B_k''` is `h (a0 b0 + (a0 b1 + a1 b0) / 2 + a1 b1) / 3`
+/// from their end values).
+pub fn normal_matrix(x: &[f64], w: &[f64], b: &[bzspline::Spline], lambda: f64) -> Vec<f64> {
+    let n = x.len();
+    let kv: Vec<Vec<f64>> = b.iter().map(bzspline::Spline::knot_values).collect();
+    let second = |s: &bzspline::Spline, k: usize| {
+        let c = s.power_coefficients(k).unwrap();
+        let h = x[k + 1] - x[k];
+        (2.0 * c[2], 2.0 * c[2] + 6.0 * c[3] * h)
+    };
+    let mut m = vec![0.0; n * n];
+    for i in 0..n {
+        for k in 0..n {
+            m[i * n + k] = (0..n).map(|j| kv[i][j] * w[j] * kv[k][j]).sum();
+        }
+    }
+    for p in 0..n - 1 {
+        let h = x[p + 1] - x[p];
+        for i in 0..n {
+            let (a0, a1) = second(&b[i], p);
+            for k in 0..n {
+                let (b0, b1) = second(&b[k], p);
+                m[i * n + k] += lambda * h * (a0 * b0 + 0.5 * (a0 * b1 + a1 * b0) + a1 * b1) / 3.0;
+            }
+        }
+    }
+    m
+}
