@@ -114,7 +114,9 @@ pub use curve::{
 };
 pub use error::{Error, Field};
 pub use flatten::{Polyline, MAX_FLATTEN_VERTICES};
-pub use smoothing::{band_z, normal_quantile, Posterior, PosteriorParts, Smoothed, Smoothing};
+pub use smoothing::{
+    band_z, normal_quantile, Posterior, PosteriorParts, Smoothed, Smoothing, ROBUST_MIN_POINTS,
+};
 pub use spline::{
     check_alpha, AlphaChoice, Alphas, Antiderivative, Extrapolate, Extremum, ExtremumKind, Spline,
     UnknownExtrapolation, ALPHA_MAX, ALPHA_MIN, DEFAULT_ALPHA, MIN_RELATIVE_INTERVAL,

@@ -5,9 +5,12 @@
 //! `lambda`, O(N) time and memory, the trace of the influence matrix included.
 
 mod posterior;
+mod robust;
 mod system;
 
 pub use posterior::{band_z, normal_quantile, Posterior, PosteriorParts};
+pub(crate) use robust::fit_robust;
+pub use robust::ROBUST_MIN_POINTS;
 
 use crate::error::{Error, Field};
 use crate::method::power_of_two_scale;
@@ -51,6 +54,13 @@ pub struct Smoothed<T> {
     /// What the fit's standard errors and confidence bands need
     /// (`docs/method.md` §13).
     pub posterior: Posterior,
+    /// The robustness weight of each point, in `[0, 1]`, that a robust fit
+    /// ([`Spline::smoothing_robust`](crate::Spline::smoothing_robust),
+    /// [`CurveBuilder::robust`](crate::CurveBuilder::robust)) ended with: 0
+    /// for a point it judged an outlier, 1 for one it fits as well as any;
+    /// the fit weighs each point by its given weight times this. `None`
+    /// for a plain fit.
+    pub robustness: Option<Vec<f64>>,
 }
 
 impl Smoothed<crate::Spline> {
@@ -155,6 +165,8 @@ pub(crate) const NEGLIGIBLE_WEIGHT: f64 = 1e-8;
 /// The solved control values of a smoothing fit, flat (`dim` per point).
 pub(crate) struct Fit {
     pub(crate) controls: Vec<f64>,
+    /// The fitted values at the knots, flat, in the data's units.
+    pub(crate) fitted: Vec<f64>,
     pub(crate) lambda: f64,
     pub(crate) gcv: f64,
     pub(crate) dof: f64,
@@ -220,6 +232,22 @@ pub(crate) fn fit(
     alphas: &[f64],
     smoothing: Smoothing,
 ) -> Result<Fit, Error> {
+    let count = weights.iter().filter(|&&w| w > 0.0).count() as f64;
+    fit_counted(knots, values, dim, weights, alphas, smoothing, count)
+}
+
+/// [`fit`] with the number of observations `count` that the GCV score and
+/// the noise variance divide by: the points of positive weight for a plain
+/// fit, the sum of the robustness weights for a robust one (§14).
+pub(crate) fn fit_counted(
+    knots: &[f64],
+    values: &[f64],
+    dim: usize,
+    weights: &[f64],
+    alphas: &[f64],
+    smoothing: Smoothing,
+    count: f64,
+) -> Result<Fit, Error> {
     let n = knots.len();
     if n < 3 {
         return Err(Error::TooFewPoints { found: n, min: 3 });
@@ -255,7 +283,7 @@ pub(crate) fn fit(
         weights: &w,
         widths: &widths,
         coords: &coords,
-        positive,
+        count,
         mean_w,
         phi: Vec::new(),
         d: Vec::new(),
@@ -270,20 +298,21 @@ pub(crate) fn fit(
             value: lambda,
         });
     }
-    let (controls, rss) = controls(&mut f, &coords, knots, alphas, weights)?;
+    let (controls, fitted, rss) = controls(&mut f, &coords, knots, alphas, weights)?;
     let dof = f.trace();
     if !(dof > 1.0 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
         return Err(ill_conditioned());
     }
     // §13: sigma^2 = sum_j w_j r_j^2 / (n - dof) with the weights of mean 1.
-    let residual_dof = positive as f64 - dof;
-    let sigma2 = (residual_dof > 1e-9 * positive as f64)
+    let residual_dof = count - dof;
+    let sigma2 = (residual_dof > 1e-9 * count)
         .then(|| rss.iter().map(|r| r / (mean_w * residual_dof)).collect());
     let posterior = Posterior::new(knots, alphas, f.covariances(), sigma2);
     Ok(Fit {
         controls,
+        fitted,
         lambda,
-        gcv: gcv_score(rss.iter().sum::<f64>() / dim as f64, dof, positive),
+        gcv: gcv_score(rss.iter().sum::<f64>() / dim as f64, dof, count),
         dof,
         posterior,
     })
@@ -367,9 +396,13 @@ fn choose(
     }
 }
 
+/// The control values, the fitted knot values and the residual sums of
+/// squares of [`controls`].
+type Solved = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// Solves every coordinate with the factored system: the control values
-/// (flat, in the data's units) and each coordinate's weighted residual sum
-/// of squares.
+/// and the fitted knot values (both flat, in the data's units) and each
+/// coordinate's weighted residual sum of squares.
 /// Each solution must be the method's spline of its control values (its knot
 /// values, solved again by the method, are the fitted ones): intervals of
 /// widths many decades apart under a large lambda can defeat the
@@ -380,9 +413,10 @@ fn controls(
     knots: &[f64],
     alphas: &[f64],
     weights: &[f64],
-) -> Result<(Vec<f64>, Vec<f64>), Error> {
+) -> Result<Solved, Error> {
     let (n, dim) = (knots.len(), coords.len());
     let mut out = vec![0.0; n * dim];
+    let mut fitted = vec![0.0; n * dim];
     let (mut phi, mut d, mut g) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let mut rss = vec![0.0; dim];
     for (c, (scale, y)) in coords.iter().enumerate() {
@@ -395,6 +429,7 @@ fn controls(
                 });
             }
             out[i * dim + c] = g[i] * scale;
+            fitted[i * dim + c] = phi[i] * scale;
             let r = (y[i] - phi[i]) * scale;
             rss[c] += weights[i] * r * r;
         }
@@ -402,7 +437,7 @@ fn controls(
             return Err(ill_conditioned());
         }
     }
-    Ok((out, rss))
+    Ok((out, fitted, rss))
 }
 
 /// `10^t` from additions and multiplications only, so that the search
@@ -474,8 +509,7 @@ fn consistent(knots: &[f64], g: &[f64], alphas: &[f64], phi: &[f64]) -> bool {
 
 /// `(rss / n) / (1 - dof / n)^2`; infinite when the fit interpolates
 /// (`dof = n`: no residual degrees of freedom, the score is undefined).
-fn gcv_score(rss: f64, dof: f64, n: usize) -> f64 {
-    let n = n as f64;
+fn gcv_score(rss: f64, dof: f64, n: f64) -> f64 {
     let den = 1.0 - dof / n;
     let s = (rss / n) / (den * den);
     if den > 0.0 && !s.is_nan() {
@@ -493,7 +527,8 @@ struct Evaluator<'a> {
     weights: &'a [f64],
     widths: &'a [f64],
     coords: &'a [(f64, Vec<f64>)],
-    positive: usize,
+    /// The number of observations (see [`fit_counted`]).
+    count: f64,
     mean_w: f64,
     phi: Vec<f64>,
     d: Vec<f64>,
@@ -523,7 +558,7 @@ impl Evaluator<'_> {
         let s = gcv_score(
             rss * self.mean_w / self.coords.len() as f64,
             f.trace(),
-            self.positive,
+            self.count,
         );
         if s.is_finite() {
             s
@@ -716,30 +751,84 @@ impl crate::Spline {
         alphas: crate::Alphas<'_>,
         smoothing: Smoothing,
     ) -> Result<Smoothed<crate::Spline>, Error> {
-        let n = x.len();
-        if n < 3 {
-            return Err(Error::TooFewPoints { found: n, min: 3 });
-        }
-        crate::validate::check_knots(x)?;
-        if y.len() != n {
-            return Err(Error::LengthMismatch {
-                field: Field::Value,
-                expected: n,
-                found: y.len(),
-            });
-        }
-        crate::validate::check_finite(Field::Value, y)?;
-        let resolved = crate::validate::resolve_alphas(alphas, n - 1)?;
-        let w = check_weights(weights, n)?;
-        let fit = fit(x, y, 1, &w, &resolved, smoothing)?;
-        Ok(Smoothed {
-            fit: crate::Spline::build(x, &fit.controls, alphas)?,
-            lambda: fit.lambda,
-            gcv: fit.gcv,
-            dof: fit.dof,
-            posterior: fit.posterior,
-        })
+        smoothing_spline(x, y, weights, alphas, smoothing, false)
     }
+
+    /// [`Spline::smoothing`] made robust against outliers (`docs/method.md`
+    /// §14): the fit is weighted again by its residuals with Tukey's
+    /// biweight, `(1 - u^2)^2` for `u = |r| / (6 m)` below 1 and 0 beyond,
+    /// `m` the median absolute residual (residuals standardised by the given
+    /// weights), as lowess does; `lambda` is chosen again (under
+    /// [`Smoothing::Gcv`]) at every step, until no weight moves by more than
+    /// 1e-3 (at most 20 steps). The weights it ends with are
+    /// [`Smoothed::robustness`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Spline::smoothing`], and [`Error::TooFewPoints`] for fewer than
+    /// [`ROBUST_MIN_POINTS`] points of positive weight.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use bzspline::{Alphas, Smoothing, Spline};
+    /// let x: Vec<f64> = (0..100).map(|i| i as f64 / 99.0).collect();
+    /// let mut y: Vec<f64> = x.iter().map(|&t| (4.0 * t).sin()).collect();
+    /// y[40] += 5.0; // one gross outlier
+    /// let s = Spline::smoothing_robust(&x, &y, None, Alphas::default(), Smoothing::Gcv)?;
+    /// assert_eq!(s.robustness.as_ref().unwrap()[40], 0.0);
+    /// assert!((s.fit.eval(x[40])? - (4.0 * x[40]).sin()).abs() < 0.01);
+    /// # Ok::<(), bzspline::Error>(())
+    /// ```
+    pub fn smoothing_robust(
+        x: &[f64],
+        y: &[f64],
+        weights: Option<&[f64]>,
+        alphas: crate::Alphas<'_>,
+        smoothing: Smoothing,
+    ) -> Result<Smoothed<crate::Spline>, Error> {
+        smoothing_spline(x, y, weights, alphas, smoothing, true)
+    }
+}
+
+/// [`Spline::smoothing`], robust or not.
+fn smoothing_spline(
+    x: &[f64],
+    y: &[f64],
+    weights: Option<&[f64]>,
+    alphas: crate::Alphas<'_>,
+    smoothing: Smoothing,
+    robust: bool,
+) -> Result<Smoothed<crate::Spline>, Error> {
+    let n = x.len();
+    if n < 3 {
+        return Err(Error::TooFewPoints { found: n, min: 3 });
+    }
+    crate::validate::check_knots(x)?;
+    if y.len() != n {
+        return Err(Error::LengthMismatch {
+            field: Field::Value,
+            expected: n,
+            found: y.len(),
+        });
+    }
+    crate::validate::check_finite(Field::Value, y)?;
+    let resolved = crate::validate::resolve_alphas(alphas, n - 1)?;
+    let w = check_weights(weights, n)?;
+    let (fit, robustness) = if robust {
+        let (f, r) = fit_robust(x, y, 1, &w, &resolved, smoothing)?;
+        (f, Some(r))
+    } else {
+        (fit(x, y, 1, &w, &resolved, smoothing)?, None)
+    };
+    Ok(Smoothed {
+        fit: crate::Spline::build(x, &fit.controls, alphas)?,
+        lambda: fit.lambda,
+        gcv: fit.gcv,
+        dof: fit.dof,
+        posterior: fit.posterior,
+        robustness,
+    })
 }
 
 #[cfg(test)]

@@ -10,12 +10,6 @@ mod common;
 use bzspline::{band_z, normal_quantile, Alphas, Curve, Error, Smoothing, Spline};
 use common::{basis, gauss_solve, normal_matrix, Rng};
 
-fn gaussian(rng: &mut Rng) -> f64 {
-    let u = rng.unit().max(1e-300);
-    let v = rng.unit();
-    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-}
-
 #[test]
 fn standard_errors_are_the_dense_posterior_variance() {
     let mut rng = Rng::new(41);
@@ -94,10 +88,7 @@ fn the_95_percent_band_covers_about_95_percent_of_the_points() {
                 let truth: Vec<f64> = x.iter().map(|&t| f(t)).collect();
                 let (mut covered, mut total) = (0usize, 0usize);
                 for _ in 0..draws {
-                    let y: Vec<f64> = truth
-                        .iter()
-                        .map(|&v| v + sigma * gaussian(&mut rng))
-                        .collect();
+                    let y: Vec<f64> = truth.iter().map(|&v| v + sigma * rng.gaussian()).collect();
                     let s =
                         Spline::smoothing(&x, &y, None, Alphas::default(), Smoothing::Gcv).unwrap();
                     let (lo, hi) = s.band_many(&x, 0.95).unwrap();
@@ -125,8 +116,8 @@ fn curves_have_a_standard_error_per_coordinate() {
         .map(|i| {
             let t = i as f64 / (n - 1) as f64 * 3.0;
             [
-                t.cos() + 0.01 * gaussian(&mut rng),
-                t.sin() + 0.2 * gaussian(&mut rng),
+                t.cos() + 0.01 * rng.gaussian(),
+                t.sin() + 0.2 * rng.gaussian(),
             ]
         })
         .collect();

@@ -40,6 +40,7 @@ pub struct CurveBuilder<'a> {
     through: bool,
     smoothing: Option<Smoothing>,
     weights: Option<Vec<f64>>,
+    robust: bool,
 }
 
 impl<'a> CurveBuilder<'a> {
@@ -57,6 +58,7 @@ impl<'a> CurveBuilder<'a> {
             through: false,
             smoothing: None,
             weights: None,
+            robust: false,
         }
     }
 
@@ -172,6 +174,17 @@ impl<'a> CurveBuilder<'a> {
         self
     }
 
+    /// Makes [`CurveBuilder::smoothing`] robust against outliers, as
+    /// [`Spline::smoothing_robust`](crate::Spline::smoothing_robust) does, the
+    /// residual of a point being its distance from the fitted point; the
+    /// weights it ends with are [`Smoothed::robustness`], one per point given
+    /// (a dropped repeat has the weight of the point it repeats).
+    #[must_use]
+    pub fn robust(mut self, robust: bool) -> Self {
+        self.robust = robust;
+        self
+    }
+
     /// Builds a smoothing curve ([`CurveBuilder::smoothing`], by default
     /// [`Smoothing::Gcv`]) and returns it with its `lambda`, score and
     /// degrees of freedom.
@@ -184,6 +197,7 @@ impl<'a> CurveBuilder<'a> {
     pub fn build_smoothed(mut self) -> Result<Smoothed<Curve>, Error> {
         let smoothing = self.smoothing.take().unwrap_or_default();
         let weights = self.weights.take();
+        let robust = self.robust;
         if self.closed || self.through {
             return Err(Error::InvalidArgument {
                 what: "smoothing is for open curves, without through",
@@ -216,7 +230,20 @@ impl<'a> CurveBuilder<'a> {
             }
         };
         check_positive_weights(&w)?;
-        let fit = smoothing::fit(data.knots(), &data.points, dim, &w, &data.alphas, smoothing)?;
+        let (fit, robustness) = if robust {
+            let (fit, kept) = smoothing::fit_robust(
+                data.knots(),
+                &data.points,
+                dim,
+                &w,
+                &data.alphas,
+                smoothing,
+            )?;
+            (fit, Some(with_repeats(&kept, &data.dropped)))
+        } else {
+            let fit = smoothing::fit(data.knots(), &data.points, dim, &w, &data.alphas, smoothing)?;
+            (fit, None)
+        };
         let mut c = CurveBuilder::new(&fit.controls, dim)
             .param(Param::Given(data.knots().to_vec()))
             .alphas(&data.alphas)
@@ -228,6 +255,7 @@ impl<'a> CurveBuilder<'a> {
             gcv: fit.gcv,
             dof: fit.dof,
             posterior: fit.posterior,
+            robustness,
         })
     }
 
@@ -463,4 +491,21 @@ fn keep_list(
         dropped.sort_unstable();
     }
     Ok((keep, dropped))
+}
+
+/// Values of the kept points, one per point given: a dropped repeat (its
+/// index in `dropped`, increasing) takes the value of the point before it.
+fn with_repeats(kept: &[f64], dropped: &[usize]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(kept.len() + dropped.len());
+    let mut values = kept.iter();
+    let mut drops = dropped.iter().peekable();
+    for i in 0..kept.len() + dropped.len() {
+        if drops.peek() == Some(&&i) {
+            drops.next();
+            out.push(out.last().copied().unwrap_or(1.0));
+        } else {
+            out.push(values.next().copied().unwrap_or(1.0));
+        }
+    }
+    out
 }

@@ -66,6 +66,13 @@ impl Rng {
         lo + (hi - lo) * self.unit()
     }
 
+    /// Standard normal, by Box and Muller.
+    pub fn gaussian(&mut self) -> f64 {
+        let u = self.unit().max(1e-300);
+        let v = self.unit();
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+
     /// Uniform integer in `lo..=hi`.
     pub fn int(&mut self, lo: usize, hi: usize) -> usize {
         lo + (self.next_u64() % (hi - lo + 1) as u64) as usize
