@@ -100,6 +100,7 @@ impl InputArgs {
             y: self.y.clone(),
             columns: self.columns.clone(),
             date_format: self.date_format.clone(),
+            weights: None,
         }
     }
 
@@ -112,14 +113,17 @@ impl InputArgs {
         }
     }
 
-    /// Reads the points ([`input::load`]) and says on standard error when
-    /// GeoJSON positions were cut to x, y, z.
+    /// Reads the points ([`input::load`]), with a table's column of
+    /// `weights` when given, and says on standard error when GeoJSON
+    /// positions were cut to x, y, z.
     ///
     /// # Errors
     ///
     /// As [`input::load`].
-    pub fn load(&self) -> Result<Points> {
-        let points = input::load(&self.source())?;
+    pub fn load(&self, weights: Option<&str>) -> Result<Points> {
+        let mut source = self.source();
+        source.weights = weights.map(str::to_owned);
+        let points = input::load(&source)?;
         if points.cut > 0 {
             eprintln!("note: {}", input::cut_note(&points.source, points.cut));
         }
@@ -180,6 +184,17 @@ pub struct ShapeArgs {
         value_parser = bzspline_io::options::parse_smoothing
     )]
     pub smooth: Option<bzspline::Smoothing>,
+    /// With --smooth: a table's column of weights, by header name or number
+    /// (finite, >= 0; a point of weight 0 does not pull the fit). The column
+    /// is not read as a coordinate.
+    #[arg(long, value_name = "NAME|N", requires = "smooth")]
+    pub weights: Option<String>,
+    /// With --smooth: a fit robust against outliers, re-weighted by its
+    /// residuals (Tukey's biweight on six median absolute residuals, as
+    /// lowess does; docs/method.md section 14); `fit` adds `robustness`, the
+    /// weight each point ended with (0 for an outlier).
+    #[arg(long, requires = "smooth")]
+    pub robust: bool,
 }
 
 /// `--param`: one of [`bzspline::Param::NAMES`], read by the library.
@@ -543,6 +558,7 @@ impl ShapeArgs {
             },
             through: self.through,
             smoothing: self.smooth,
+            robust: self.robust,
         })
     }
 }

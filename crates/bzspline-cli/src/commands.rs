@@ -78,7 +78,7 @@ pub fn num(v: f64) -> String {
 
 fn fit(a: &FitArgs) -> Result<()> {
     let shape = a.shape.validate()?;
-    let points = a.input.load()?;
+    let points = a.input.load(a.shape.weights.as_deref())?;
     let (fitted, report) = fit_points_reported(&points, &shape)?;
     let mut sink = output::Sink::create(a.output.output.as_deref())?;
     match a.format {
@@ -315,7 +315,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
         (None, None) => usage!("give --at X1,... or --at-file FILE"),
     };
     let band = band_of(&shape, a.band.band)?;
-    let points = a.input.load()?;
+    let points = a.input.load(a.shape.weights.as_deref())?;
     let (fitted, report) = fit_points_reported(&points, &shape)?;
     let fitted = match fitted {
         Fitted::Function(s) => Fitted::Function(s.with_extrapolation(a.extrapolate)),
@@ -423,7 +423,7 @@ fn sample(a: &SampleArgs) -> Result<()> {
     // --n, --step and --tolerance are checked as clap parses them.
     let shape = a.shape.validate()?;
     let band = band_of(&shape, a.band.band)?;
-    let points = a.input.load()?;
+    let points = a.input.load(a.shape.weights.as_deref())?;
     let (fitted, report) = fit_points_reported(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
     let (lo, hi) = fitted.curve().domain();

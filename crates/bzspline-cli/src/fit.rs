@@ -46,6 +46,7 @@ fn spec_of<'a>(points: &'a Points, shape: &Shape) -> FitSpec<'a> {
     FitSpec {
         points: std::borrow::Cow::Borrowed(&points.coords),
         dim: points.width,
+        weights: points.weights.as_deref().map(std::borrow::Cow::Borrowed),
         shape: shape.clone(),
     }
 }

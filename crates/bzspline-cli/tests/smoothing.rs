@@ -311,7 +311,32 @@ fn the_guides_smoothing_output_is_current() {
     let guide = common::guide();
     let noisy = common::fixture("noisy.csv");
     let noisy = noisy.to_str().unwrap();
+    let spikes = common::fixture("spikes.csv");
+    let spikes = spikes.to_str().unwrap();
     for args in [
+        &[
+            "eval",
+            spikes,
+            "--smooth",
+            "auto",
+            "--x",
+            "x",
+            "--y",
+            "y",
+            "--at",
+            "1.5,4.7,8",
+        ][..],
+        &[
+            "eval",
+            spikes,
+            "--smooth",
+            "auto",
+            "--weights",
+            "w",
+            "--robust",
+            "--at",
+            "1.5,4.7,8",
+        ][..],
         &["eval", noisy, "--smooth", "auto", "--at", "1.5,4.7,8"][..],
         &[
             "eval",
@@ -331,5 +356,142 @@ fn the_guides_smoothing_output_is_current() {
             "the guide's output of {args:?} is stale:\n{}",
             o.stdout
         );
+    }
+}
+
+/// The noisy sine with a weight column and one gross outlier.
+fn weighted(n: usize) -> (String, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let (_, x, mut y) = noisy(n);
+    y[n / 3] += 8.0;
+    let w: Vec<f64> = (0..n).map(|i| [1.0, 0.5, 2.0, 0.0][i % 4]).collect();
+    let mut csv = String::from("w,x,y\n");
+    for i in 0..n {
+        csv.push_str(&format!("{},{},{}\n", w[i], x[i], y[i]));
+    }
+    (csv, x, y, w)
+}
+
+#[test]
+fn weights_and_robust_fits_are_the_librarys() {
+    let (csv, x, y, w) = weighted(150);
+    let fit = |args: &[&str]| -> Value {
+        let mut all = vec!["fit", "--smooth", "auto", "--x", "x", "--y", "y"];
+        all.extend_from_slice(args);
+        serde_json::from_str(&ok_stdin(&all, &csv)).unwrap()
+    };
+    let how = Smoothing::Gcv;
+    // By name and by number.
+    for col in ["w", "1"] {
+        let v = fit(&["--weights", col]);
+        let s = Spline::smoothing(&x, &y, Some(&w), Alphas::default(), how).unwrap();
+        assert_eq!(numbers(&v["values"]), s.fit.values(), "--weights {col}");
+        assert_eq!(v["lambda"].as_f64(), Some(s.lambda));
+        assert!(v.get("robustness").is_none());
+    }
+    // Without --x and --y, every column but the weights is read.
+    let v: Value = serde_json::from_str(&ok_stdin(
+        &["fit", "--smooth", "auto", "--weights", "w"],
+        &csv,
+    ))
+    .unwrap();
+    assert_eq!(v["dimension"].as_u64(), Some(1));
+    let r = Spline::smoothing_robust(&x, &y, Some(&w), Alphas::default(), how).unwrap();
+    let v = fit(&["--weights", "w", "--robust"]);
+    assert_eq!(numbers(&v["values"]), r.fit.values());
+    assert_eq!(numbers(&v["robustness"]), r.robustness.clone().unwrap());
+    assert_eq!(numbers(&v["robustness"])[150 / 3], 0.0, "the outlier");
+    // eval uses the same fit, bands included.
+    let o = ok_stdin(
+        &[
+            "eval",
+            "--smooth",
+            "auto",
+            "--x",
+            "x",
+            "--y",
+            "y",
+            "--weights",
+            "w",
+            "--robust",
+            "--band",
+            "0.9",
+            "--at",
+            "1.5",
+        ],
+        &csv,
+    );
+    let row: Vec<f64> = o
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|f| f.parse().unwrap())
+        .collect();
+    let (lo, hi) = r.band(1.5, 0.9).unwrap();
+    assert_eq!(row, [1.5, r.fit.eval(1.5).unwrap(), lo, hi], "{o}");
+}
+
+#[test]
+fn bad_weights_name_their_line() {
+    let table = "x,y,w\n0,1,1\n1,2,1\n2,1,-1\n3,0,1\n";
+    for (args, stdin, code, want) in [
+        (&["fit", "--weights", "w"][..], table, 2, "--smooth"),
+        (&["fit", "--robust"][..], table, 2, "--smooth"),
+        (
+            &["fit", "--smooth", "auto", "--weights", "w"][..],
+            table,
+            1,
+            "<stdin>:4: field 3: weight -1 is negative",
+        ),
+        (
+            &["fit", "--smooth", "auto", "--weights", "w"][..],
+            "x,y,w\n0,1,1\n1,2,nan\n2,1,1\n",
+            1,
+            "<stdin>:3: field 3: 'nan' is not a finite number (a weight)",
+        ),
+        (
+            &["fit", "--smooth", "auto", "--weights", "v"][..],
+            table,
+            1,
+            "no column named 'v' (--weights)",
+        ),
+        (
+            &[
+                "fit",
+                "--smooth",
+                "auto",
+                "--weights",
+                "2",
+                "--columns",
+                "x,y",
+            ][..],
+            "x,y,w\n0,1,1\n1,2,1\n2,1,1\n",
+            1,
+            "--weights names column 2, which is read as a coordinate too",
+        ),
+        (
+            &[
+                "fit",
+                "--smooth",
+                "auto",
+                "--weights",
+                "w",
+                "--input-format",
+                "json",
+            ][..],
+            "[[0,1],[1,2],[2,1]]",
+            1,
+            "--date-format and --weights are for tables",
+        ),
+        (
+            &["fit", "--smooth", "auto", "--robust"][..],
+            "x,y\n0,1\n1,2\n2,1\n3,3\n",
+            1,
+            "need at least 5",
+        ),
+    ] {
+        let o = run(args, Some(stdin.as_bytes()));
+        assert_eq!(o.code, code, "{args:?}: {}", o.stderr);
+        assert!(o.stderr.contains(want), "{args:?}: {}", o.stderr);
     }
 }

@@ -69,6 +69,12 @@ struct RawRequest {
     /// A smoothing fit: `"auto"` or a lambda (as `--smooth`).
     #[serde(default)]
     smooth: Option<Value>,
+    /// One weight per point for the smoothing fit (as `--weights`).
+    #[serde(default)]
+    weights: Option<Vec<Value>>,
+    /// The smoothing fit made robust (as `--robust`).
+    #[serde(default)]
+    robust: Option<bool>,
 }
 
 /// A validated request.
@@ -195,6 +201,22 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
             })?)
         }
     };
+    let weights = match &raw.weights {
+        None => None,
+        Some(list) => Some(
+            list.iter()
+                .enumerate()
+                .map(|(j, v)| number(v, || format!("weights[{j}]")))
+                .collect::<Result<Vec<f64>, ApiError>>()?,
+        ),
+    };
+    let robust = raw.robust.unwrap_or(false);
+    if (robust || weights.is_some()) && smoothing.is_none() {
+        return Err(ApiError::new(
+            422,
+            "weights and robust are for a smoothing fit: give smooth too",
+        ));
+    }
     let samples = raw.samples.unwrap_or(0);
     let total = samples.saturating_mul(raw.points.len());
     if total > limits.max_samples {
@@ -211,6 +233,7 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
         spec: FitSpec {
             points: points.into(),
             dim: 2,
+            weights: weights.map(Into::into),
             shape: Shape {
                 mode,
                 closed: raw.closed.unwrap_or(false),
@@ -223,6 +246,7 @@ pub fn parse(body: &[u8], limits: ParseLimits) -> Result<FitRequest, ApiError> {
                 },
                 through: raw.through.unwrap_or(false),
                 smoothing,
+                robust,
             },
         },
         samples,
@@ -322,6 +346,40 @@ mod tests {
         // Without smooth, no smoothing keys.
         let out = fit(&parse(br#"{"points": [[0,0],[1,2],[2,1]]}"#, LIMITS).unwrap()).unwrap();
         assert!(out.get("lambda").is_none());
+    }
+
+    #[test]
+    fn weights_and_robust_reach_the_library() {
+        let pts = [[0.0, 0.0], [1.0, 2.0], [2.0, 1.0], [3.0, 9.0], [4.0, 2.0]];
+        let (x, y): (Vec<f64>, Vec<f64>) = pts.iter().map(|p| (p[0], p[1])).unzip();
+        let w = [1.0, 2.0, 1.0, 0.5, 1.0];
+        let body = json!({"points": pts, "smooth": "auto", "weights": w, "robust": true});
+        let out = fit(&parse(body.to_string().as_bytes(), LIMITS).unwrap()).unwrap();
+        let s = bzspline::Spline::smoothing_robust(
+            &x,
+            &y,
+            Some(&w),
+            bzspline::Alphas::default(),
+            bzspline::Smoothing::Gcv,
+        )
+        .unwrap();
+        assert_eq!(out["lambda"].as_f64(), Some(s.lambda));
+        assert_eq!(out["robustness"], json!(s.robustness.unwrap()));
+        for (body, want) in [
+            (json!({"points": pts, "weights": w}), "give smooth too"),
+            (json!({"points": pts, "robust": true}), "give smooth too"),
+            (
+                json!({"points": pts, "smooth": "auto", "weights": [1, "a"]}),
+                "weights[1]",
+            ),
+        ] {
+            let e = parse(body.to_string().as_bytes(), LIMITS).unwrap_err();
+            assert_eq!(e.status, 422);
+            assert!(e.message.contains(want), "{}", e.message);
+        }
+        let body = json!({"points": pts, "smooth": "auto", "weights": [1, 1, -1, 1, 1]});
+        let e = fit(&parse(body.to_string().as_bytes(), LIMITS).unwrap()).unwrap_err();
+        assert!(e.message.contains("negative"), "{}", e.message);
     }
 
     #[test]

@@ -40,6 +40,9 @@ pub struct Shape {
     /// A smoothing fit of the points as noisy data (`docs/method.md` §12)
     /// instead of taking them as control points; open curves and functions.
     pub smoothing: Option<Smoothing>,
+    /// The smoothing fit made robust against outliers (`docs/method.md`
+    /// §14); only with `smoothing`.
+    pub robust: bool,
 }
 
 impl Default for Shape {
@@ -51,21 +54,30 @@ impl Default for Shape {
             alphas: AlphaChoice::default(),
             through: false,
             smoothing: None,
+            robust: false,
         }
     }
 }
 
 impl Shape {
     /// Checks what can be checked before there are points: every alpha
-    /// ([`AlphaChoice::check`]) and a given `lambda` ([`Smoothing::check`]).
+    /// ([`AlphaChoice::check`]), a given `lambda` ([`Smoothing::check`]) and
+    /// `robust` only with `smoothing`.
     ///
     /// # Errors
     ///
-    /// The library's error naming the alpha (its index) or the `lambda`.
+    /// The library's error naming the alpha (its index) or the `lambda`;
+    /// [`bzspline::Error::InvalidArgument`] for `robust` without `smoothing`.
     pub fn check(&self) -> Result<(), bzspline::Error> {
         self.alphas.check()?;
         if let Some(s) = self.smoothing {
             s.check()?;
+        }
+        if self.robust && self.smoothing.is_none() {
+            return Err(bzspline::Error::InvalidArgument {
+                what: "a robust fit is a smoothing fit: give the smoothing too",
+                value: 1.0,
+            });
         }
         Ok(())
     }
@@ -78,6 +90,9 @@ pub struct FitSpec<'a> {
     pub points: Cow<'a, [f64]>,
     /// Numbers per row.
     pub dim: usize,
+    /// One weight per row for a smoothing fit (finite, `>= 0`; all 1 when
+    /// `None`); ignored without [`Shape::smoothing`].
+    pub weights: Option<Cow<'a, [f64]>>,
     /// How to fit them.
     pub shape: Shape,
 }
@@ -96,6 +111,10 @@ pub struct SmoothingReport {
     /// The fit's posterior, for standard errors and bands.
     #[serde(skip)]
     pub posterior: bzspline::Posterior,
+    /// A robust fit's robustness weight of each row
+    /// ([`bzspline::Smoothed::robustness`]); the `robustness` key.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robustness: Option<Vec<f64>>,
 }
 
 impl<T> From<&bzspline::Smoothed<T>> for SmoothingReport {
@@ -105,6 +124,7 @@ impl<T> From<&bzspline::Smoothed<T>> for SmoothingReport {
             gcv: s.gcv,
             dof: s.dof,
             posterior: s.posterior.clone(),
+            robustness: s.robustness.clone(),
         }
     }
 }
@@ -154,7 +174,12 @@ pub fn build_reported(
             let (xs, ys): (Vec<f64>, Vec<f64>) =
                 spec.points.chunks_exact(2).map(|p| (p[0], p[1])).unzip();
             if let Some(how) = shape.smoothing {
-                let s = Spline::smoothing(&xs, &ys, None, alphas, how)?;
+                let w = spec.weights.as_deref();
+                let s = if shape.robust {
+                    Spline::smoothing_robust(&xs, &ys, w, alphas, how)?
+                } else {
+                    Spline::smoothing(&xs, &ys, w, alphas, how)?
+                };
                 let report = SmoothingReport::from(&s);
                 return Ok((Fitted::Function(s.fit), Some(report)));
             }
@@ -180,7 +205,11 @@ pub fn build_reported(
                 .alpha_choice(alphas)
                 .through(shape.through);
             if let Some(how) = shape.smoothing {
-                let s = b.smoothing(how).build_smoothed()?;
+                let mut b = b.smoothing(how).robust(shape.robust);
+                if let Some(w) = &spec.weights {
+                    b = b.weights(w);
+                }
+                let s = b.build_smoothed()?;
                 let report = SmoothingReport::from(&s);
                 return Ok((Fitted::Curve(s.fit), Some(report)));
             }
@@ -452,8 +481,8 @@ fn serialize_fit<S: serde::Serializer>(
 /// `tangent_points` (`[x, f]` for a function, points for a curve; a curve also
 /// has `tangent_params`), `segments` (four control points each) and `svg_path`
 /// (null in 3D). A closed curve has N + 1 knots and N + 1 knot values, the last
-/// equal to the first. A smoothing fit adds `lambda`, `gcv` and `dof`
-/// ([`SmoothingReport`]). Numbers are printed so that they parse back to the
+/// equal to the first. A smoothing fit adds `lambda`, `gcv` and `dof`, a
+/// robust one `robustness` too ([`SmoothingReport`]). Numbers are printed so that they parse back to the
 /// same double.
 #[must_use]
 pub fn fit_json(f: &Fitted, smoothing: Option<SmoothingReport>) -> Value {
@@ -578,6 +607,7 @@ mod tests {
                 .flat_map(|(i, &y)| [i as f64 + 1.0, y])
                 .collect(),
             dim: 2,
+            weights: None,
             shape: Shape {
                 param: Param::Uniform,
                 ..Shape::default()

@@ -49,7 +49,7 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     if source.file.is_none() && source.example.is_none() {
         source.example = Some(1);
     }
-    let points = source.load()?;
+    let points = source.load(a.shape.weights.as_deref())?;
     let band = crate::commands::band_of(&shape, a.band.band)?;
     let sweep = &a.figure.alpha_sweep;
     let mut data = Vec::new();

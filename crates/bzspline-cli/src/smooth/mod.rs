@@ -117,7 +117,7 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         sink.finish()?;
     } else {
         let (out, schema) = match format {
-            InputFormat::Csv | InputFormat::Tsv => (job.table(&a.input.load()?)?, None),
+            InputFormat::Csv | InputFormat::Tsv => (job.table(&a.input.load(None)?)?, None),
             f if files::is_layer(f) => {
                 let Some(path) = file.filter(|f| *f != Path::new("-")) else {
                     return Err(UsageError::new(&format!(

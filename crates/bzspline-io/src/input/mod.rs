@@ -87,6 +87,9 @@ pub struct Source {
     pub columns: Option<Vec<String>>,
     /// The form of a table's dates, with strftime's directives.
     pub date_format: Option<crate::time::DateFormat>,
+    /// A table's column of weights for a smoothing fit, by header name or
+    /// number.
+    pub weights: Option<String>,
 }
 
 impl Default for Source {
@@ -101,6 +104,7 @@ impl Default for Source {
             y: None,
             columns: None,
             date_format: None,
+            weights: None,
         }
     }
 }
@@ -181,6 +185,9 @@ pub struct Points {
     pub time: Option<crate::time::TimeKind>,
     /// GeoJSON positions of more than 3 numbers, cut to x, y, z.
     pub cut: usize,
+    /// One weight per row for a smoothing fit, when a table's column was
+    /// chosen for them (`--weights`).
+    pub weights: Option<Vec<f64>>,
 }
 
 impl Points {
@@ -202,6 +209,7 @@ impl Points {
             names: None,
             time: None,
             cut: 0,
+            weights: None,
         }
     }
 
@@ -484,11 +492,24 @@ pub fn load(args: &Source) -> Result<Points> {
     let file = args.file.as_deref();
     let limits = args.limits;
     let max = limits.max_points;
+    let no_weights = |name: &str, format: InputFormat| -> Result<()> {
+        match &args.weights {
+            Some(w) => bail!(
+                "{name}: --weights {w:?} reads a column of a table; this is {}",
+                crate::files::format_name(format)
+            ),
+            None => Ok(()),
+        }
+    };
     if let Some(f) = args
         .format
         .or_else(|| format_by_extension(file))
         .filter(|f| crate::files::is_layer(*f))
     {
+        no_weights(
+            &file.map_or("<stdin>".to_owned(), |p| p.display().to_string()),
+            f,
+        )?;
         return layer_points(file, f, args.layer.as_deref(), limits);
     }
     let (name, bytes) = read_source(file, limits.max_bytes)?;
@@ -497,6 +518,7 @@ pub fn load(args: &Source) -> Result<Points> {
         .or_else(|| format_by_extension(file))
         .unwrap_or_else(|| sniff(&bytes));
     if crate::files::is_layer(format) {
+        no_weights(&name, format)?;
         return layer_points(file, format, args.layer.as_deref(), limits);
     }
     if let Some(l) = &args.layer {
@@ -513,10 +535,11 @@ pub fn load(args: &Source) -> Result<Points> {
             .as_ref()
             .map(|c| c.iter().map(|s| Col::parse(s)).collect()),
         dates: args.date_format.clone(),
+        weights: args.weights.as_deref().map(Col::parse),
     };
     let table = matches!(format, InputFormat::Csv | InputFormat::Tsv);
     if !table && select != Select::default() {
-        bail!("{name}: --x, --y, --columns and --date-format are for tables; this is {format:?}");
+        bail!("{name}: --x, --y, --columns, --date-format and --weights are for tables; this is {format:?}");
     }
     let points = match format {
         InputFormat::Csv => parse_table_with(&name, &bytes, None, max, &select),

@@ -3,7 +3,7 @@
 //! byte-order mark; the columns chosen by name or number, the first of them
 //! holding numbers or dates.
 
-use anyhow::{anyhow, Result};
+use anyhow::{anyhow, bail, Result};
 
 use super::{too_many, utf8, Points, Pos, Positions};
 use crate::time::{self, DateFormat, TimeKind};
@@ -51,17 +51,21 @@ pub struct Select {
     /// The form of the first column's dates (`--date-format`); without it,
     /// numbers and the forms of [`time::AUTO_FORMS`].
     pub dates: Option<DateFormat>,
+    /// A column of weights for a smoothing fit (`--weights`): finite numbers
+    /// `>= 0`, read into [`Points::weights`] and left out of the columns read
+    /// when none are chosen.
+    pub weights: Option<Col>,
 }
 
 /// The chosen columns of a table whose rows have `width` fields, by number
-/// (from 0); `Ok(None)` for every column. A `y` chosen alone comes back as
-/// the only column.
+/// (from 0): every column but the weights when none are chosen; a `y`
+/// chosen alone comes back as the only column. Then the weights' column.
 fn resolve(
     select: &Select,
     header: Option<&[String]>,
     width: usize,
     name: &str,
-) -> Result<Option<Vec<usize>>> {
+) -> Result<(Vec<usize>, Option<usize>)> {
     let find = |c: &Col, opt: &str| -> Result<usize> {
         match c {
             Col::Index(i) if *i <= width => Ok(i - 1),
@@ -85,23 +89,39 @@ fn resolve(
             },
         }
     };
-    Ok(match (&select.columns, &select.x, &select.y) {
-        (Some(cols), _, _) => Some(
-            cols.iter()
-                .map(|c| find(c, "--columns"))
-                .collect::<Result<_>>()?,
-        ),
-        (None, Some(x), Some(y)) => Some(vec![find(x, "--x")?, find(y, "--y")?]),
+    let weights = match &select.weights {
+        Some(c) => Some(find(c, "--weights")?),
+        None => None,
+    };
+    let not_weights = |j: &usize| Some(*j) != weights;
+    let cols = match (&select.columns, &select.x, &select.y) {
+        (Some(cols), _, _) => cols
+            .iter()
+            .map(|c| find(c, "--columns"))
+            .collect::<Result<_>>()?,
+        (None, Some(x), Some(y)) => vec![find(x, "--x")?, find(y, "--y")?],
         (None, Some(x), None) => {
             let x = find(x, "--x")?;
-            let y = (0..width).find(|&j| j != x).ok_or_else(|| {
-                anyhow!("{name}: --x names the only column: no y to read beside it")
-            })?;
-            Some(vec![x, y])
+            let y = (0..width)
+                .filter(not_weights)
+                .find(|&j| j != x)
+                .ok_or_else(|| {
+                    anyhow!("{name}: --x names the only column: no y to read beside it")
+                })?;
+            vec![x, y]
         }
-        (None, None, Some(y)) => Some(vec![find(y, "--y")?]),
-        (None, None, None) => None,
-    })
+        (None, None, Some(y)) => vec![find(y, "--y")?],
+        (None, None, None) => (0..width).filter(not_weights).collect(),
+    };
+    if let Some(w) = weights {
+        if cols.contains(&w) {
+            bail!(
+                "{name}: --weights names column {}, which is read as a coordinate too",
+                w + 1
+            );
+        }
+    }
+    Ok((cols, weights))
 }
 
 /// Picks the separator from the first line that is not blank or a comment:
@@ -300,8 +320,11 @@ pub fn parse_table_with(
     let mut lines: Vec<usize> = Vec::new();
     let mut header: Option<Vec<String>> = None;
     let mut first_width: Option<(usize, usize)> = None;
-    // The columns read (by number), fixed at the first row of data.
+    // The columns read (by number), fixed at the first row of data, and
+    // the weights' column.
     let mut chosen: Option<Vec<usize>> = None;
+    let mut weight_col: Option<usize> = None;
+    let mut weights: Vec<f64> = Vec::new();
     // The first column's kind of date, fixed at the first row of data.
     let mut kind: Option<Option<TimeKind>> = None;
     let mut record = csv::StringRecord::new();
@@ -345,9 +368,9 @@ pub fn parse_table_with(
         let width = record.len();
         check_width(&mut first_width, width, (name, line), delimiter)?;
         if chosen.is_none() {
-            let cols = resolve(select, header.as_deref(), width, name)?
-                .unwrap_or_else(|| (0..width).collect());
+            let (cols, w) = resolve(select, header.as_deref(), width, name)?;
             chosen = Some(cols);
+            weight_col = w;
         }
         let cols = chosen.as_deref().unwrap_or_default();
         read_row(
@@ -358,6 +381,9 @@ pub fn parse_table_with(
             (name, line),
             &mut coords,
         )?;
+        if let Some(j) = weight_col {
+            weights.push(read_weight(record.get(j).unwrap_or(""), (name, line), j)?);
+        }
         if lines.len() >= max_points {
             return Err(too_many(&format!("{name}:{line}"), max_points));
         }
@@ -380,7 +406,19 @@ pub fn parse_table_with(
         );
     }
     points.time = kind.flatten();
+    points.weights = weight_col.map(|_| weights);
     Ok(points)
+}
+
+/// A field of the weights' column (number `j` from 0): a finite number
+/// `>= 0`.
+fn read_weight(field: &str, (name, line): (&str, usize), j: usize) -> Result<f64> {
+    let field_no = j + 1;
+    match parse_number(field) {
+        Ok(v) if v >= 0.0 => Ok(v),
+        Ok(v) => bail!("{name}:{line}: field {field_no}: weight {v} is negative"),
+        Err(msg) => bail!("{name}:{line}: field {field_no}: {msg} (a weight)"),
+    }
 }
 
 /// Checks a row's number of fields against the first row's (kept in
