@@ -9,6 +9,11 @@ export interface Fit {
   readonly gcv: number;
   /** The fit's effective degrees of freedom (2 for a line, n through every point). */
   readonly dof: number;
+  /**
+   * A robust fit's weight of each point, in [0, 1] (0 for a point judged an
+   * outlier); null for a plain fit.
+   */
+  readonly robustness: Float64Array | null;
 }
 
 export interface SmoothingOptions {
@@ -22,6 +27,12 @@ export interface SmoothingOptions {
   alphas?: Numbers;
   /** Outside the knots, as for `new Spline`. */
   extrapolate?: boolean | "clamp" | "extend" | "nan";
+  /**
+   * Robust against outliers: the fit weighted again by its residuals (Tukey's
+   * biweight on six median absolute residuals, as lowess does), lam chosen
+   * again each time; needs 5 points of positive weight.
+   */
+  robust?: boolean;
 }
 
 export interface CurveSmoothingOptions {
@@ -35,6 +46,12 @@ export interface CurveSmoothingOptions {
   alpha?: Alpha;
   /** One shape parameter per leg. */
   alphas?: Numbers;
+  /**
+   * Robust against outliers: the fit weighted again by its residuals (Tukey's
+   * biweight on six median absolute residuals, as lowess does), the residual a
+   * point's distance from the fit, lam chosen again each time; needs 5 points of positive weight.
+   */
+  robust?: boolean;
 }
 
 /**

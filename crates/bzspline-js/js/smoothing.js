@@ -3,7 +3,8 @@
 // WebAssembly module of its own) gives the control values (points) and the
 // knots; the result is the core's `Spline` (`Curve`) built on them, which is
 // the fit bit for bit (a smoothing spline is the method's spline of its
-// control values), with the fit's `lam`, `gcv` and `dof` as properties, and
+// control values), with the fit's `lam`, `gcv`, `dof` and `robustness` as
+// properties, and
 // a spline's standard error `se(x)` and confidence band `band(x, level)`.
 import { Spline, Curve } from "./index.js";
 import init, { initSync, splineFit, curveFit } from "../wasm/smoothing.js";
@@ -16,13 +17,14 @@ function report(object, fit) {
     lam: { value: fit.lam, enumerable: true },
     gcv: { value: fit.gcv, enumerable: true },
     dof: { value: fit.dof, enumerable: true },
+    robustness: { value: fit.robustness, enumerable: true },
   });
 }
 
 /**
  * The smoothing spline of noisy data in the method's basis (knots at x), as
  * scipy's make_smoothing_spline: options w, lam (omitted or null: chosen by
- * generalized cross-validation), alpha, alphas, extrapolate.
+ * generalized cross-validation), alpha, alphas, extrapolate, robust.
  */
 export function smoothingSpline(x, y, options) {
   const fit = splineFit(x, y, options);
@@ -56,7 +58,8 @@ export function smoothingSpline(x, y, options) {
 
 /**
  * The smoothing curve of noisy points (open, one lam for every coordinate)
- * on the parameters of the points: options w, lam, param, alpha, alphas.
+ * on the parameters of the points: options w, lam, param, alpha, alphas,
+ * robust.
  */
 export function smoothingCurve(points, options) {
   const fit = curveFit(points, options);

@@ -12,11 +12,17 @@ use wasm_bindgen::prelude::*;
 
 use crate::args::{lib_error, numbers, param_of, points, set, Options};
 
-/// The fit's `lam`, GCV score and degrees of freedom on `o`.
-fn report(o: &Object, lambda: f64, gcv: f64, dof: f64) {
-    set(o, "lam", lambda.into());
-    set(o, "gcv", gcv.into());
-    set(o, "dof", dof.into());
+/// The fit's `lam`, GCV score, degrees of freedom and robustness weights
+/// (null for a plain fit) on `o`.
+fn report<T>(o: &Object, fit: &bzspline::Smoothed<T>) {
+    set(o, "lam", fit.lambda.into());
+    set(o, "gcv", fit.gcv.into());
+    set(o, "dof", fit.dof.into());
+    let robustness = match &fit.robustness {
+        Some(r) => Float64Array::from(r.as_slice()).into(),
+        None => JsValue::NULL,
+    };
+    set(o, "robustness", robustness);
 }
 
 /// What a smoothing spline's standard errors and bands need
@@ -63,12 +69,14 @@ fn at_index(i: usize, e: &bzspline::Error) -> JsValue {
     }
 }
 
-/// `splineFit(x, y, {w, lam, alpha, alphas})`: the smoothing spline of the
-/// data in the method's basis (`bzspline::Spline::smoothing`) as
-/// `{x, controls, lam, gcv, dof, posterior}`: knots, control values, the
-/// `lam` used (the one chosen by generalized cross-validation when `lam` is
-/// omitted or null), its score and effective degrees of freedom, and what
-/// its bands need. `w`: one weight per point, finite and >= 0 (default 1).
+/// `splineFit(x, y, {w, lam, alpha, alphas, robust})`: the smoothing spline
+/// of the data in the method's basis (`bzspline::Spline::smoothing`, or
+/// `smoothing_robust` with `robust: true`) as `{x, controls, lam, gcv, dof,
+/// posterior, robustness}`: knots, control values, the `lam` used (the one
+/// chosen by generalized cross-validation when `lam` is omitted or null), its
+/// score and effective degrees of freedom, what its bands need, and a robust
+/// fit's weights (else null). `w`: one weight per point, finite and >= 0
+/// (default 1).
 #[wasm_bindgen(js_name = splineFit)]
 pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     let x = numbers(x, "x")?;
@@ -76,8 +84,12 @@ pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object,
     let o = Options::new(options)?;
     let alphas = o.alphas()?;
     let (w, how) = o.smoothing()?;
-    let fit = bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.as_alphas(), how)
-        .map_err(lib_error)?;
+    let fit = if o.flag("robust", false)? {
+        bzspline::Spline::smoothing_robust(&x, &y, w.as_deref(), alphas.as_alphas(), how)
+    } else {
+        bzspline::Spline::smoothing(&x, &y, w.as_deref(), alphas.as_alphas(), how)
+    }
+    .map_err(lib_error)?;
     let out = Object::new();
     set(&out, "x", Float64Array::from(x.as_slice()).into());
     set(
@@ -85,7 +97,7 @@ pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object,
         "controls",
         Float64Array::from(fit.fit.values()).into(),
     );
-    report(&out, fit.lambda, fit.gcv, fit.dof);
+    report(&out, &fit);
     set(
         &out,
         "posterior",
@@ -97,11 +109,11 @@ pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object,
     Ok(out)
 }
 
-/// `curveFit(points, {w, lam, param, alpha, alphas})`: the smoothing curve
-/// of noisy points (open, one `lam` for every coordinate;
+/// `curveFit(points, {w, lam, param, alpha, alphas, robust})`: the smoothing
+/// curve of noisy points (open, one `lam` for every coordinate;
 /// `bzspline::CurveBuilder::build_smoothed`) as `{points, dim, knots, alphas,
-/// lam, gcv, dof}`: the control points (flat, `dim` numbers each), the
-/// parameters and alphas of the fit's legs, and the fit's report.
+/// lam, gcv, dof, robustness}`: the control points (flat, `dim` numbers
+/// each), the parameters and alphas of the fit's legs, and the fit's report.
 #[wasm_bindgen(js_name = curveFit)]
 pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     let (flat, dim) = points(pts, "points")?;
@@ -112,7 +124,8 @@ pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     let mut b = bzspline::CurveBuilder::new(&flat, dim.max(1))
         .param(param)
         .alpha_choice(alphas.as_alphas())
-        .smoothing(how);
+        .smoothing(how)
+        .robust(o.flag("robust", false)?);
     if let Some(w) = &w {
         b = b.weights(w);
     }
@@ -123,6 +136,6 @@ pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     set(&out, "dim", (c.dim() as f64).into());
     set(&out, "knots", Float64Array::from(c.knots()).into());
     set(&out, "alphas", Float64Array::from(c.alphas()).into());
-    report(&out, fit.lambda, fit.gcv, fit.dof);
+    report(&out, &fit);
     Ok(out)
 }

@@ -159,3 +159,34 @@ test("bands are refused where there are none", () => {
   assert.throws(() => exact.se(1), /no residual degrees of freedom/);
   assert.equal(new Spline([0, 1, 2], [0, 1, 0]).band, undefined);
 });
+
+test("robust fits and weights are the command's, bit for bit", () => {
+  assert.ok(existsSync(bin), `${bin} is missing: cargo build -p bzspline-cli`);
+  const { x, y } = noisy(200, 5);
+  y[60] += 9;
+  y[140] -= 7;
+  const w = x.map((_, i) => [1, 0.5, 2][i % 3]);
+  const table = "x,y,w\n" + x.map((v, i) => `${v},${y[i]},${w[i]}`).join("\n") + "\n";
+  const got = JSON.parse(
+    execFileSync(
+      bin,
+      ["fit", "--input-format", "csv", "--smooth", "auto", "--weights", "w", "--robust"],
+      { input: table },
+    ),
+  );
+  const s = smoothingSpline(x, y, { w, robust: true });
+  assert.deepEqual(Array.from(s.controlValues), got.values);
+  assert.deepEqual(Array.from(s.robustness), got.robustness);
+  assert.equal(s.robustness[60], 0);
+  assert.equal(s.robustness[140], 0);
+  assert.equal(smoothingSpline(x, y).robustness, null);
+  // A track with a jump, on its times.
+  const t = x.slice(0, 100);
+  const track = t.map((v) => [Math.cos(v), Math.sin(v)]);
+  track[50] = [track[50][0] + 1, track[50][1]];
+  const c = smoothingCurve(track, { param: t, robust: true });
+  assert.equal(c.robustness.length, 100);
+  assert.equal(c.robustness[50], 0);
+  assert.throws(() => smoothingSpline(x.slice(0, 4), y.slice(0, 4), { robust: true }), /at least 5/);
+  assert.throws(() => smoothingSpline(x, y, { robust: "yes" }), /robust must be true or false/);
+});

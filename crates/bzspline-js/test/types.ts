@@ -22,6 +22,8 @@ const seMany: Float64Array = sm.se([0.5, 1]);
 const bandMany: Float64Array = sm.band([0.5, 1], 0.9).lo;
 const bandOne: number = sm.band(1).hi;
 void [seOne, seMany, bandMany, bandOne];
+const weights: Float64Array | null = smoothingSpline([0, 1, 2, 3, 4], [0, 1, 9, 1, 0], { robust: true }).robustness;
+const cw: Float64Array | null = smoothingCurve([[0, 0], [1, 1], [2, 0], [3, 1], [4, 0]], { robust: true }).robustness;
 const sc: number = smoothingCurve([[0, 0], [1, 1], [2, 0]], { param: [0, 1, 2], lam: 1 }).dof;
 // @ts-expect-error: a plain spline reports no fit
 new Spline([0, 1], [0, 1]).lam;

@@ -64,6 +64,8 @@ pub(crate) struct Curve {
     param: String,
     /// For a smoothing fit: its `lambda`, GCV score and degrees of freedom.
     smoothing: Option<[f64; 3]>,
+    /// For a robust smoothing fit: the weight each point ended with.
+    robustness: Option<Vec<f64>>,
 }
 
 #[pymethods]
@@ -103,6 +105,7 @@ impl Curve {
                 through,
                 param: name,
                 smoothing: None,
+                robustness: None,
             })
         })
     }
@@ -374,6 +377,16 @@ impl Curve {
         self.smoothing.map(|s| s[2])
     }
 
+    /// For a curve from ``smoothing_curve(..., robust=True)``: the
+    /// robustness weight each point given ended with, in [0, 1] (0 for a
+    /// point judged an outlier); else None.
+    #[getter]
+    fn robustness<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.robustness
+            .as_deref()
+            .map(|r| PyArray1::from_slice(py, r))
+    }
+
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let cls = py.get_type::<Curve>().into_any().unbind();
         let d = self.inner.dim();
@@ -432,12 +445,16 @@ impl Curve {
 ///     centripetal parameters follow the noise (cross-validation then picks
 ///     interpolation): give 'uniform' or the times.
 /// alpha : float or array_like, default 0.5
+/// robust : bool, default False
+///     Robust against outliers (a GPS jump), as for :func:`smoothing_spline`;
+///     a point's residual is its distance from the fitted point. An outlier
+///     also stretches chordal and centripetal parameters: give the times.
 ///
 /// Returns
 /// -------
 /// Curve
 ///     Its control points solved, parameters given, with ``lam``, ``gcv`` and
-///     ``dof`` set.
+///     ``dof`` set, and for a robust fit ``robustness``.
 ///
 /// Examples
 /// --------
@@ -450,7 +467,7 @@ impl Curve {
 /// >>> bool(np.abs(r - 10).mean() < 0.5 * np.abs(np.hypot(*track.T) - 10).mean())
 /// True
 #[pyfunction]
-#[pyo3(signature = (points, w=None, lam=None, *, param=None, alpha=None))]
+#[pyo3(signature = (points, w=None, lam=None, *, param=None, alpha=None, robust=false))]
 pub(crate) fn smoothing_curve(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
@@ -458,6 +475,7 @@ pub(crate) fn smoothing_curve(
     lam: Option<f64>,
     param: Option<&Bound<'_, PyAny>>,
     alpha: Option<&Bound<'_, PyAny>>,
+    robust: bool,
 ) -> PyResult<Curve> {
     guard(|| {
         let (pts, dim) = rows_arg(points)?;
@@ -473,7 +491,8 @@ pub(crate) fn smoothing_curve(
                 let mut b = bzspline::CurveBuilder::new(&pts, dim)
                     .param(param)
                     .alpha_choice(alpha.as_alphas())
-                    .smoothing(how);
+                    .smoothing(how)
+                    .robust(robust);
                 if let Some(w) = &w {
                     b = b.weights(w);
                 }
@@ -487,6 +506,7 @@ pub(crate) fn smoothing_curve(
             through: false,
             param: "given".to_owned(),
             smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
+            robustness: fit.robustness,
         })
     })
 }

@@ -82,6 +82,8 @@ pub(crate) struct Spline {
     smoothing: Option<[f64; 3]>,
     /// For a smoothing fit: what its standard errors need.
     posterior: Option<Arc<bzspline::Posterior>>,
+    /// For a robust smoothing fit: the weight each point ended with.
+    robustness: Option<Arc<Vec<f64>>>,
 }
 
 /// A posterior as a pickle holds it: knots, alphas, covariances, noise.
@@ -137,6 +139,7 @@ impl Spline {
             offset,
             smoothing: self.smoothing,
             posterior: self.posterior.clone(),
+            robustness: self.robustness.clone(),
         }
     }
 
@@ -266,6 +269,7 @@ impl Spline {
                 offset: 0.0,
                 smoothing: None,
                 posterior: None,
+                robustness: None,
             })
         })
     }
@@ -706,6 +710,17 @@ impl Spline {
         self.smoothing.map(|s| s[2])
     }
 
+    /// For a spline from ``smoothing_spline(..., robust=True)``: the
+    /// robustness weight each point ended with, in [0, 1] (0 for a point
+    /// judged an outlier); the fit weighs each point by ``w`` times this.
+    /// Else None.
+    #[getter]
+    fn robustness<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.robustness
+            .as_deref()
+            .map(|r| PyArray1::from_slice(py, r))
+    }
+
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(PyObject, Bound<'py, PyTuple>)> {
         let restore = py
             .import("bzspline._core")?
@@ -732,6 +747,10 @@ impl Spline {
                 self.offset.into_pyobject(py)?.into_any(),
                 self.smoothing.into_pyobject(py)?.into_any(),
                 posterior_arg(py, self.posterior.as_deref())?,
+                match self.robustness.as_deref() {
+                    Some(r) => PyArray1::from_slice(py, r).into_any(),
+                    None => py.None().into_bound(py),
+                },
             ],
         )?;
         Ok((restore, args))
@@ -756,7 +775,7 @@ impl Spline {
 /// A spline (or its derivative of order `nu`) from the parts `__reduce__`
 /// gives: how a pickled `Spline` is rebuilt.
 #[pyfunction]
-#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0, smoothing=None, posterior=None))]
+#[pyo3(signature = (x, y, alpha, through, extrapolate, nu, offset=0.0, smoothing=None, posterior=None, robustness=None))]
 #[allow(clippy::too_many_arguments)] // the parts of a pickled Spline
 pub(crate) fn _spline_from_parts(
     py: Python<'_>,
@@ -769,6 +788,7 @@ pub(crate) fn _spline_from_parts(
     offset: f64,
     smoothing: Option<[f64; 3]>,
     posterior: Option<&Bound<'_, PyAny>>,
+    robustness: Option<Vec<f64>>,
 ) -> PyResult<Spline> {
     let s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
     let anti = (nu < 0).then(|| Arc::new(s.inner.antiderivative()));
@@ -793,6 +813,7 @@ pub(crate) fn _spline_from_parts(
         offset,
         smoothing,
         posterior,
+        robustness: robustness.map(Arc::new),
         ..s
     })
 }
@@ -856,18 +877,24 @@ fn vector(v: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
 ///     The shape parameter in [1/3, 2/3].
 /// extrapolate : {True, False, 'clamp'}, default True
 ///     As for :class:`Spline`.
+/// robust : bool, default False
+///     Robust against outliers: the fit is weighted again by its residuals
+///     (Tukey's biweight on six median absolute residuals, as lowess does),
+///     ``lam`` chosen again each time, until the weights settle.
 ///
 /// Returns
 /// -------
 /// Spline
 ///     With ``lam`` (the one used), ``gcv`` (its cross-validation score) and
-///     ``dof`` (the effective degrees of freedom) set.
+///     ``dof`` (the effective degrees of freedom) set, and for a robust fit
+///     ``robustness``, the weight each point ended with.
 ///
 /// Raises
 /// ------
 /// ValueError
-///     Fewer than 3 points, x not increasing, a negative or non-finite weight
-///     or ``lam``, fewer than 2 positive weights, naming the index at fault.
+///     Fewer than 3 points (5 of positive weight for a robust fit), x not
+///     increasing, a negative or non-finite weight or ``lam``, fewer than 2
+///     positive weights, naming the index at fault.
 ///
 /// Examples
 /// --------
@@ -878,7 +905,8 @@ fn vector(v: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
 /// >>> bool(abs(s(0.5) - np.sin(3)) < 0.1), 2 < s.dof < 20
 /// (True, True)
 #[pyfunction]
-#[pyo3(signature = (x, y, w=None, lam=None, *, alpha=None, extrapolate=None))]
+#[pyo3(signature = (x, y, w=None, lam=None, *, alpha=None, extrapolate=None, robust=false))]
+#[allow(clippy::too_many_arguments)] // scipy's arguments and ours
 pub(crate) fn smoothing_spline(
     py: Python<'_>,
     x: &Bound<'_, PyAny>,
@@ -887,6 +915,7 @@ pub(crate) fn smoothing_spline(
     lam: Option<f64>,
     alpha: Option<&Bound<'_, PyAny>>,
     extrapolate: Option<&Bound<'_, PyAny>>,
+    robust: bool,
 ) -> PyResult<Spline> {
     guard(|| {
         let (x, y) = (vector(x, "x")?, vector(y, "y")?);
@@ -896,7 +925,12 @@ pub(crate) fn smoothing_spline(
         let how = lam.map_or(bzspline::Smoothing::Gcv, bzspline::Smoothing::Lambda);
         let fit = py
             .allow_threads(|| {
-                bzspline::Spline::smoothing(&x, &y, w.as_deref(), alpha.as_alphas(), how)
+                let (w, alphas) = (w.as_deref(), alpha.as_alphas());
+                if robust {
+                    bzspline::Spline::smoothing_robust(&x, &y, w, alphas, how)
+                } else {
+                    bzspline::Spline::smoothing(&x, &y, w, alphas, how)
+                }
             })
             .map_err(value_error)?;
         Ok(Spline {
@@ -909,6 +943,7 @@ pub(crate) fn smoothing_spline(
             offset: 0.0,
             smoothing: Some([fit.lambda, fit.gcv, fit.dof]),
             posterior: Some(Arc::new(fit.posterior)),
+            robustness: fit.robustness.map(Arc::new),
         })
     })
 }
