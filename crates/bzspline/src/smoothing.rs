@@ -4,6 +4,7 @@
 //! chosen by generalized cross-validation; one block-tridiagonal solve per
 //! `lambda`, O(N) time and memory, the trace of the influence matrix included.
 
+mod cyclic;
 mod posterior;
 mod robust;
 mod system;
@@ -14,7 +15,8 @@ pub use robust::ROBUST_MIN_POINTS;
 
 use crate::error::{Error, Field};
 use crate::method::power_of_two_scale;
-use system::{Factored, Grid};
+use cyclic::{CyclicFactored, CyclicGrid};
+use system::{Factored, Grid, System};
 
 /// How much a smoothing spline smooths: the weight `lambda` of the roughness
 /// penalty `int S''^2` against the weighted squared residuals.
@@ -221,47 +223,58 @@ pub(crate) fn check_positive_weights(w: &[f64]) -> Result<(), Error> {
     Ok(())
 }
 
-/// The smoothing fit of `values` (flat, `dim` per knot) on `knots`, already
-/// checked (at least 3, finite, increasing, alphas in range); weights checked
-/// by [`check_weights`].
-pub(crate) fn fit(
-    knots: &[f64],
-    values: &[f64],
-    dim: usize,
-    weights: &[f64],
-    alphas: &[f64],
-    smoothing: Smoothing,
-) -> Result<Fit, Error> {
-    let count = weights.iter().filter(|&&w| w > 0.0).count() as f64;
-    fit_counted(knots, values, dim, weights, alphas, smoothing, count)
+/// A smoothing problem, checked: `values` (flat, `dim` per point) at the
+/// knots, one weight a point (see [`check_weights`]), one alpha an
+/// interval. An open problem has a knot a point (at least 3, increasing);
+/// a closed one (`closed`) a knot more, closing the loop (§15).
+#[derive(Clone, Copy)]
+pub(crate) struct Data<'a> {
+    pub(crate) knots: &'a [f64],
+    pub(crate) values: &'a [f64],
+    pub(crate) dim: usize,
+    pub(crate) weights: &'a [f64],
+    pub(crate) alphas: &'a [f64],
+    pub(crate) closed: bool,
+}
+
+impl<'a> Data<'a> {
+    /// The same problem with other weights.
+    pub(crate) fn with_weights(self, weights: &'a [f64]) -> Self {
+        Data { weights, ..self }
+    }
+}
+
+/// The smoothing fit of `data`.
+pub(crate) fn fit(data: Data<'_>, smoothing: Smoothing) -> Result<Fit, Error> {
+    let count = data.weights.iter().filter(|&&w| w > 0.0).count() as f64;
+    fit_counted(data, smoothing, count)
 }
 
 /// [`fit`] with the number of observations `count` that the GCV score and
 /// the noise variance divide by: the points of positive weight for a plain
 /// fit, the sum of the robustness weights for a robust one (§14).
-pub(crate) fn fit_counted(
-    knots: &[f64],
-    values: &[f64],
-    dim: usize,
-    weights: &[f64],
-    alphas: &[f64],
-    smoothing: Smoothing,
-    count: f64,
-) -> Result<Fit, Error> {
-    let n = knots.len();
+pub(crate) fn fit_counted(data: Data<'_>, smoothing: Smoothing, count: f64) -> Result<Fit, Error> {
+    let Data {
+        knots,
+        values,
+        dim,
+        weights,
+        alphas,
+        closed,
+    } = data;
+    let n = weights.len();
     if n < 3 {
         return Err(Error::TooFewPoints { found: n, min: 3 });
     }
     check_lambda(smoothing, weights)?;
     // §12: knots spanning 1, weights of mean 1, each coordinate scaled by a
     // power of two; lambda scales by (mean weight) span^3.
-    let span = knots[n - 1] - knots[0];
+    let span = knots[knots.len() - 1] - knots[0];
     let widths: Vec<f64> = knots.windows(2).map(|w| (w[1] - w[0]) / span).collect();
     let positive = weights.iter().filter(|&&w| w > 0.0).count();
     let mean_w = weights.iter().sum::<f64>() / n as f64;
     let w: Vec<f64> = weights.iter().map(|&v| v / mean_w).collect();
     let unit = mean_w * span * span * span;
-    let grid = Grid::new(&widths, alphas, &w);
     let coords: Vec<(f64, Vec<f64>)> = (0..dim)
         .map(|c| {
             let scale = power_of_two_scale((0..n).map(|i| &values[i * dim + c]));
@@ -277,37 +290,40 @@ pub(crate) fn fit_counted(
     } else {
         0.0
     };
-    let mut eval = Evaluator {
+    let problem = Problem {
         floor,
-        system: Factored::new(&grid),
         weights: &w,
         widths: &widths,
         coords: &coords,
         count,
         mean_w,
-        phi: Vec::new(),
-        d: Vec::new(),
     };
-    let lambda = choose(&mut eval, smoothing, unit, span)?;
-    let lam = lambda / unit;
-    let lam = if lam.is_finite() { lam } else { f64::MAX };
-    let mut f = Factored::new(&grid);
-    if !f.factor(lam) {
-        return Err(Error::InvalidArgument {
-            what: "the smoothing system is singular for these weights",
-            value: lambda,
-        });
-    }
-    let (controls, fitted, rss) = controls(&mut f, &coords, knots, alphas, weights)?;
-    let dof = f.trace();
-    if !(dof > 1.0 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
+    let (lambda, f) = if closed {
+        let grid = CyclicGrid::new(&widths, alphas, &w);
+        let (lambda, f) = solve_for(&problem, smoothing, unit, span, || {
+            CyclicFactored::new(&grid)
+        })?;
+        (lambda, Solution::of(f, &coords, data)?)
+    } else {
+        let grid = Grid::new(&widths, alphas, &w);
+        let (lambda, f) = solve_for(&problem, smoothing, unit, span, || Factored::new(&grid))?;
+        (lambda, Solution::of(f, &coords, data)?)
+    };
+    let Solution {
+        controls,
+        fitted,
+        rss,
+        dof,
+        cov,
+    } = f;
+    if !(dof > 1.0 - 1e-6 && dof < positive as f64 * (1.0 + 1e-9) + 1e-9) {
         return Err(ill_conditioned());
     }
     // §13: sigma^2 = sum_j w_j r_j^2 / (n - dof) with the weights of mean 1.
     let residual_dof = count - dof;
     let sigma2 = (residual_dof > 1e-9 * count)
         .then(|| rss.iter().map(|r| r / (mean_w * residual_dof)).collect());
-    let posterior = Posterior::new(knots, alphas, f.covariances(), sigma2);
+    let posterior = Posterior::new(knots, alphas, cov, sigma2);
     Ok(Fit {
         controls,
         fitted,
@@ -316,6 +332,73 @@ pub(crate) fn fit_counted(
         dof,
         posterior,
     })
+}
+
+/// What the search for `lambda` needs of a problem, in normalised units.
+struct Problem<'a> {
+    /// The least lambda accepted (0: any).
+    floor: f64,
+    weights: &'a [f64],
+    widths: &'a [f64],
+    coords: &'a [(f64, Vec<f64>)],
+    /// The number of observations (see [`fit_counted`]).
+    count: f64,
+    mean_w: f64,
+}
+
+/// The `lambda` (in the data's units), given or chosen, and the system
+/// factored for it: `system` makes a new one.
+fn solve_for<S: System>(
+    problem: &Problem<'_>,
+    smoothing: Smoothing,
+    unit: f64,
+    span: f64,
+    system: impl Fn() -> S,
+) -> Result<(f64, S), Error> {
+    let mut eval = Evaluator {
+        problem,
+        system: system(),
+        phi: Vec::new(),
+        d: Vec::new(),
+    };
+    let lambda = choose(&mut eval, smoothing, unit, span)?;
+    let lam = lambda / unit;
+    let lam = if lam.is_finite() { lam } else { f64::MAX };
+    let mut f = system();
+    if !f.factor(lam) {
+        return Err(Error::InvalidArgument {
+            what: "the smoothing system is singular for these weights",
+            value: lambda,
+        });
+    }
+    Ok((lambda, f))
+}
+
+/// A factored system's solution for every coordinate, with its trace and
+/// posterior covariances.
+struct Solution {
+    controls: Vec<f64>,
+    fitted: Vec<f64>,
+    rss: Vec<f64>,
+    dof: f64,
+    cov: Vec<[f64; 7]>,
+}
+
+impl Solution {
+    fn of<S: System>(
+        mut f: S,
+        coords: &[(f64, Vec<f64>)],
+        data: Data<'_>,
+    ) -> Result<Solution, Error> {
+        let (controls, fitted, rss) = controls(&mut f, coords, data)?;
+        Ok(Solution {
+            controls,
+            fitted,
+            rss,
+            dof: f.trace(),
+            cov: f.covariances(),
+        })
+    }
 }
 
 impl Smoothing {
@@ -365,15 +448,15 @@ fn check_lambda(smoothing: Smoothing, weights: &[f64]) -> Result<(), Error> {
 /// The `lambda` in the data's units, given or chosen. The fit is then made
 /// from it as `Smoothing::Lambda(lambda)` makes it, so the reported lambda
 /// reproduces the fit bit for bit.
-fn choose(
-    eval: &mut Evaluator<'_>,
+fn choose<S: System>(
+    eval: &mut Evaluator<'_, S>,
     smoothing: Smoothing,
     unit: f64,
     span: f64,
 ) -> Result<f64, Error> {
     match smoothing {
         Smoothing::Lambda(l) => {
-            if eval.floor > 0.0 && l / unit < eval.floor {
+            if eval.problem.floor > 0.0 && l / unit < eval.problem.floor {
                 return Err(Error::InvalidArgument {
                     what: "lambda is too small for the points of weight 0 (or next to it): \
                            the fit between them would be left to rounding",
@@ -407,14 +490,13 @@ type Solved = (Vec<f64>, Vec<f64>, Vec<f64>);
 /// values, solved again by the method, are the fitted ones): intervals of
 /// widths many decades apart under a large lambda can defeat the
 /// elimination, which is refused rather than returned.
-fn controls(
-    f: &mut Factored<'_>,
+fn controls<S: System>(
+    f: &mut S,
     coords: &[(f64, Vec<f64>)],
-    knots: &[f64],
-    alphas: &[f64],
-    weights: &[f64],
+    data: Data<'_>,
 ) -> Result<Solved, Error> {
-    let (n, dim) = (knots.len(), coords.len());
+    let (n, dim) = (data.weights.len(), coords.len());
+    let weights = data.weights;
     let mut out = vec![0.0; n * dim];
     let mut fitted = vec![0.0; n * dim];
     let (mut phi, mut d, mut g) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -433,7 +515,8 @@ fn controls(
             let r = (y[i] - phi[i]) * scale;
             rss[c] += weights[i] * r * r;
         }
-        if !consistent(knots, &g, alphas, &phi) {
+        // A closed fit is checked where its curve is built.
+        if !data.closed && !consistent(data.knots, &g, data.alphas, &phi) {
             return Err(ill_conditioned());
         }
     }
@@ -520,46 +603,34 @@ fn gcv_score(rss: f64, dof: f64, n: f64) -> f64 {
 }
 
 /// Evaluates the GCV score of one `lambda` (normalised units).
-struct Evaluator<'a> {
-    /// The least lambda accepted (0: any).
-    floor: f64,
-    system: Factored<'a>,
-    weights: &'a [f64],
-    widths: &'a [f64],
-    coords: &'a [(f64, Vec<f64>)],
-    /// The number of observations (see [`fit_counted`]).
-    count: f64,
-    mean_w: f64,
+struct Evaluator<'a, S> {
+    problem: &'a Problem<'a>,
+    system: S,
     phi: Vec<f64>,
     d: Vec<f64>,
 }
 
-impl Evaluator<'_> {
+impl<S: System> Evaluator<'_, S> {
     /// The score at `exp10(t)`, in the data's units; infinite where the
     /// system cannot be solved.
     fn score(&mut self, t: f64) -> f64 {
-        let n = self.weights.len();
+        let p = self.problem;
+        let n = p.weights.len();
         let lambda = exp10(t);
         let f = &mut self.system;
-        if lambda < self.floor || !f.factor(lambda) {
+        if lambda < p.floor || !f.factor(lambda) {
             return f64::INFINITY;
         }
         let (phi, d) = (&mut self.phi, &mut self.d);
         phi.resize(n, 0.0);
         d.resize(n, 0.0);
         let mut rss = 0.0;
-        for (scale, y) in self.coords {
+        for (scale, y) in p.coords {
             f.solve(y, phi, d);
-            let s: f64 = (0..n)
-                .map(|i| self.weights[i] * (y[i] - phi[i]).powi(2))
-                .sum();
+            let s: f64 = (0..n).map(|i| p.weights[i] * (y[i] - phi[i]).powi(2)).sum();
             rss += s * scale * scale;
         }
-        let s = gcv_score(
-            rss * self.mean_w / self.coords.len() as f64,
-            f.trace(),
-            self.count,
-        );
+        let s = gcv_score(rss * p.mean_w / p.coords.len() as f64, f.trace(), p.count);
         if s.is_finite() {
             s
         } else {
@@ -572,12 +643,12 @@ impl Evaluator<'_> {
     /// to the straight line, then Brent's search between the neighbours of
     /// each of the scan's two lowest local minima.
     fn search(&mut self) -> Result<f64, Error> {
-        let n = self.weights.len() as f64;
+        let n = self.problem.weights.len() as f64;
         // With the span 1 and weights of mean 1, the equivalent kernel of
         // weight lambda spans about (lambda h)^(1/4) where the knots are h
         // apart: from the narrowest interval (lambda = h_min^3) to the whole
         // span (lambda = n); a decade past each.
-        let h_min = self.widths.iter().fold(1.0f64, |m, &h| m.min(h));
+        let h_min = self.problem.widths.iter().fold(1.0f64, |m, &h| m.min(h));
         let lo = f64::from(3 * decade(h_min) - 1);
         let hi = f64::from(decade(n) + 3);
         let mut scan: Vec<(f64, f64)> = (0..=(hi - lo) as usize)
@@ -815,11 +886,19 @@ fn smoothing_spline(
     crate::validate::check_finite(Field::Value, y)?;
     let resolved = crate::validate::resolve_alphas(alphas, n - 1)?;
     let w = check_weights(weights, n)?;
+    let data = Data {
+        knots: x,
+        values: y,
+        dim: 1,
+        weights: &w,
+        alphas: &resolved,
+        closed: false,
+    };
     let (fit, robustness) = if robust {
-        let (f, r) = fit_robust(x, y, 1, &w, &resolved, smoothing)?;
+        let (f, r) = fit_robust(data, smoothing)?;
         (f, Some(r))
     } else {
-        (fit(x, y, 1, &w, &resolved, smoothing)?, None)
+        (fit(data, smoothing)?, None)
     };
     Ok(Smoothed {
         fit: crate::Spline::build(x, &fit.controls, alphas)?,

@@ -187,40 +187,57 @@ impl<'a> CurveBuilder<'a> {
 
     /// Builds a smoothing curve ([`CurveBuilder::smoothing`], by default
     /// [`Smoothing::Gcv`]) and returns it with its `lambda`, score and
-    /// degrees of freedom.
+    /// degrees of freedom. A closed curve is smoothed round its loop
+    /// (`docs/method.md` §15): every point is a knot of the periodic fit, and
+    /// a large `lambda` draws it towards the weighted mean point rather than
+    /// a line.
     ///
     /// # Errors
     ///
     /// As [`CurveBuilder::build`], and as [`crate::Spline::smoothing`] for
-    /// the weights and `lambda`; [`Error::InvalidArgument`] for a closed curve
-    /// or with [`CurveBuilder::through`].
+    /// the weights and `lambda`; [`Error::InvalidArgument`] with
+    /// [`CurveBuilder::through`].
     pub fn build_smoothed(mut self) -> Result<Smoothed<Curve>, Error> {
         let smoothing = self.smoothing.take().unwrap_or_default();
         let weights = self.weights.take();
-        let robust = self.robust;
-        if self.closed || self.through {
+        let (robust, closed) = (self.robust, self.closed);
+        if self.through {
             return Err(Error::InvalidArgument {
-                what: "smoothing is for open curves, without through",
+                what: "smoothing fits the points as noisy data: it cannot pass through them",
                 value: 0.0,
             });
         }
         let dim = self.dim;
+        let given = self.points.clone();
         let data = self.build()?;
         let n_in = data.point_count() + data.dropped.len();
+        // A dropped point goes with the kept point before it, or with the
+        // first when it closes a closed curve.
+        let owner = |i: usize, kept: usize| -> usize {
+            let closes = closed
+                && i + 1 == n_in
+                && kept > 0
+                && given[i * dim..(i + 1) * dim] == data.points[..dim];
+            if closes {
+                0
+            } else {
+                kept.saturating_sub(1)
+            }
+        };
         let w = match weights {
             None => vec![1.0; data.point_count()],
             Some(w) => {
                 // Each weight is judged where the caller put it; how many are
                 // positive, after the merge.
                 check_weight_values(&w, n_in)?;
-                // Each dropped repeat's weight goes to the kept point before it.
                 let mut kept = Vec::with_capacity(data.point_count());
                 let mut drops = data.dropped.iter().peekable();
                 for (i, &v) in w.iter().enumerate() {
                     if drops.peek() == Some(&&i) {
                         drops.next();
-                        if let Some(last) = kept.last_mut() {
-                            *last += v;
+                        let at = owner(i, kept.len());
+                        if let Some(k) = kept.get_mut(at) {
+                            *k += v;
                         }
                     } else {
                         kept.push(v);
@@ -230,24 +247,45 @@ impl<'a> CurveBuilder<'a> {
             }
         };
         check_positive_weights(&w)?;
+        let problem = smoothing::Data {
+            knots: data.knots(),
+            values: &data.points,
+            dim,
+            weights: &w,
+            alphas: &data.alphas,
+            closed,
+        };
         let (fit, robustness) = if robust {
-            let (fit, kept) = smoothing::fit_robust(
-                data.knots(),
-                &data.points,
-                dim,
-                &w,
-                &data.alphas,
-                smoothing,
-            )?;
-            (fit, Some(with_repeats(&kept, &data.dropped)))
+            let (fit, kept) = smoothing::fit_robust(problem, smoothing)?;
+            // One weight a point given: a dropped one has its owner's.
+            let mut all = Vec::with_capacity(n_in);
+            let mut drops = data.dropped.iter().peekable();
+            let mut values = kept.iter();
+            for i in 0..n_in {
+                if drops.peek() == Some(&&i) {
+                    drops.next();
+                    let at = owner(i, all.len() - data.dropped.iter().filter(|&&j| j < i).count());
+                    all.push(kept.get(at).copied().unwrap_or(1.0));
+                } else {
+                    all.push(values.next().copied().unwrap_or(1.0));
+                }
+            }
+            (fit, Some(all))
         } else {
-            let fit = smoothing::fit(data.knots(), &data.points, dim, &w, &data.alphas, smoothing)?;
-            (fit, None)
+            (smoothing::fit(problem, smoothing)?, None)
         };
         let mut c = CurveBuilder::new(&fit.controls, dim)
+            .closed(closed)
             .param(Param::Given(data.knots().to_vec()))
             .alphas(&data.alphas)
             .build()?;
+        if closed && !knots_agree(&c, &fit.fitted) {
+            return Err(Error::InvalidArgument {
+                what: "the smoothing system is too ill-conditioned for these parameters and \
+                       lambda (intervals of widths many decades apart)",
+                value: f64::NAN,
+            });
+        }
         c.dropped = data.dropped;
         Ok(Smoothed {
             fit: c,
@@ -493,19 +531,15 @@ fn keep_list(
     Ok((keep, dropped))
 }
 
-/// Values of the kept points, one per point given: a dropped repeat (its
-/// index in `dropped`, increasing) takes the value of the point before it.
-fn with_repeats(kept: &[f64], dropped: &[usize]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(kept.len() + dropped.len());
-    let mut values = kept.iter();
-    let mut drops = dropped.iter().peekable();
-    for i in 0..kept.len() + dropped.len() {
-        if drops.peek() == Some(&&i) {
-            drops.next();
-            out.push(out.last().copied().unwrap_or(1.0));
-        } else {
-            out.push(values.next().copied().unwrap_or(1.0));
-        }
-    }
-    out
+/// Whether the knot points of the curve built from a closed fit's control
+/// points are the fitted ones, to 1e-7 of their largest magnitude: the check
+/// that the elimination held.
+fn knots_agree(c: &Curve, fitted: &[f64]) -> bool {
+    let big = fitted.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+    let kp = c.knot_points();
+    kp.iter()
+        .flatten()
+        .zip(fitted)
+        .all(|(a, b)| (a - b).abs() <= 1e-7 * big)
+        && kp.iter().map(Vec::len).sum::<usize>() >= fitted.len()
 }

@@ -2,7 +2,7 @@
 //! its residuals with Tukey's biweight on a scale of six median absolute
 //! residuals, as lowess does, the smoothing chosen again at every step.
 
-use super::{fit, fit_counted, Fit, Smoothing};
+use super::{fit, fit_counted, Data, Fit, Smoothing};
 use crate::error::Error;
 
 /// The fewest points of positive weight a robust fit takes: the median of
@@ -16,17 +16,16 @@ const MAX_STEPS: usize = 20;
 /// A change of every robustness weight below this ends the iteration.
 const SETTLED: f64 = 1e-3;
 
-/// The robust fit of `values` (flat, `dim` per knot) with the prior
-/// `weights`, and the robustness weights it ends with, one per knot, in
-/// `[0, 1]` (the fit's weights are their products with the prior ones).
-pub(crate) fn fit_robust(
-    knots: &[f64],
-    values: &[f64],
-    dim: usize,
-    weights: &[f64],
-    alphas: &[f64],
-    smoothing: Smoothing,
-) -> Result<(Fit, Vec<f64>), Error> {
+/// The robust fit of `data` (its weights the prior ones), and the
+/// robustness weights it ends with, one a point, in `[0, 1]` (the fit's
+/// weights are their products with the prior ones).
+pub(crate) fn fit_robust(data: Data<'_>, smoothing: Smoothing) -> Result<(Fit, Vec<f64>), Error> {
+    let Data {
+        values,
+        dim,
+        weights,
+        ..
+    } = data;
     let positive = weights.iter().filter(|&&w| w > 0.0).count();
     if positive < ROBUST_MIN_POINTS {
         return Err(Error::TooFewPoints {
@@ -34,10 +33,10 @@ pub(crate) fn fit_robust(
             min: ROBUST_MIN_POINTS,
         });
     }
-    let n = knots.len();
+    let n = weights.len();
     let mean_w = weights.iter().sum::<f64>() / n as f64;
     let mut robustness = vec![1.0; n];
-    let mut current = fit(knots, values, dim, weights, alphas, smoothing)?;
+    let mut current = fit(data, smoothing)?;
     let mut residual = vec![0.0; n];
     let mut scaled: Vec<f64> = Vec::with_capacity(positive);
     for _ in 0..MAX_STEPS {
@@ -75,7 +74,7 @@ pub(crate) fn fit_robust(
             .filter(|&j| weights[j] > 0.0)
             .map(|j| robustness[j])
             .sum();
-        current = fit_counted(knots, values, dim, &w, alphas, smoothing, count)?;
+        current = fit_counted(data.with_weights(&w), smoothing, count)?;
         if moved < SETTLED {
             break;
         }

@@ -21,9 +21,9 @@
 
 use crate::method::{alpha_terms, neighbour_weights, through_row};
 
-type M3 = [[f64; 3]; 3];
+pub(super) type M3 = [[f64; 3]; 3];
 
-fn mul(a: &M3, b: &M3) -> M3 {
+pub(super) fn mul(a: &M3, b: &M3) -> M3 {
     let mut o = [[0.0; 3]; 3];
     for i in 0..3 {
         for j in 0..3 {
@@ -34,7 +34,7 @@ fn mul(a: &M3, b: &M3) -> M3 {
 }
 
 /// `a * b^T`.
-fn mul_t(a: &M3, b: &M3) -> M3 {
+pub(super) fn mul_t(a: &M3, b: &M3) -> M3 {
     let mut o = [[0.0; 3]; 3];
     for i in 0..3 {
         for j in 0..3 {
@@ -45,7 +45,7 @@ fn mul_t(a: &M3, b: &M3) -> M3 {
 }
 
 /// `a^T * b`.
-fn t_mul(a: &M3, b: &M3) -> M3 {
+pub(super) fn t_mul(a: &M3, b: &M3) -> M3 {
     let mut o = [[0.0; 3]; 3];
     for i in 0..3 {
         for j in 0..3 {
@@ -55,19 +55,19 @@ fn t_mul(a: &M3, b: &M3) -> M3 {
     o
 }
 
-fn apply(a: &M3, v: &[f64; 3]) -> [f64; 3] {
+pub(super) fn apply(a: &M3, v: &[f64; 3]) -> [f64; 3] {
     let row = |r: &[f64; 3]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
     [row(&a[0]), row(&a[1]), row(&a[2])]
 }
 
-fn apply_t(a: &M3, v: &[f64; 3]) -> [f64; 3] {
+pub(super) fn apply_t(a: &M3, v: &[f64; 3]) -> [f64; 3] {
     let col = |j: usize| a[0][j] * v[0] + a[1][j] * v[1] + a[2][j] * v[2];
     [col(0), col(1), col(2)]
 }
 
 /// `B P` for a link block `B` (five entries, the others zero: see
 /// [`Grid::link`]) and any `P`.
-fn link_mul(b: &M3, p: &M3) -> M3 {
+pub(super) fn link_mul(b: &M3, p: &M3) -> M3 {
     let comb = |x: f64, r: &[f64; 3], y: f64, t: &[f64; 3]| {
         [
             x * r[0] + y * t[0],
@@ -129,7 +129,7 @@ fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
 /// 2 determinant, so a diagonal scaling of the matrix scales them alike and
 /// does not cost accuracy); where the determinant cancels, by
 /// [`invert3_pivoting`].
-fn invert3(m: &M3) -> Option<M3> {
+pub(super) fn invert3(m: &M3) -> Option<M3> {
     let [[a, b, c], [_, d, e], [_, _, f]] = *m;
     let c00 = d * f - e * e;
     let c01 = c * e - b * f;
@@ -190,12 +190,70 @@ fn invert3_pivoting(m: &M3) -> Option<M3> {
 /// The continuity row of an interior knot: `(lo, di, up)` of §11 and the
 /// neighbour weights `p`, `q`.
 #[derive(Clone, Copy, Default)]
-struct Row {
-    lo: f64,
-    di: f64,
-    up: f64,
-    p: f64,
-    q: f64,
+pub(super) struct Row {
+    pub(super) lo: f64,
+    pub(super) di: f64,
+    pub(super) up: f64,
+    pub(super) p: f64,
+    pub(super) q: f64,
+}
+
+/// A factored optimality system, open or closed: what the fit and its
+/// search for `lambda` ask of it.
+pub(crate) trait System {
+    /// Factors for `lambda` (normalised units); `false` when singular.
+    fn factor(&mut self, lambda: f64) -> bool;
+    /// The knot values and deviations of the data `y`, one a point.
+    fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]);
+    /// The trace of the influence matrix.
+    fn trace(&self) -> f64;
+    /// The posterior covariances a [`super::Posterior`] keeps, one a knot.
+    fn covariances(&self) -> Vec<[f64; 7]>;
+}
+
+impl System for Factored<'_> {
+    fn factor(&mut self, lambda: f64) -> bool {
+        Factored::factor(self, lambda)
+    }
+    fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]) {
+        Factored::solve(self, y, phi, d);
+    }
+    fn trace(&self) -> f64 {
+        Factored::trace(self)
+    }
+    fn covariances(&self) -> Vec<[f64; 7]> {
+        Factored::covariances(self)
+    }
+}
+
+/// The penalty `int S''^2` of each interval as a form in `(d_k, d_{k+1})`:
+/// `[Q00, Q01, Q11]` (§12). `S''` at the interval's ends in its local
+/// variable, `e0` and `e1`, is linear in them, and
+/// `int_0^1 (e0 (1-t) + e1 t)^2 dt / h^3 = (e0^2 + e0 e1 + e1^2) / (3 h^3)`.
+pub(super) fn penalty_forms(widths: &[f64], terms: &[[f64; 4]]) -> Vec<[f64; 3]> {
+    widths
+        .iter()
+        .zip(terms)
+        .map(|(&h, &[al, b1, b2, cr])| {
+            let e0 = [-2.0 * (3.0 - 2.0 * b2 - al), -2.0 * (2.0 * cr + b1 - 3.0)];
+            let e1 = [2.0 * (3.0 - b2 - 2.0 * al), 2.0 * (cr + 2.0 * b1 - 3.0)];
+            let c = 1.0 / (3.0 * h * h * h);
+            let f = |i: usize, j: usize| {
+                c * (e0[i] * e0[j] + 0.5 * (e0[i] * e1[j] + e1[i] * e0[j]) + e1[i] * e1[j])
+            };
+            [f(0, 0), f(0, 1), f(1, 1)]
+        })
+        .collect()
+}
+
+/// The continuity row of the knot between intervals of widths `hl`, `hr`
+/// and alpha terms `left`, `right`.
+pub(super) fn continuity_row(hl: f64, hr: f64, left: &[f64; 4], right: &[f64; 4]) -> Row {
+    let (p, q) = neighbour_weights(hl, hr);
+    let [al, b1, _, _] = *left;
+    let [_, _, b2, cr] = *right;
+    let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
+    Row { lo, di, up, p, q }
 }
 
 /// One smoothing problem's grid and weights in the normalised units of §12
@@ -219,31 +277,12 @@ impl Grid {
     pub(crate) fn new(widths: &[f64], alphas: &[f64], weights: &[f64]) -> Self {
         let n = weights.len();
         let terms: Vec<[f64; 4]> = alphas.iter().map(|&a| alpha_terms(a)).collect();
-        // The penalty of interval k as a form in (d_k, d_{k+1}): S'' at its
-        // ends in t, e0 and e1, are linear in them (§12), and
-        // int_0^1 (e0 (1-t) + e1 t)^2 dt / h^3 = (e0^2 + e0 e1 + e1^2) / (3 h^3).
-        let forms: Vec<[f64; 3]> = widths
-            .iter()
-            .zip(&terms)
-            .map(|(&h, &[al, b1, b2, cr])| {
-                let e0 = [-2.0 * (3.0 - 2.0 * b2 - al), -2.0 * (2.0 * cr + b1 - 3.0)];
-                let e1 = [2.0 * (3.0 - b2 - 2.0 * al), 2.0 * (cr + 2.0 * b1 - 3.0)];
-                let c = 1.0 / (3.0 * h * h * h);
-                let f = |i: usize, j: usize| {
-                    c * (e0[i] * e0[j] + 0.5 * (e0[i] * e1[j] + e1[i] * e0[j]) + e1[i] * e1[j])
-                };
-                [f(0, 0), f(0, 1), f(1, 1)]
-            })
-            .collect();
+        let forms = penalty_forms(widths, &terms);
         let mut rows = vec![Row::default(); n];
         let mut q_diag = vec![0.0; n];
         let mut q_off = vec![0.0; n];
         for k in 1..n - 1 {
-            let (p, q) = neighbour_weights(widths[k - 1], widths[k]);
-            let [al, b1, _, _] = terms[k - 1];
-            let [_, _, b2, cr] = terms[k];
-            let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
-            rows[k] = Row { lo, di, up, p, q };
+            rows[k] = continuity_row(widths[k - 1], widths[k], &terms[k - 1], &terms[k]);
             q_diag[k] = forms[k - 1][2] + forms[k][0];
             q_off[k] = forms[k][1];
         }
