@@ -174,12 +174,12 @@ pub struct ShapeArgs {
     /// Fit the points as noisy data with a smoothing spline (knots at the
     /// points, control values minimising the squared residuals plus LAMBDA
     /// times the integral of S''^2): `auto` chooses LAMBDA by generalized
-    /// cross-validation. Functions and open curves; `fit` adds `lambda`, `gcv`
+    /// cross-validation. Functions and curves, closed ones round their loop; `fit` adds `lambda`, `gcv`
     /// and `dof` to its JSON.
     #[arg(
         long,
         value_name = "auto|LAMBDA",
-        conflicts_with_all = ["through", "closed"],
+        conflicts_with = "through",
         allow_hyphen_values = true,
         value_parser = bzspline_io::options::parse_smoothing
     )]

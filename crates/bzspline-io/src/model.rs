@@ -38,7 +38,8 @@ pub struct Shape {
     /// legs of their polygon.
     pub through: bool,
     /// A smoothing fit of the points as noisy data (`docs/method.md` §12)
-    /// instead of taking them as control points; open curves and functions.
+    /// instead of taking them as control points; functions and curves, open or
+    /// closed.
     pub smoothing: Option<Smoothing>,
     /// The smoothing fit made robust against outliers (`docs/method.md`
     /// §14); only with `smoothing`.

@@ -52,6 +52,8 @@ export interface CurveSmoothingOptions {
    * point's distance from the fit, lam chosen again each time; needs 5 points of positive weight.
    */
   robust?: boolean;
+  /** A closed curve (a contour, a lap), smoothed round its loop; a given `param` then has n + 1 values. */
+  closed?: boolean;
 }
 
 /**

@@ -57,13 +57,13 @@ export function smoothingSpline(x, y, options) {
 }
 
 /**
- * The smoothing curve of noisy points (open, one lam for every coordinate)
- * on the parameters of the points: options w, lam, param, alpha, alphas,
- * robust.
+ * The smoothing curve of noisy points (open, or closed round its loop; one lam
+ * for every coordinate) on the parameters of the points: options w, lam,
+ * param, alpha, alphas, robust, closed.
  */
 export function smoothingCurve(points, options) {
   const fit = curveFit(points, options);
   const rows = [];
   for (let i = 0; i < fit.points.length; i += fit.dim) rows.push(fit.points.subarray(i, i + fit.dim));
-  return report(new Curve(rows, { param: fit.knots, alphas: fit.alphas }), fit);
+  return report(new Curve(rows, { param: fit.knots, alphas: fit.alphas, closed: fit.closed }), fit);
 }

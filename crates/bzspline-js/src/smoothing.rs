@@ -109,8 +109,9 @@ pub fn spline_fit(x: &JsValue, y: &JsValue, options: &JsValue) -> Result<Object,
     Ok(out)
 }
 
-/// `curveFit(points, {w, lam, param, alpha, alphas, robust})`: the smoothing
-/// curve of noisy points (open, one `lam` for every coordinate;
+/// `curveFit(points, {w, lam, param, alpha, alphas, robust, closed})`: the
+/// smoothing curve of noisy points (open, or closed round its loop; one `lam`
+/// for every coordinate;
 /// `bzspline::CurveBuilder::build_smoothed`) as `{points, dim, knots, alphas,
 /// lam, gcv, dof, robustness}`: the control points (flat, `dim` numbers
 /// each), the parameters and alphas of the fit's legs, and the fit's report.
@@ -122,6 +123,7 @@ pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     let alphas = o.alphas()?;
     let (w, how) = o.smoothing()?;
     let mut b = bzspline::CurveBuilder::new(&flat, dim.max(1))
+        .closed(o.flag("closed", false)?)
         .param(param)
         .alpha_choice(alphas.as_alphas())
         .smoothing(how)
@@ -136,6 +138,7 @@ pub fn curve_fit(pts: &JsValue, options: &JsValue) -> Result<Object, JsValue> {
     set(&out, "dim", (c.dim() as f64).into());
     set(&out, "knots", Float64Array::from(c.knots()).into());
     set(&out, "alphas", Float64Array::from(c.alphas()).into());
+    set(&out, "closed", c.is_closed().into());
     report(&out, &fit);
     Ok(out)
 }

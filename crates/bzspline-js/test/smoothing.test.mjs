@@ -190,3 +190,21 @@ test("robust fits and weights are the command's, bit for bit", () => {
   assert.throws(() => smoothingSpline(x.slice(0, 4), y.slice(0, 4), { robust: true }), /at least 5/);
   assert.throws(() => smoothingSpline(x, y, { robust: "yes" }), /robust must be true or false/);
 });
+
+test("closed curves smooth round their loop, as the command does", () => {
+  assert.ok(existsSync(bin), `${bin} is missing: cargo build -p bzspline-cli`);
+  const r = random(11);
+  const ring = [];
+  for (let i = 0; i < 90; i++) {
+    const a = (2 * Math.PI * i) / 90;
+    ring.push([5 * Math.cos(a) + 0.4 * (r() - 0.5), 3 * Math.sin(a) + 0.4 * (r() - 0.5)]);
+  }
+  const table = "x,y\n" + ring.map((p) => p.join(",")).join("\n") + "\n";
+  const got = JSON.parse(
+    execFileSync(bin, ["fit", "--input-format", "csv", "--closed", "--smooth", "auto"], { input: table }),
+  );
+  const c = smoothingCurve(ring, { closed: true });
+  assert.equal(c.closed, true);
+  assert.equal(c.dof, got.dof);
+  assert.deepEqual(c.segments.map((s) => s.map((p) => Array.from(p))), got.segments);
+});

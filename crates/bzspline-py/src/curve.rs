@@ -435,7 +435,7 @@ impl Curve {
 /// Parameters
 /// ----------
 /// points : array_like, shape (n, d)
-///     n >= 3 points, an open curve.
+///     n >= 3 points, an open curve (or closed, with ``closed=True``).
 /// w : array_like, shape (n,), optional
 ///     Weights, finite and >= 0 (default all 1).
 /// lam : float, optional
@@ -445,6 +445,10 @@ impl Curve {
 ///     centripetal parameters follow the noise (cross-validation then picks
 ///     interpolation): give 'uniform' or the times.
 /// alpha : float or array_like, default 0.5
+/// closed : bool, default False
+///     A closed curve (a contour, a lap), smoothed round its loop: the
+///     closing leg is a leg like the others, and ``param`` given has n + 1
+///     values. A large ``lam`` draws it towards the weighted mean point.
 /// robust : bool, default False
 ///     Robust against outliers (a GPS jump), as for :func:`smoothing_spline`;
 ///     a point's residual is its distance from the fitted point. An outlier
@@ -467,7 +471,8 @@ impl Curve {
 /// >>> bool(np.abs(r - 10).mean() < 0.5 * np.abs(np.hypot(*track.T) - 10).mean())
 /// True
 #[pyfunction]
-#[pyo3(signature = (points, w=None, lam=None, *, param=None, alpha=None, robust=false))]
+#[pyo3(signature = (points, w=None, lam=None, *, param=None, alpha=None, robust=false, closed=false))]
+#[allow(clippy::too_many_arguments)] // scipy's arguments and ours
 pub(crate) fn smoothing_curve(
     py: Python<'_>,
     points: &Bound<'_, PyAny>,
@@ -476,6 +481,7 @@ pub(crate) fn smoothing_curve(
     param: Option<&Bound<'_, PyAny>>,
     alpha: Option<&Bound<'_, PyAny>>,
     robust: bool,
+    closed: bool,
 ) -> PyResult<Curve> {
     guard(|| {
         let (pts, dim) = rows_arg(points)?;
@@ -489,6 +495,7 @@ pub(crate) fn smoothing_curve(
         let fit = py
             .allow_threads(|| {
                 let mut b = bzspline::CurveBuilder::new(&pts, dim)
+                    .closed(closed)
                     .param(param)
                     .alpha_choice(alpha.as_alphas())
                     .smoothing(how)
@@ -502,7 +509,7 @@ pub(crate) fn smoothing_curve(
         Ok(Curve {
             points: fit.fit.points().to_vec(),
             inner: Arc::new(fit.fit),
-            closed: false,
+            closed,
             through: false,
             param: "given".to_owned(),
             smoothing: Some([fit.lambda, fit.gcv, fit.dof]),

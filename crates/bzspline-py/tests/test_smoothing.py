@@ -227,3 +227,23 @@ def test_robust_fits_shrug_off_outliers_and_match_the_command():
     assert np.hypot(*(c(t[150]) - [np.cos(t[150]), np.sin(t[150])])) < 0.02
     with pytest.raises(ValueError, match="at least 5"):
         bzspline.smoothing_spline(x[:4], y[:4], robust=True)
+
+
+def test_closed_curves_smooth_round_their_loop_as_the_command_does():
+    rng = np.random.default_rng(9)
+    a = np.linspace(0, 2 * np.pi, 120, endpoint=False)
+    truth = np.c_[5 * np.cos(a), 3 * np.sin(a)]
+    ring = truth + rng.normal(0, 0.2, truth.shape)
+    c = bzspline.smoothing_curve(ring, closed=True)
+    assert len(c.segments) == 120 and c.lam > 0 and 1 < c.dof < 120
+    table = "x,y\n" + "".join(f"{float(p)!r},{float(q)!r}\n" for p, q in ring)
+    got = fit(["--closed", "--smooth", "auto"], table)
+    assert np.array_equal(c.segments, np.array(got["segments"]))
+    # On its parameters a closed fit lies closer to the ellipse than the data.
+    t = np.arange(121) / 120.0
+    e = bzspline.smoothing_curve(ring, param=t, closed=True)
+    err = lambda p: np.abs(np.hypot(p[:, 0] / 5, p[:, 1] / 3) - 1).mean()
+    assert err(e(t[:-1])) < 0.6 * err(ring)
+    # A huge lam leaves the mean point.
+    flat = bzspline.smoothing_curve(ring, lam=1e12, closed=True)
+    assert np.allclose(flat.knot_points, ring.mean(axis=0), atol=1e-6)

@@ -129,7 +129,9 @@ fn the_fit_is_the_dense_normal_equations_solution() {
                 worst_f = worst_f.max((got[j] - f[j]).abs() / scale);
             }
             let kp = s.fit.knot_points();
-            residual += (0..n).map(|j| w[j] * (kp[j][c] - pts[2 * j + c]).powi(2)).sum::<f64>();
+            residual += (0..n)
+                .map(|j| w[j] * (kp[j][c] - pts[2 * j + c]).powi(2))
+                .sum::<f64>();
         }
         // tr A = sum_j w_j (B^T M^-1 B)_jj.
         let mut dof = 0.0;
@@ -226,15 +228,24 @@ fn a_noisy_contour_is_smoothed_and_gcv_chooses_its_least_score() {
             let q = truth(t[i]);
             (p[0] - q[0]).hypot(p[1] - q[1])
         };
-        let fit_err: f64 =
-            s.fit.knot_points().iter().enumerate().map(|(i, p)| err(p, i)).sum::<f64>() / n as f64;
+        let fit_err: f64 = s
+            .fit
+            .knot_points()
+            .iter()
+            .enumerate()
+            .map(|(i, p)| err(p, i))
+            .sum::<f64>()
+            / n as f64;
         let data_err: f64 = (0..n).map(|i| err(&pts[2 * i..2 * i + 2], i)).sum::<f64>() / n as f64;
         if n < 200 {
             // Too few points for the shape: GCV's score levels off towards
             // interpolation, as for an open fit.
             continue;
         }
-        assert!(fit_err < 0.5 * data_err, "n={n}: {fit_err} against {data_err}");
+        assert!(
+            fit_err < 0.5 * data_err,
+            "n={n}: {fit_err} against {data_err}"
+        );
         // No lambda on a fine grid around the chosen one scores lower.
         for k in -20..=20 {
             let l = s.lambda * 10f64.powf(f64::from(k) / 5.0);
@@ -244,7 +255,12 @@ fn a_noisy_contour_is_smoothed_and_gcv_chooses_its_least_score() {
                 .smoothing(Smoothing::Lambda(l))
                 .build_smoothed()
                 .unwrap();
-            assert!(other.gcv >= s.gcv * (1.0 - 1e-9), "n={n}: {l} scores {} < {}", other.gcv, s.gcv);
+            assert!(
+                other.gcv >= s.gcv * (1.0 - 1e-9),
+                "n={n}: {l} scores {} < {}",
+                other.gcv,
+                s.gcv
+            );
         }
         // C1 across the closing knot: the end of the last piece meets the
         // start of the first with the same derivative.
@@ -254,7 +270,9 @@ fn a_noisy_contour_is_smoothed_and_gcv_chooses_its_least_score() {
         let p0 = s.fit.eval(a).unwrap();
         let p1 = s.fit.eval(z).unwrap();
         for c in 0..2 {
-            assert!((p0[c] - p1[c]).abs() < 1e-9 && (d0[c] - d1[c]).abs() < 1e-6 * d0[c].abs().max(1.0));
+            assert!(
+                (p0[c] - p1[c]).abs() < 1e-9 && (d0[c] - d1[c]).abs() < 1e-6 * d0[c].abs().max(1.0)
+            );
         }
         // Bands round the loop.
         let se = s.se(0.5 * (t[0] + t[1])).unwrap();
@@ -274,7 +292,7 @@ fn a_closed_track_with_a_jump_is_smoothed_robustly() {
         })
         .map(|v| v + 0.5 * rng.gaussian())
         .collect();
-    pts[2 * 0] += 40.0; // at the closing knot itself
+    pts[0] += 40.0; // point 0: at the closing knot itself
     pts[2 * 150 + 1] -= 40.0;
     let s = Curve::builder(&pts, 2)
         .closed(true)

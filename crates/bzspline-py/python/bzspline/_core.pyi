@@ -116,4 +116,5 @@ def smoothing_curve(
     param: Optional[Union[str, ArrayLike]] = None,
     alpha: Optional[Union[float, ArrayLike]] = None,
     robust: bool = False,
+    closed: bool = False,
 ) -> Curve: ...

@@ -264,7 +264,10 @@ impl<'a> CurveBuilder<'a> {
             for i in 0..n_in {
                 if drops.peek() == Some(&&i) {
                     drops.next();
-                    let at = owner(i, all.len() - data.dropped.iter().filter(|&&j| j < i).count());
+                    let at = owner(
+                        i,
+                        all.len() - data.dropped.iter().filter(|&&j| j < i).count(),
+                    );
                     all.push(kept.get(at).copied().unwrap_or(1.0));
                 } else {
                     all.push(values.next().copied().unwrap_or(1.0));

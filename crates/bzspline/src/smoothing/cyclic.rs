@@ -259,7 +259,11 @@ impl System for CyclicFactored<'_> {
         // x_0 = S_0^-1 (r_0 - B_1^T v_1 - B_0 v_{N-1}); x_k = v_k - U_k x_0.
         let (b1, b0) = (g.link(1, self.lambda), g.link(0, self.lambda));
         let (e1, e0) = (apply_t(&b1, &v[0]), apply(&b0, &v[n - 2]));
-        let r0 = [g.w[0] * y[0] - e1[0] - e0[0], -e1[1] - e0[1], -e1[2] - e0[2]];
+        let r0 = [
+            g.w[0] * y[0] - e1[0] - e0[0],
+            -e1[1] - e0[1],
+            -e1[2] - e0[2],
+        ];
         let x0 = apply(&self.border, &r0);
         phi[0] = x0[0];
         d[0] = x0[1];
@@ -308,10 +312,7 @@ impl System for CyclicFactored<'_> {
         // Knot 0 and knot 1: X = Z_{1,0}.
         out.push(entries(s, &neg(&mul(&self.u[0], s))));
         for k in 1..n - 1 {
-            let x = add(
-                &below[k - 1],
-                &sandwich(&self.u[k], s, &self.u[k - 1]),
-            );
+            let x = add(&below[k - 1], &sandwich(&self.u[k], s, &self.u[k - 1]));
             out.push(entries(&zk(k), &x));
         }
         // Knot N-1 and knot N (knot 0 again): the entries want Z_{N, N-1},
