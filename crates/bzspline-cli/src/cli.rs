@@ -207,9 +207,10 @@ fn param_parser() -> impl clap::builder::TypedValueParser<Value = bzspline::Para
 /// A confidence band of a smoothing fit.
 #[derive(Debug, Clone, Args)]
 pub struct BandArgs {
-    /// With --smooth, for y(x): the pointwise confidence band at LEVEL (0.95
-    /// for 95 %) from the fit's posterior standard error, `S(x) -+ z se(x)`;
-    /// `eval` and `sample` add the columns `lo` and `hi`, `plot` shades it.
+    /// With --smooth: the pointwise confidence band at LEVEL (0.95 for 95 %)
+    /// from the fit's posterior standard error, `S(x) -+ z se(x)`; `eval` and
+    /// `sample` add the columns `lo` and `hi` for y(x), `NAME_lo` and
+    /// `NAME_hi` for each coordinate of a curve; `plot` shades y(x)'s.
     #[arg(long, value_name = "LEVEL", requires = "smooth", value_parser = band_level)]
     pub band: Option<f64>,
 }

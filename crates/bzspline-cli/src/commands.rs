@@ -248,36 +248,69 @@ fn row_at(
 }
 
 /// The level of `--band`, checked against the shape: a band is of a
-/// smoothing fit of y(x) (clap has made sure of `--smooth`).
-pub(crate) fn band_of(shape: &Shape, band: Option<f64>) -> Result<Option<f64>> {
-    if band.is_some() && shape.mode == Mode::Curve {
-        usage!("--band applies to y(x) only, not to curves");
+/// smoothing fit (clap has made sure of `--smooth`), of y(x) or, where
+/// `curves` allows, of each coordinate of a curve.
+pub(crate) fn band_of(shape: &Shape, band: Option<f64>, curves: bool) -> Result<Option<f64>> {
+    if band.is_some() && shape.mode == Mode::Curve && !curves {
+        usage!(
+            "--band shades y(x) only, not a curve: `sample --band` gives each coordinate's band"
+        );
     }
     Ok(band)
 }
 
-/// Appends the band's `lo` and `hi` at `x` to a row whose second number is
-/// the fit's value there.
+/// Appends the band's `lo` and `hi` at `p` to a row of [`row_at`]: after a
+/// function's `x, y, ...`, around `y`; after a curve's, around each
+/// coordinate in turn (the row's coordinates start at `from`).
 fn with_band(
     row: &mut Vec<f64>,
     level: Option<f64>,
     report: Option<&SmoothingReport>,
-    x: f64,
+    p: f64,
+    (from, dim): (usize, usize),
 ) -> std::result::Result<(), bzspline::Error> {
     let (Some(level), Some(r)) = (level, report) else {
         return Ok(());
     };
-    let (lo, hi) = r.posterior.band(row[1], x, level, 0)?;
-    row.push(lo);
-    row.push(hi);
+    for c in 0..dim {
+        let (lo, hi) = r.posterior.band(row[from + c], p, level, c)?;
+        row.push(lo);
+        row.push(hi);
+    }
     Ok(())
 }
 
-/// The columns with the band's `lo` and `hi` after them, when one is asked.
-fn band_columns(mut columns: Vec<String>, band: Option<f64>) -> Vec<String> {
-    if band.is_some() {
+/// Where a row's values start and how many there are: a function's `y`
+/// after `x`; a curve's coordinates, after `t` when `with_param`.
+fn values_of(f: &Fitted, with_param: bool) -> (usize, usize) {
+    match f {
+        Fitted::Function(_) => (1, 1),
+        Fitted::Curve(_) => (usize::from(with_param), f.curve().dim()),
+    }
+}
+
+/// The columns of `f`'s rows with the band's after them, when one is
+/// asked: `lo`, `hi` for a function; `NAME_lo`, `NAME_hi` for each
+/// coordinate of a curve.
+fn band_columns(
+    mut columns: Vec<String>,
+    band: Option<f64>,
+    f: &Fitted,
+    with_param: bool,
+) -> Vec<String> {
+    if band.is_none() {
+        return columns;
+    }
+    if let Fitted::Function(_) = f {
         columns.push("lo".to_owned());
         columns.push("hi".to_owned());
+        return columns;
+    }
+    let (from, dim) = values_of(f, with_param);
+    let names: Vec<String> = columns[from..from + dim].to_vec();
+    for n in names {
+        columns.push(format!("{n}_lo"));
+        columns.push(format!("{n}_hi"));
     }
     columns
 }
@@ -314,7 +347,7 @@ fn eval(a: &EvalArgs) -> Result<()> {
         }
         (None, None) => usage!("give --at X1,... or --at-file FILE"),
     };
-    let band = band_of(&shape, a.band.band)?;
+    let band = band_of(&shape, a.band.band, true)?;
     let points = a.input.load(a.shape.weights.as_deref())?;
     let (fitted, report) = fit_points_reported(&points, &shape)?;
     let fitted = match fitted {
@@ -351,7 +384,14 @@ fn eval(a: &EvalArgs) -> Result<()> {
     for (x, pos) in queries.iter().zip(&qpos) {
         let mut row =
             row_at(&fitted, *x, true, &a.derivative).map_err(|e| anyhow!("{pos}: {e}"))?;
-        with_band(&mut row, band, report.as_ref(), *x).map_err(|e| anyhow!("{pos}: {e}"))?;
+        with_band(
+            &mut row,
+            band,
+            report.as_ref(),
+            *x,
+            values_of(&fitted, true),
+        )
+        .map_err(|e| anyhow!("{pos}: {e}"))?;
         if !row.iter().all(|v| v.is_finite()) {
             bail!("{pos}: the result at {x} overflows a double");
         }
@@ -360,7 +400,12 @@ fn eval(a: &EvalArgs) -> Result<()> {
     let names = points.names.as_deref();
     let time = points.time.filter(|_| shape.mode == Mode::Function);
     let text = table(
-        &band_columns(columns(&fitted, names, true, &a.derivative), band),
+        &band_columns(
+            columns(&fitted, names, true, &a.derivative),
+            band,
+            &fitted,
+            true,
+        ),
         &rows,
         time,
         a.format,
@@ -422,7 +467,7 @@ fn params_by_step(f: &Fitted, step: f64) -> std::result::Result<Vec<f64>, bzspli
 fn sample(a: &SampleArgs) -> Result<()> {
     // --n, --step and --tolerance are checked as clap parses them.
     let shape = a.shape.validate()?;
-    let band = band_of(&shape, a.band.band)?;
+    let band = band_of(&shape, a.band.band, true)?;
     let points = a.input.load(a.shape.weights.as_deref())?;
     let (fitted, report) = fit_points_reported(&points, &shape)?;
     let lib = |e: bzspline::Error| anyhow!("{}: {e}", points.source);
@@ -452,13 +497,25 @@ fn sample(a: &SampleArgs) -> Result<()> {
     let mut rows = Vec::with_capacity(params.len());
     for p in params {
         let mut row = row_at(&fitted, p, false, &a.derivative).map_err(lib)?;
-        with_band(&mut row, band, report.as_ref(), p).map_err(lib)?;
+        with_band(
+            &mut row,
+            band,
+            report.as_ref(),
+            p,
+            values_of(&fitted, false),
+        )
+        .map_err(lib)?;
         rows.push(row);
     }
     let names = points.names.as_deref();
     let time = points.time.filter(|_| shape.mode == Mode::Function);
     let text = table(
-        &band_columns(columns(&fitted, names, false, &a.derivative), band),
+        &band_columns(
+            columns(&fitted, names, false, &a.derivative),
+            band,
+            &fitted,
+            false,
+        ),
         &rows,
         time,
         a.format,

@@ -178,7 +178,7 @@ fn bands_are_refused_where_there_are_none() {
         ),
         (
             &[
-                "sample", "--smooth", "auto", "--band", "0.9", "--curve", "-n", "3",
+                "plot", "--smooth", "auto", "--band", "0.9", "--curve", "-o", "x.svg",
             ][..],
             2,
             "y(x) only",
@@ -258,6 +258,31 @@ fn curves_smooth_on_their_parameters() {
     assert_eq!(got, c.fit.points());
     assert_eq!(v["closed"].as_bool(), Some(true));
     assert_eq!(v["dof"].as_f64(), Some(c.dof));
+    // Each coordinate's band, around it, the library's.
+    let out = ok_stdin(
+        &[
+            "eval", "--closed", "--smooth", "auto", "--band", "0.9", "--at", "0,1.5",
+        ],
+        &ring,
+    );
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("t,x,y,x_lo,x_hi,y_lo,y_hi"));
+    let z = bzspline::band_z(0.9).unwrap();
+    for line in lines {
+        let row: Vec<f64> = line.split(',').map(|f| f.parse().unwrap()).collect();
+        let se = c.se(row[0]).unwrap();
+        let p = c.fit.eval(row[0]).unwrap();
+        for k in 0..2 {
+            assert_eq!(row[1 + k], p[k]);
+            let (lo, hi) = (row[3 + 2 * k], row[4 + 2 * k]);
+            assert!(lo < p[k] && p[k] < hi, "{line}");
+            let want = z * se[k];
+            assert!(
+                ((hi - p[k]) - want).abs() <= 1e-12 * want.max(p[k].abs()),
+                "{line}"
+            );
+        }
+    }
 }
 
 #[test]

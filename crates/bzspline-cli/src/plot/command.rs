@@ -50,7 +50,7 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         source.example = Some(1);
     }
     let points = source.load(a.shape.weights.as_deref())?;
-    let band = crate::commands::band_of(&shape, a.band.band)?;
+    let band = crate::commands::band_of(&shape, a.band.band, false)?;
     let sweep = &a.figure.alpha_sweep;
     let mut data = Vec::new();
     if sweep.is_empty() {
