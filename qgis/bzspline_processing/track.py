@@ -16,6 +16,7 @@ from qgis.core import (
     QgsProcessing,
     QgsProcessingAlgorithm,
     QgsProcessingException,
+    QgsProcessingParameterBoolean,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFeatureSink,
     QgsProcessingParameterFeatureSource,
@@ -55,6 +56,7 @@ class SmoothTrack(QgsProcessingAlgorithm):
     GROUP = "GROUP_FIELD"
     TOLERANCE = "TOLERANCE"
     UNIT = "TOLERANCE_UNIT"
+    ROBUST = "ROBUST"
     OUTPUT = "OUTPUT"
 
     def name(self):
@@ -91,6 +93,11 @@ class SmoothTrack(QgsProcessingAlgorithm):
                 "output line (0: 1e-4 of the track's extent). On a longitude/latitude layer each "
                 "track is smoothed in metres, in an azimuthal equidistant projection centred on "
                 "it, so give metres or kilometres.</p>"
+                "<p><b>Ignore jumps</b>: a robust fit for fixes with gross errors (a jump of the "
+                "receiver, a reflection): the fit is weighted again by its residuals (Tukey's "
+                "biweight on six median absolute residuals, as lowess does), the smoothing weight "
+                "chosen again each time, so that a jump does not pull the line. The output's "
+                "<i>outliers</i> field counts the fixes it set aside (weight 0).</p>"
                 "<p>Features without geometry or time are skipped (counted in the log).</p>")
 
     def initAlgorithm(self, config=None):  # noqa: N802
@@ -105,6 +112,8 @@ class SmoothTrack(QgsProcessingAlgorithm):
             QgsProcessingParameterNumber.Double, 0.0, minValue=0.0))
         self.addParameter(QgsProcessingParameterEnum(
             self.UNIT, "Unit of the tolerance", layers.UNIT_NAMES, defaultValue=0))
+        self.addParameter(QgsProcessingParameterBoolean(
+            self.ROBUST, "Ignore jumps (robust fit)", defaultValue=False))
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, "Smoothed track", QgsProcessing.TypeVectorLine))
 
@@ -133,6 +142,7 @@ class SmoothTrack(QgsProcessingAlgorithm):
         group = self.parameterAsString(parameters, self.GROUP, context) or None
         unit = self.parameterAsEnum(parameters, self.UNIT, context)
         tolerance = layers.distance(self.parameterAsDouble(parameters, self.TOLERANCE, context), unit)
+        robust = self.parameterAsBool(parameters, self.ROBUST, context)
         crs = source.sourceCrs()
         geographic = crs.isValid() and crs.isGeographic()
         if geographic and tolerance is not None and layers.UNITS[unit][1] in ("", "deg"):
@@ -172,11 +182,13 @@ class SmoothTrack(QgsProcessingAlgorithm):
                     f"+proj=aeqd +lat_0={lat} +lon_0={lon} +datum=WGS84 +units=m +no_defs")
                 there = QgsCoordinateTransform(crs, frame, context.transformContext())
                 xy = np.array([[p.x(), p.y()] for p in (there.transform(QgsPointXY(*c)) for c in xy)])
-            if len(t) < 3:
-                feedback.pushWarning(f"{name}: {len(t)} points, too few to smooth: skipped")
+            fewest = bzspline.ROBUST_MIN_POINTS if robust else 3
+            if len(t) < fewest:
+                feedback.pushWarning(f"{name}: {len(t)} points, too few to smooth"
+                                     f"{' robustly' if robust else ''}: skipped")
                 continue
             try:
-                curve = bzspline.smoothing_curve(xy, param=t - t[0])
+                curve = bzspline.smoothing_curve(xy, param=t - t[0], robust=robust)
                 lo, hi = xy.min(axis=0), xy.max(axis=0)
                 tol = bzspline.geo.tolerance(tolerance, crs=layers.crs_text(frame), bounds=(*lo, *hi))
                 line = curve.flatten(tol)
@@ -188,6 +200,13 @@ class SmoothTrack(QgsProcessingAlgorithm):
             feedback.pushInfo(f"{name}: {len(t)} points, smoothing weight {curve.lam:.6g} chosen by GCV "
                               f"(GCV {curve.gcv:.6g}, {curve.dof:.2f} degrees of freedom)")
             attributes = ([labels[key]] if group is not None else []) + [len(t), curve.lam, curve.gcv, curve.dof]
+            if robust:
+                outliers = int(np.count_nonzero(curve.robustness == 0))
+                if outliers:
+                    ids = [fixes[j][1] for j in np.flatnonzero(curve.robustness == 0)[:10]]
+                    feedback.pushInfo(f"{name}: {outliers} fixes set aside as jumps (features "
+                                      f"{', '.join(map(str, ids))}{', ...' if outliers > 10 else ''})")
+                attributes.append(outliers)
             import shapely
 
             rows.append((attributes, shapely.LineString(line)))
@@ -197,6 +216,8 @@ class SmoothTrack(QgsProcessingAlgorithm):
         fields.append(QgsField("points", QVariant.Int))
         for name in ("lam", "gcv", "dof"):
             fields.append(QgsField(name, QVariant.Double))
+        if robust:
+            fields.append(QgsField("outliers", QVariant.Int))
         dest = layers.write(self, parameters, context, self.OUTPUT, fields, QgsWkbTypes.LineString, crs, rows,
                             feedback)
         return {self.OUTPUT: dest}

@@ -126,3 +126,25 @@ def test_two_fixes_at_one_time_name_both(tmp_path):
     with pytest.raises(QgsProcessingException, match="features 2 and 3 have the same time"):
         run("smoothtrack", INPUT=layer, TIME_FIELD="t", OUTPUT=str(bad))
     assert not bad.exists()
+
+
+def test_jumps_are_ignored_when_asked_and_counted(tmp_path):
+    t, truth, fixes = noisy_track(seed=7)
+    jumps = [50, 200, 333]
+    fixes[jumps] += [[0, 400], [-350, 0], [300, 300]]
+    layer = points_layer("EPSG:32633", [(tuple(p), [float(s)]) for s, p in zip(t, fixes)],
+                         "&field=t:double")
+    path = shapely.LineString(truth)
+    rms = lambda line: np.sqrt(np.mean(shapely.distance(
+        shapely.points(shapely.get_coordinates(line)), path) ** 2))
+    plain, robust = tmp_path / "plain.gpkg", tmp_path / "robust.gpkg"
+    run("smoothtrack", INPUT=layer, TIME_FIELD="t", TOLERANCE=0.01, OUTPUT=str(plain))
+    run("smoothtrack", INPUT=layer, TIME_FIELD="t", TOLERANCE=0.01, ROBUST=True, OUTPUT=str(robust))
+    (pa, pline), = features(plain)
+    (ra, rline), = features(robust)
+    assert "outliers" not in pa and ra["outliers"] >= len(jumps)
+    curve = bzspline.smoothing_curve(fixes, param=t, robust=True)
+    assert ra["outliers"] == np.count_nonzero(curve.robustness == 0)
+    assert np.all(curve.robustness[jumps] == 0)
+    assert np.allclose(shapely.get_coordinates(rline), curve.flatten(0.01), rtol=0, atol=1e-9)
+    assert rms(rline) < 0.5 * rms(pline)

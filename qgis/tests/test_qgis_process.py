@@ -3,7 +3,6 @@ them: inside a QGIS executable, whose GEOS answers shapely's calls on Linux.
 Its output is the same as ``processing.run``'s in this Python."""
 
 import os
-import pathlib
 import shutil
 import subprocess
 

@@ -25,6 +25,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ALPHA_MIN", bzspline::ALPHA_MIN)?;
     m.add("ALPHA_MAX", bzspline::ALPHA_MAX)?;
+    m.add("ROBUST_MIN_POINTS", bzspline::ROBUST_MIN_POINTS)?;
     m.add_class::<Spline>()?;
     m.add_class::<Curve>()?;
     m.add_function(wrap_pyfunction!(_spline_from_parts, m)?)?;

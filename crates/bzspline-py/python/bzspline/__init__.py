@@ -13,13 +13,14 @@ package converts numpy arrays and releases the GIL while it works.
 """
 
 from ._core import (
-    ALPHA_MAX, ALPHA_MIN, Curve, Spline, __version__, smoothing_curve, smoothing_spline,
+    ALPHA_MAX, ALPHA_MIN, ROBUST_MIN_POINTS, Curve, Spline, __version__, smoothing_curve,
+    smoothing_spline,
 )
 from . import errors, geo
 
 __all__ = [
-    "ALPHA_MAX", "ALPHA_MIN", "Curve", "Spline", "__version__", "errors", "geo", "smoothing_curve",
-    "smoothing_spline",
+    "ALPHA_MAX", "ALPHA_MIN", "ROBUST_MIN_POINTS", "Curve", "Spline", "__version__", "errors",
+    "geo", "smoothing_curve", "smoothing_spline",
     "to_ppoly", "to_bpoly",
 ]
 

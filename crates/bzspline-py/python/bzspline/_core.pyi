@@ -7,6 +7,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __version__: str
 ALPHA_MIN: float
+ROBUST_MIN_POINTS: int
 ALPHA_MAX: float
 
 _Extrapolate = Union[bool, Literal["clamp"]]
