@@ -382,7 +382,8 @@ pub struct SmoothArgs {
     #[arg(long, value_name = "EPS", value_parser = snap_distance, allow_negative_numbers = true)]
     pub snap: Option<Distance>,
     /// Keep every position where the line turns by more than DEG degrees as a
-    /// sharp corner (street blocks, buildings, survey lines).
+    /// sharp corner (street blocks, buildings, survey lines); on longitude and
+    /// latitude smoothed in metres, the angle on the ground.
     #[arg(long, value_name = "DEG", value_parser = degrees, allow_negative_numbers = true)]
     pub keep_angle: Option<f64>,
     /// Pass through every vertex (the interpolating variant) instead of

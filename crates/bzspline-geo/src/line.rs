@@ -72,7 +72,7 @@ pub fn smooth_line(
     let tol = opts
         .tolerance
         .unwrap_or_else(|| opts.default_tolerance_from(extent_tolerance(&distinct)));
-    let corners = corners(&distinct, closed, opts.keep_angle);
+    let corners = corners(&distinct, closed, opts.keep_angle, opts.frame);
     let mut out = if corners.is_empty() {
         smooth_piece(&distinct, closed, opts, tol)?
     } else {
@@ -146,9 +146,15 @@ fn extent_tolerance(pos: &[&[f64]]) -> f64 {
     default_tolerance_of(lo, hi)
 }
 
-/// The positions (indices, increasing) where the line turns in the plane by
-/// more than `keep_angle` degrees; a line's ends are not corners.
-fn corners(pos: &[&[f64]], closed: bool, keep_angle: Option<f64>) -> Vec<usize> {
+/// The positions (indices, increasing) where the line turns by more than
+/// `keep_angle` degrees (in the plane, or on the ground in the geographic
+/// frame); a line's ends are not corners.
+fn corners(
+    pos: &[&[f64]],
+    closed: bool,
+    keep_angle: Option<f64>,
+    frame: crate::Frame,
+) -> Vec<usize> {
     let Some(deg) = keep_angle.filter(|_| pos[0].len() >= 2) else {
         return Vec::new();
     };
@@ -165,7 +171,7 @@ fn corners(pos: &[&[f64]], closed: bool, keep_angle: Option<f64>) -> Vec<usize> 
                 (false, _) if i + 1 == n => return false,
                 (false, _) => (i - 1, i + 1),
             };
-            crate::smooth::turning_degrees(xy(prev), xy(i), xy(next)) > deg
+            crate::smooth::turning_degrees(xy(prev), xy(i), xy(next), frame) > deg
         })
         .collect()
 }

@@ -23,7 +23,8 @@ pub struct SmoothOptions {
     /// How the curve's parameters follow the positions.
     pub param: Param,
     /// Positions where the polyline turns by more than this many degrees stay
-    /// where they are, as corners.
+    /// where they are, as corners (in the geographic frame, the angle on the
+    /// ground).
     pub keep_angle: Option<f64>,
     /// Pass through every position (the interpolating variant,
     /// `docs/method.md` §11) instead of cutting the corners: the output keeps
@@ -47,7 +48,8 @@ pub enum Frame {
     /// parameters and tolerance are ground distances at every latitude,
     /// across the antimeridian and around the poles; output longitudes are
     /// written as the input writes them (`[-180, 180]`, `[0, 360]`, or
-    /// continuous). Snapping and keep-angle still measure in degrees.
+    /// continuous); corners for [`SmoothOptions::keep_angle`] are measured
+    /// on the ground. Snapping still measures in degrees.
     Geographic,
 }
 

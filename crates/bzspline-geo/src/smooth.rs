@@ -9,7 +9,7 @@ use crate::crossings::{Lines, SegId};
 use crate::error::Error;
 use crate::graph::key;
 use crate::levels::{arc_key, Levels};
-use crate::options::{default_tolerance_of, SmoothOptions};
+use crate::options::{default_tolerance_of, Frame, SmoothOptions};
 use crate::topology::{ChainKind, Topology};
 
 mod arc;
@@ -181,7 +181,7 @@ impl Topology {
             .tolerance
             .unwrap_or_else(|| opts.default_tolerance_from(default_tolerance(arcs, extent)));
         let mut stats = self.input_stats(tolerance);
-        let (plans, nodes) = self.plans(opts.keep_angle);
+        let (plans, nodes) = self.plans(opts.keep_angle, opts.frame);
         stats.closed_arcs = plans.iter().filter(|p| p.closed_curve).count();
         let closed: Vec<bool> = arcs.iter().map(|a| is_closed(a)).collect();
 
@@ -351,7 +351,7 @@ impl Topology {
     }
 
     /// Each arc's plan, and the nodes: positions where arcs may meet.
-    fn plans(&self, keep_angle: Option<f64>) -> (Vec<Plan>, FxHashSet<(u64, u64)>) {
+    fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Vec<Plan>, FxHashSet<(u64, u64)>) {
         let arcs = self.arcs();
         // How often each position occurs over all arcs (a closed arc's end once).
         let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
@@ -409,7 +409,7 @@ impl Topology {
                         (false, _) if i + 1 == n => continue,
                         (false, _) => (a[i - 1], a[i + 1]),
                     };
-                    if turning_degrees(prev, a[i], next) > deg {
+                    if turning_degrees(prev, a[i], next, frame) > deg {
                         fixed[i] = true;
                         nodes.insert(key(a[i]));
                     }

@@ -203,3 +203,37 @@ fn a_ring_round_a_pole_stays_round_it() {
     }
     assert_eq!(&out[..2], &out[out.len() - 2..]);
 }
+
+#[test]
+fn corners_are_kept_by_their_angle_on_the_ground() {
+    // At every latitude and across the antimeridian: a leg due east, then
+    // one turning left by 40 degrees on the ground (in degrees of longitude
+    // and latitude the turn looks smaller the further from the equator).
+    for (lon, lat) in [(10.0, 0.0), (10.0, 45.0), (10.0, 70.0), (179.99, 80.0)] {
+        let local = Local::at(lon, lat);
+        let turn = 40f64.to_radians();
+        let metres = [
+            [-3000.0, 0.0],
+            [-1500.0, 40.0],
+            [0.0, 0.0],
+            [1500.0 * turn.cos(), 1500.0 * turn.sin()],
+            [3000.0 * turn.cos(), 3000.0 * turn.sin() + 30.0],
+        ];
+        let line: Vec<f64> = metres.iter().flat_map(|&m| local.to_lonlat(m)).collect();
+        let corner = [line[4], line[5]];
+        let has_corner = |out: &[f64]| out.chunks_exact(2).any(|p| p == corner);
+        let opts = SmoothOptions::default()
+            .frame(Frame::Geographic)
+            .tolerance(1.0);
+        let kept = smooth_line(&line, 2, false, &opts.clone().keep_angle(30.0)).unwrap();
+        assert!(
+            has_corner(&kept),
+            "at {lon}, {lat}: a 40-degree corner cut at keep_angle 30"
+        );
+        let cut = smooth_line(&line, 2, false, &opts.clone().keep_angle(50.0)).unwrap();
+        assert!(
+            !has_corner(&cut),
+            "at {lon}, {lat}: a 40-degree corner kept at keep_angle 50"
+        );
+    }
+}

@@ -267,10 +267,29 @@ pub(super) fn is_closed(a: &[Coord]) -> bool {
     a.len() >= 2 && key(a[0]) == key(a[a.len() - 1])
 }
 
-/// The angle in degrees between the legs into and out of `b`.
-pub(crate) fn turning_degrees(a: Coord, b: Coord, c: Coord) -> f64 {
-    let (ux, uy) = (b.x - a.x, b.y - a.y);
-    let (vx, vy) = (c.x - b.x, c.y - b.y);
+/// The angle in degrees between the legs into and out of `b`: in the
+/// plane, or, in the geographic frame (longitude and latitude), on the
+/// ground, between the legs' chords through the Earth seen in the plane
+/// tangent to the ellipsoid at `b` (east and north), so that a corner's
+/// angle is the same at every latitude and across the antimeridian.
+pub(crate) fn turning_degrees(a: Coord, b: Coord, c: Coord, frame: Frame) -> f64 {
+    let ((ux, uy), (vx, vy)) = match frame {
+        Frame::Plane => ((b.x - a.x, b.y - a.y), (c.x - b.x, c.y - b.y)),
+        Frame::Geographic => {
+            let [pa, pb, pc] = [a, b, c].map(|p| geodesy::to_ecef(p.x, p.y, 0.0));
+            // libm's, as geodesy's: the same corners on every platform.
+            let (lon, lat) = (b.x.to_radians(), b.y.to_radians());
+            let (sl, cl) = (libm::sin(lon), libm::cos(lon));
+            let (sp, cp) = (libm::sin(lat), libm::cos(lat));
+            let (east, north) = ([-sl, cl, 0.0], [-sp * cl, -sp * sl, cp]);
+            let on = |d: [f64; 3]| {
+                let dot = |e: [f64; 3]| d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
+                (dot(east), dot(north))
+            };
+            let diff = |p: [f64; 3], q: [f64; 3]| [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+            (on(diff(pa, pb)), on(diff(pb, pc)))
+        }
+    };
     (ux * vy - uy * vx)
         .abs()
         .atan2(ux * vx + uy * vy)
