@@ -377,8 +377,9 @@ pub struct SmoothArgs {
     /// Merge positions closer than EPS, and put a position within EPS of
     /// another line's or ring's edge into that edge, before finding the
     /// shared borders (for borders digitised twice with small differences).
-    /// A number in the data's units, or `0.5m` (on longitude and latitude as
-    /// the same angle of a great circle) or `1e-6deg`, as for --tolerance.
+    /// A number in the data's units, or `0.5m` (on longitude and latitude,
+    /// on the ground: east-west as north-south) or `1e-6deg`, as for
+    /// --tolerance.
     #[arg(long, value_name = "EPS", value_parser = snap_distance, allow_negative_numbers = true)]
     pub snap: Option<Distance>,
     /// Keep every position where the line turns by more than DEG degrees as a

@@ -7,9 +7,9 @@ use geo_types::{MultiPolygon, Polygon};
 use crate::error::Error;
 use crate::levels::Levels;
 use crate::nodes::Nodes;
-use crate::options::SmoothOptions;
+use crate::options::{Frame, SmoothOptions};
 use crate::smooth::Stats;
-use crate::topology::{snap, ChainKind, Topology};
+use crate::topology::{snap_in, ChainKind, Topology};
 
 /// Where a chain came from: the geometry, the member of a multi-geometry or
 /// collection (0 for a single one), the ring of a polygon (0 the shell).
@@ -64,6 +64,7 @@ pub struct Coverage {
 pub struct CoverageBuilder {
     geometries: Vec<Geometry<f64>>,
     snap: Option<f64>,
+    frame: Frame,
     nodes: Nodes,
 }
 
@@ -73,6 +74,15 @@ impl CoverageBuilder {
     /// ([`crate::snap`]); `None` (the default) does not snap.
     pub fn snap(mut self, distance: impl Into<Option<f64>>) -> Self {
         self.snap = distance.into();
+        self
+    }
+
+    /// What the positions are, for [`CoverageBuilder::snap`]: in the
+    /// geographic frame the snap distance is an angle of a great circle in
+    /// degrees, measured on the ground ([`crate::snap_in`]). The default is
+    /// the plane; smoothing takes its frame from its options.
+    pub fn frame(mut self, frame: Frame) -> Self {
+        self.frame = frame;
         self
     }
 
@@ -98,7 +108,7 @@ impl CoverageBuilder {
     pub fn build(self) -> Result<Coverage, Error> {
         let (mut chains, origins, polygons) = gather(&self.geometries);
         if let Some(eps) = self.snap {
-            snap(&mut chains, eps)?;
+            snap_in(&mut chains, eps, self.frame)?;
         }
         let topology = Topology::from_chains_with_nodes(&chains, polygons, self.nodes)?;
         Ok(Coverage {
@@ -126,6 +136,7 @@ impl Coverage {
         CoverageBuilder {
             geometries,
             snap: None,
+            frame: Frame::Plane,
             nodes: Nodes::default(),
         }
     }

@@ -99,4 +99,4 @@ pub use options::{
 };
 pub use smooth::{Smoothed, Stats, MAX_LEVEL};
 pub use smoothing::Smooth;
-pub use topology::{snap, ArcRef, Chain, ChainKind, Topology};
+pub use topology::{snap, snap_in, ArcRef, Chain, ChainKind, Topology};

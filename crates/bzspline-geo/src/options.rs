@@ -49,7 +49,8 @@ pub enum Frame {
     /// across the antimeridian and around the poles; output longitudes are
     /// written as the input writes them (`[-180, 180]`, `[0, 360]`, or
     /// continuous); corners for [`SmoothOptions::keep_angle`] are measured
-    /// on the ground. Snapping still measures in degrees.
+    /// on the ground, and so is snapping in a coverage built in this frame
+    /// ([`crate::CoverageBuilder::frame`]).
     Geographic,
 }
 

@@ -11,6 +11,7 @@ use crate::error::Error;
 pub use crate::graph::ChainKind;
 use crate::graph::{junctions, key, Paths};
 use crate::nodes::Nodes;
+use crate::options::Frame;
 
 /// One arc of a chain, in its stored direction or reversed (TopoJSON writes
 /// the reversed arc `k` as `!k`, that is `-k - 1`).
@@ -415,6 +416,23 @@ impl Builder {
 /// [`Error::InvalidOption`] for `eps` that is not a finite non-negative number
 /// ([`crate::check_snap`]).
 pub fn snap(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> Result<(), Error> {
+    snap_in(chains, eps, Frame::Plane)
+}
+
+/// [`snap`] in `frame`: in the geographic frame (longitude and latitude in
+/// degrees) `eps` is an angle of a great circle in degrees and distances
+/// are measured on the ground, a degree of longitude counting as its
+/// cosine of latitude (at the position snapped), so that a snap distance
+/// in metres is the same east-west as north-south at every latitude.
+///
+/// # Errors
+///
+/// As [`snap`].
+pub fn snap_in(
+    chains: &mut [(ChainKind, Vec<Coord>)],
+    eps: f64,
+    frame: Frame,
+) -> Result<(), Error> {
     crate::options::check_snap(eps)?;
     let mut reps: RTree<GeomWithData<[f64; 2], ()>> = RTree::new();
     let eps2 = eps * eps;
@@ -427,8 +445,20 @@ pub fn snap(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> Result<(), Erro
                 });
             }
             let p = [c.x, c.y];
-            match reps.nearest_neighbor(&p) {
-                Some(r) if dist2(r.geom(), &p) <= eps2 => {
+            let metric = Metric::at(frame, c.y);
+            let near = if frame == Frame::Plane {
+                reps.nearest_neighbor(&p)
+            } else {
+                // The nearest on the ground among those in the window.
+                reps.locate_in_envelope(&metric.window(p, eps))
+                    .min_by(|a, b| {
+                        metric
+                            .dist2(a.geom(), &p)
+                            .total_cmp(&metric.dist2(b.geom(), &p))
+                    })
+            };
+            match near {
+                Some(r) if metric.dist2(r.geom(), &p) <= eps2 => {
                     *c = Coord {
                         x: r.geom()[0],
                         y: r.geom()[1],
@@ -440,12 +470,44 @@ pub fn snap(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> Result<(), Erro
     }
     if eps > 0.0 {
         for _ in 0..SNAP_PASSES {
-            if !snap_to_edges(chains, eps) {
+            if !snap_to_edges(chains, eps, frame) {
                 break;
             }
         }
     }
     Ok(())
+}
+
+/// Squared distances for snapping: in the plane, or in the geographic frame
+/// with a degree of longitude counted as its cosine of latitude.
+#[derive(Clone, Copy)]
+struct Metric {
+    /// What a degree of longitude counts as (1 in the plane).
+    kx: f64,
+}
+
+impl Metric {
+    /// The metric about a position of latitude (or y) `y`.
+    fn at(frame: Frame, y: f64) -> Metric {
+        Metric {
+            kx: match frame {
+                Frame::Plane => 1.0,
+                // Within a hair of a pole a degree of longitude is next to
+                // nothing; the window stays bounded.
+                Frame::Geographic => libm::cos(y.to_radians()).abs().max(1e-9),
+            },
+        }
+    }
+
+    fn dist2(self, a: &[f64; 2], b: &[f64; 2]) -> f64 {
+        (self.kx * (a[0] - b[0])).powi(2) + (a[1] - b[1]).powi(2)
+    }
+
+    /// The box of positions within `eps` of `p`.
+    fn window(self, p: [f64; 2], eps: f64) -> rstar::AABB<[f64; 2]> {
+        let ex = eps / self.kx;
+        rstar::AABB::from_corners([p[0] - ex, p[1] - eps], [p[0] + ex, p[1] + eps])
+    }
 }
 
 /// Passes of [`snap_to_edges`] at most: each may make edges that come near
@@ -454,7 +516,7 @@ const SNAP_PASSES: usize = 4;
 
 /// One pass of putting positions into the edges of other chains within
 /// `eps`; false when there was none to put.
-fn snap_to_edges(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> bool {
+fn snap_to_edges(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64, frame: Frame) -> bool {
     type Seg = GeomWithData<rstar::primitives::Line<[f64; 2]>, (usize, usize)>;
     let segs: Vec<Seg> = chains
         .iter()
@@ -487,20 +549,23 @@ fn snap_to_edges(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> bool {
     // (chain, edge, where along it, position).
     let mut puts: Vec<(usize, usize, f64, Coord)> = Vec::new();
     for (p, held) in holders.values() {
-        let env = rstar::AABB::from_corners([p.x - eps, p.y - eps], [p.x + eps, p.y + eps]);
+        let metric = Metric::at(frame, p.y);
+        let env = metric.window([p.x, p.y], eps);
         for seg in tree.locate_in_envelope_intersecting(&env) {
             let (ci, si) = seg.data;
             if held.contains(&ci) {
                 continue;
             }
             let (a, b) = (seg.geom().from, seg.geom().to);
+            // The nearest point of the edge in the metric about p.
+            let k2 = metric.kx * metric.kx;
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let t = ((p.x - a[0]) * dx + (p.y - a[1]) * dy) / (dx * dx + dy * dy);
+            let t = (k2 * (p.x - a[0]) * dx + (p.y - a[1]) * dy) / (k2 * dx * dx + dy * dy);
             if !(t > 0.0 && t < 1.0) {
                 continue;
             }
             let near = [a[0] + t * dx, a[1] + t * dy];
-            if dist2(&near, &[p.x, p.y]) <= eps2 {
+            if metric.dist2(&near, &[p.x, p.y]) <= eps2 {
                 puts.push((ci, si, t, *p));
             }
         }
@@ -527,10 +592,6 @@ fn snap_to_edges(chains: &mut [(ChainKind, Vec<Coord>)], eps: f64) -> bool {
         k = end;
     }
     true
-}
-
-fn dist2(a: &[f64; 2], b: &[f64; 2]) -> f64 {
-    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
 }
 
 #[cfg(test)]

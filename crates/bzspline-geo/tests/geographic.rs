@@ -237,3 +237,54 @@ fn corners_are_kept_by_their_angle_on_the_ground() {
         );
     }
 }
+
+#[test]
+fn snapping_measures_on_the_ground() {
+    use bzspline_geo::{snap, snap_in, ChainKind};
+    use geo_types::Coord;
+    // Degrees of a great circle per metre (the mean Earth radius).
+    let deg = |m: f64| m / (6_371_008.8 * std::f64::consts::PI / 180.0);
+    let lat: f64 = 70.0;
+    let east = |m: f64| m / (6_371_008.8 * lat.to_radians().cos() * std::f64::consts::PI / 180.0);
+    let c = |x: f64, y: f64| Coord { x, y };
+    let ring = |pts: &[(f64, f64)]| {
+        let mut v: Vec<Coord> = pts.iter().map(|&(x, y)| c(x, y)).collect();
+        v.push(v[0]);
+        (ChainKind::Ring, v)
+    };
+    // A square west of the meridian 10 E and one east of it whose shared
+    // side was digitised twice: 2 m apart east-west at one corner, 4 m
+    // north-south at the other; and a vertex of the second 2 m east of the
+    // first's side, between its corners.
+    let (x, d) = (10.0, deg(1000.0));
+    let chains = vec![
+        ring(&[
+            (x - 2.0 * d, lat),
+            (x, lat),
+            (x, lat + d),
+            (x - 2.0 * d, lat + d),
+        ]),
+        ring(&[
+            (x + east(2.0), lat),
+            (x + 2.0 * d, lat),
+            (x + 2.0 * d, lat + d),
+            (x, lat + d + deg(4.0)),
+            (x + east(2.0), lat + 0.5 * d),
+        ]),
+    ];
+    let mut ground = chains.clone();
+    snap_in(&mut ground, deg(3.0), bzspline_geo::Frame::Geographic).unwrap();
+    let b = &ground[1].1;
+    assert_eq!(b[0], c(x, lat), "2 m east-west is within 3 m on the ground");
+    assert_eq!(b[3], c(x, lat + d + deg(4.0)), "4 m north-south is not");
+    // The first square's side gets the second's vertex 2 m east of it.
+    assert!(
+        ground[0].1.contains(&c(x + east(2.0), lat + 0.5 * d)),
+        "{:?}",
+        ground[0].1
+    );
+    // In degrees, 2 m east-west at 70 N is 5.8 m of latitude: not merged.
+    let mut plane = chains.clone();
+    snap(&mut plane, deg(3.0)).unwrap();
+    assert_eq!(plane[1].1[0], c(x + east(2.0), lat));
+}

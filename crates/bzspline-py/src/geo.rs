@@ -478,6 +478,7 @@ pub fn _smooth_ragged<'py>(
              -> Result<(Vec<Geometry<f64>>, Levels), Fault> {
                 let c = Coverage::builder(gs)
                     .snap(snap)
+                    .frame(opts.frame)
                     .nodes(nodes.clone())
                     .build()
                     .map_err(|e| Fault::option(e.to_string()))?;

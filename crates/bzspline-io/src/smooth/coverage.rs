@@ -98,6 +98,7 @@ pub fn smooth_document(
     let geoms = geometries(&mut doc, max_points, &place)?;
     let coverage = Coverage::builder(geoms)
         .snap(snap)
+        .frame(opts.frame)
         .build()
         .map_err(|e| anyhow!("{where_}: {e}"))?;
     let s = coverage

@@ -121,8 +121,8 @@ def smooth(obj, *, tolerance: Union[float, str, None] = None, coverage: bool = T
         within it), so that borders digitised twice with small differences
         become one. Within ``obj`` only: snap a whole coverage before
         splitting it into parts. A number or a distance with a unit, as
-        ``tolerance`` (on longitude and latitude ``"0.5m"`` is the angle of
-        half a metre of a great circle).
+        ``tolerance`` (on longitude and latitude ``"0.5m"`` is half a metre
+        on the ground, east-west as north-south).
     crs : pyproj.CRS or str, optional
         The coordinate system, for distances with a unit: a ``pyproj.CRS``,
         ``"EPSG:4326"``, ``"OGC:CRS84"`` or WKT. By default a GeoSeries'
