@@ -176,3 +176,86 @@ fn world_countries_keep_their_borders() {
         "countries.geojson",
     );
 }
+
+/// The edges of a polygon's rings that span more than 180 degrees of
+/// longitude (a ring across the antimeridian written from one side to the
+/// other), ring by ring.
+fn wraps(g: &Geometry<f64>) -> Vec<usize> {
+    let polygons: Vec<&geo_types::Polygon<f64>> = match g {
+        Geometry::Polygon(p) => vec![p],
+        Geometry::MultiPolygon(m) => m.0.iter().collect(),
+        _ => vec![],
+    };
+    polygons
+        .iter()
+        .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+        .map(|r| {
+            r.lines()
+                .filter(|l| (l.end.x - l.start.x).abs() > 180.0)
+                .count()
+        })
+        .collect()
+}
+
+#[test]
+#[cfg_attr(
+    not(atlas),
+    ignore = "needs the public coverages: BZSPLINE_ATLAS=$(bash bench/atlas.sh)"
+)]
+fn world_countries_in_metres_stay_whole_across_the_antimeridian() {
+    use geo::BoundingRect;
+    let dir = atlas();
+    let source = dir.join("countries.geojson");
+    let input = geometries(&source);
+    let tmp = tempfile::tempdir().unwrap();
+    let out_path = tmp.path().join("countries-5km.geojson");
+    let stats = smooth(&source, &out_path, &["--tolerance", "5km"]);
+    assert!(stats.contains("tolerance 5000 m"), "{stats}");
+    let output = geometries(&out_path);
+    assert_eq!(output.len(), input.len());
+    common::valid_stays_valid(&input, &output).unwrap_or_else(|e| panic!("{e}"));
+    let pairs = common::neighbours(&input);
+    for &(a, b) in &pairs {
+        common::share_segment(&output[a], &output[b])
+            .unwrap_or_else(|e| panic!("features {a} and {b} lost their border: {e}"));
+    }
+    // No ring wraps round the world where it did not: an edge across the
+    // antimeridian is smoothed the short way and written as the input
+    // writes it, so every ring spans it as often as before.
+    for (i, (a, b)) in input.iter().zip(&output).enumerate() {
+        assert_eq!(wraps(a), wraps(b), "feature {i}");
+    }
+    // Fiji, Russia and Antarctica (rings across the antimeridian and round
+    // the pole) keep every polygon, each where it was: its bounding box
+    // within a tenth of a degree.
+    let names: Vec<String> = {
+        let text = std::fs::read_to_string(&source).unwrap();
+        let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+        doc["features"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["properties"]["name"].as_str().unwrap_or("").to_owned())
+            .collect()
+    };
+    for name in ["Fiji", "Russia", "Antarctica"] {
+        let i = names.iter().position(|n| n == name).expect(name);
+        let (Geometry::MultiPolygon(a), Geometry::MultiPolygon(b)) = (&input[i], &output[i]) else {
+            panic!("{name}: not a MultiPolygon");
+        };
+        assert_eq!(a.0.len(), b.0.len(), "{name}");
+        for (k, (p, q)) in a.0.iter().zip(&b.0).enumerate() {
+            let (p, q) = (p.bounding_rect().unwrap(), q.bounding_rect().unwrap());
+            let off = [
+                p.min().x - q.min().x,
+                p.min().y - q.min().y,
+                p.max().x - q.max().x,
+                p.max().y - q.max().y,
+            ];
+            assert!(
+                off.iter().all(|d| d.abs() < 0.1),
+                "{name} polygon {k}: {p:?} -> {q:?}"
+            );
+        }
+    }
+}
