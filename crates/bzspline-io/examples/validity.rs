@@ -1,13 +1,15 @@
 //! Counts the polygons a smoothing made invalid: feature by feature, those
 //! valid (OGC rules, geo's `Validation`) in the first GeoJSON document and
-//! not in the second, which must hold the same features in the same order.
+//! not in the second, which must hold the same features in the same order;
+//! and the borders it split: pairs of features that share an edge before
+//! and none after (`bzspline-testing`'s `neighbours` and `share_segment`).
 //!
 //! ```text
 //! cargo run --release -p bzspline-io --example validity -- BEFORE.geojson AFTER.geojson
 //! ```
 //!
 //! Prints one JSON object: `features`, `valid_before`, `made_invalid` and the
-//! first few indices made invalid.
+//! first few indices made invalid, `borders` and `borders_split`.
 
 use std::process::ExitCode;
 
@@ -58,10 +60,27 @@ fn main() -> ExitCode {
         }
     }
     let first: Vec<usize> = broken.iter().copied().take(10).collect();
+    // Missing geometries as empty collections, for the border check.
+    let some = |v: &[Option<Geometry<f64>>]| -> Vec<Geometry<f64>> {
+        v.iter()
+            .map(|g| {
+                g.clone().unwrap_or_else(|| {
+                    Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]))
+                })
+            })
+            .collect()
+    };
+    let (sa, sb) = (some(&a), some(&b));
+    let pairs = bzspline_testing::neighbours(&sa);
+    let split = pairs
+        .iter()
+        .filter(|&&(i, j)| bzspline_testing::share_segment(&sb[i], &sb[j]).is_err())
+        .count();
     println!(
-        "{{\"features\": {}, \"valid_before\": {valid}, \"made_invalid\": {}, \"first\": {first:?}}}",
+        "{{\"features\": {}, \"valid_before\": {valid}, \"made_invalid\": {}, \"first\": {first:?}, \"borders\": {}, \"borders_split\": {split}}}",
         a.len(),
-        broken.len()
+        broken.len(),
+        pairs.len()
     );
     ExitCode::SUCCESS
 }
