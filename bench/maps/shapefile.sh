@@ -6,8 +6,6 @@
 # sharing an edge before and none after). The Shapefiles are mapshaper's
 # conversion of bench/atlas.sh's GeoJSON, and both outputs are converted back to
 # GeoJSON by mapshaper for the judge, so neither tool's writer favours it.
-# (US counties are left out: their Shapefile holds a record without geometry,
-# which bzspline's Shapefile writer cannot write yet.)
 #
 #   cargo build --release -p bzspline-cli && cargo build --release -p bzspline-io --example validity
 #   (cd bench/maps && npm ci)
@@ -48,5 +46,6 @@ while read -r name file distance; do
     echo "| | | bzspline \`smooth --tolerance $distance\` | $bz_s s | $bz_mb MB | $(field bz made_invalid) | $(field bz borders_split) of $(field bz borders) |"
 done <<'CASES'
 states states.geojson 20km
+counties counties.geojson 5km
 countries countries.geojson 20km
 CASES

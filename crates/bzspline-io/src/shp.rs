@@ -467,12 +467,14 @@ pub type Files = Vec<(&'static str, Vec<u8>)>;
 /// `.prj` of WGS 84, GeoJSON's coordinates. Names longer than the 10 bytes
 /// a `.dbf` allows are cut (and numbered where two would meet, as GDAL
 /// does); text fields without a width are as wide as their longest value. Every feature must be of one
-/// kind (points, multipoints, lines or polygons), all with z or none.
+/// kind (points, multipoints, lines or polygons), all with z or none; a
+/// feature without geometry is a null shape record.
 ///
 /// # Errors
 ///
-/// A feature of another kind, without geometry, a property that its field
-/// cannot hold (naming the feature and field), no feature at all.
+/// A feature of another kind, a property that its field cannot hold
+/// (naming the feature and field), no feature at all or none with a
+/// geometry.
 pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
     let features = fc
         .get("features")
@@ -513,37 +515,97 @@ pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
         Cursor::new(Vec::new()),
     );
     {
-        let table = builder.build_with_dest(&mut dbf);
-        let shapes = shapefile::ShapeWriter::with_shx(&mut shp, &mut shx);
-        let mut writer = shapefile::Writer::new(shapes, table);
+        let mut table = builder.build_with_dest(&mut dbf);
+        let mut shapes = shapefile::ShapeWriter::with_shx(&mut shp, &mut shx);
         for (i, f) in features.iter().enumerate() {
             let record =
                 record(&f["properties"], &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
+            table
+                .write_record(&record)
+                .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
             let g = &f["geometry"];
-            let w = &mut writer;
+            if g.is_null() {
+                continue; // its null shape is spliced in below
+            }
+            let w = &mut shapes;
             match kind {
-                Kind::Points(false) => put(w, point(g), &record),
-                Kind::Points(true) => put(w, point_z(g), &record),
-                Kind::MultiPoints(false) => put(w, points(g, xy_of).map(Multipoint::new), &record),
-                Kind::MultiPoints(true) => put(w, points(g, xyz_of).map(MultipointZ::new), &record),
-                Kind::Lines(false) => put(w, parts(g, xy_of).map(Polyline::with_parts), &record),
-                Kind::Lines(true) => put(w, parts(g, xyz_of).map(PolylineZ::with_parts), &record),
-                Kind::Polygons(false) => put(w, rings(g, xy_of).map(Polygon::with_rings), &record),
-                Kind::Polygons(true) => put(w, rings(g, xyz_of).map(PolygonZ::with_rings), &record),
+                Kind::Points(false) => put(w, point(g)),
+                Kind::Points(true) => put(w, point_z(g)),
+                Kind::MultiPoints(false) => put(w, points(g, xy_of).map(Multipoint::new)),
+                Kind::MultiPoints(true) => put(w, points(g, xyz_of).map(MultipointZ::new)),
+                Kind::Lines(false) => put(w, parts(g, xy_of).map(Polyline::with_parts)),
+                Kind::Lines(true) => put(w, parts(g, xyz_of).map(PolylineZ::with_parts)),
+                Kind::Polygons(false) => put(w, rings(g, xy_of).map(Polygon::with_rings)),
+                Kind::Polygons(true) => put(w, rings(g, xyz_of).map(PolygonZ::with_rings)),
             }
             .map_err(|e| anyhow!("feature {i}: {e}"))?;
         }
     }
-    let mut files: Files = vec![
-        ("shp", shp.into_inner()),
-        ("shx", shx.into_inner()),
-        ("dbf", dbf.into_inner()),
-    ];
+    let nulls: Vec<usize> = features
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f["geometry"].is_null())
+        .map(|(i, _)| i)
+        .collect();
+    let (shp, shx) = with_null_shapes(&shp.into_inner(), &nulls, features.len())?;
+    let mut files: Files = vec![("shp", shp), ("shx", shx), ("dbf", dbf.into_inner())];
     if let Some(p) = prj {
         files.push(("prj", p.into_bytes()));
     }
     files.push(("cpg", b"UTF-8".to_vec()));
     Ok(files)
+}
+
+/// The `.shp` and `.shx` of `shp` (records of the features with a
+/// geometry, numbered from 1) with a null shape record (shape type 0) at
+/// each of the features `nulls` (increasing) of `total`: records renumbered,
+/// offsets and file lengths (in 16-bit words) written again; the bounding
+/// box is the shapes'.
+fn with_null_shapes(shp: &[u8], nulls: &[usize], total: usize) -> Result<(Vec<u8>, Vec<u8>)> {
+    const HEADER: usize = 100;
+    let word = |b: &[u8], at: usize| -> Result<usize> {
+        let v: [u8; 4] = b
+            .get(at..at + 4)
+            .and_then(|s| s.try_into().ok())
+            .ok_or_else(|| anyhow!("a Shapefile record was cut short"))?;
+        usize::try_from(i32::from_be_bytes(v)).map_err(|_| anyhow!("a negative record length"))
+    };
+    let put = |out: &mut Vec<u8>, v: usize| -> Result<()> {
+        let v = i32::try_from(v).map_err(|_| anyhow!("the Shapefile exceeds 2 GB"))?;
+        out.extend_from_slice(&v.to_be_bytes());
+        Ok(())
+    };
+    let mut out = shp.get(..HEADER).unwrap_or_default().to_vec();
+    let mut index = out.clone();
+    let (mut at, mut nulls) = (HEADER, nulls.iter().peekable());
+    for number in 1..=total {
+        let start = out.len();
+        if nulls.peek() == Some(&&(number - 1)) {
+            nulls.next();
+            put(&mut out, number)?;
+            put(&mut out, 2)?;
+            out.extend_from_slice(&0i32.to_le_bytes());
+        } else {
+            let words = word(shp, at + 4)?;
+            put(&mut out, number)?;
+            put(&mut out, words)?;
+            let body = shp
+                .get(at + 8..at + 8 + 2 * words)
+                .ok_or_else(|| anyhow!("a Shapefile record was cut short"))?;
+            out.extend_from_slice(body);
+            at += 8 + 2 * words;
+        }
+        put(&mut index, start / 2)?;
+        put(&mut index, (out.len() - start - 8) / 2)?;
+    }
+    for file in [&mut out, &mut index] {
+        let words =
+            i32::try_from(file.len() / 2).map_err(|_| anyhow!("the Shapefile exceeds 2 GB"))?;
+        if let Some(slot) = file.get_mut(24..28) {
+            slot.copy_from_slice(&words.to_be_bytes());
+        }
+    }
+    Ok((out, index))
 }
 
 /// Writes `files` beside each other as `path` (the `.shp`) and its
@@ -597,8 +659,11 @@ fn layer_kind(geoms: &[&Value]) -> Result<Kind> {
     let mut kind: Option<(usize, &str)> = None;
     let mut z = false;
     for (i, g) in geoms.iter().enumerate() {
+        if g.is_null() {
+            continue; // a null shape record
+        }
         let Some(t) = g["type"].as_str() else {
-            bail!("feature {i} has no geometry: a Shapefile of this writer holds a geometry for every record");
+            bail!("feature {i}: its geometry has no type");
         };
         let family = match t {
             "Point" => "points",
@@ -615,6 +680,9 @@ fn layer_kind(geoms: &[&Value]) -> Result<Kind> {
             _ => {}
         }
         z |= has_z(&g["coordinates"]);
+    }
+    if kind.is_none() {
+        bail!("no feature has a geometry: a Shapefile needs one to say what it holds");
     }
     Ok(match kind.map(|k| k.1) {
         Some("points") => Kind::Points(z),
@@ -674,14 +742,13 @@ fn two<T>(v: Vec<T>) -> Result<Vec<T>> {
     Ok(v)
 }
 
-/// Writes one feature's shape (or its conversion's error) and record.
+/// Writes one feature's shape (or its conversion's error).
 fn put<S: shapefile::record::EsriShape, W: std::io::Write + std::io::Seek>(
-    writer: &mut shapefile::Writer<W>,
+    writer: &mut shapefile::ShapeWriter<W>,
     shape: Result<S>,
-    record: &dbase::Record,
 ) -> Result<()> {
     writer
-        .write_shape_and_record(&shape?, record)
+        .write_shape(&shape?)
         .map_err(|e| anyhow!("{}", one_line(&e)))
 }
 
@@ -903,6 +970,37 @@ mod tests {
     fn back(files: &Files) -> Layer {
         let get = |ext: &str| &files.iter().find(|(e, _)| *e == ext).unwrap().1;
         read_parts("t.shp", get("shp"), get("shx"), get("dbf"), None).unwrap()
+    }
+
+    #[test]
+    fn features_without_geometry_are_null_shape_records() {
+        let line =
+            |x: f64| json!({"type": "LineString", "coordinates": [[x, 0.0], [x + 1.0, 2.0]]});
+        for nulls in [vec![0], vec![1], vec![2], vec![0, 2], vec![1, 2]] {
+            let features: Vec<Value> = (0..3)
+                .map(|i| {
+                    let g = if nulls.contains(&i) {
+                        Value::Null
+                    } else {
+                        line(i as f64)
+                    };
+                    json!({"type": "Feature", "properties": {"n": i}, "geometry": g})
+                })
+                .collect();
+            let input = fc(Value::Array(features));
+            let files = write(&input, None).unwrap();
+            assert_eq!(back(&files).features, input, "nulls at {nulls:?}");
+            // The .shx indexes every record; file lengths in 16-bit words.
+            let (shp, shx) = (&files[0].1, &files[1].1);
+            assert_eq!(shx.len(), 100 + 8 * 3);
+            let words = |b: &[u8]| i32::from_be_bytes(b[24..28].try_into().unwrap()) as usize;
+            assert_eq!((words(shp), words(shx)), (shp.len() / 2, shx.len() / 2));
+        }
+        let none = fc(json!([{"type": "Feature", "properties": {}, "geometry": null}]));
+        assert!(write(&none, None)
+            .unwrap_err()
+            .to_string()
+            .contains("no feature has a geometry"));
     }
 
     #[test]
