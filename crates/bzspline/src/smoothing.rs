@@ -825,7 +825,7 @@ impl crate::Spline {
         smoothing_spline(x, y, weights, alphas, smoothing, false)
     }
 
-    /// [`Spline::smoothing`] made robust against outliers (`docs/method.md`
+    /// [`Spline::smoothing`](crate::Spline::smoothing) made robust against outliers (`docs/method.md`
     /// §14): the fit is weighted again by its residuals with Tukey's
     /// biweight, `(1 - u^2)^2` for `u = |r| / (6 m)` below 1 and 0 beyond,
     /// `m` the median absolute residual (residuals standardised by the given
@@ -836,7 +836,7 @@ impl crate::Spline {
     ///
     /// # Errors
     ///
-    /// As [`Spline::smoothing`], and [`Error::TooFewPoints`] for fewer than
+    /// As [`Spline::smoothing`](crate::Spline::smoothing), and [`Error::TooFewPoints`] for fewer than
     /// [`ROBUST_MIN_POINTS`] points of positive weight.
     ///
     /// # Examples

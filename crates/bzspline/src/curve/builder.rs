@@ -260,17 +260,14 @@ impl<'a> CurveBuilder<'a> {
             // One weight a point given: a dropped one has its owner's.
             let mut all = Vec::with_capacity(n_in);
             let mut drops = data.dropped.iter().peekable();
-            let mut values = kept.iter();
+            let mut next = 0; // the kept points so far
             for i in 0..n_in {
                 if drops.peek() == Some(&&i) {
                     drops.next();
-                    let at = owner(
-                        i,
-                        all.len() - data.dropped.iter().filter(|&&j| j < i).count(),
-                    );
-                    all.push(kept.get(at).copied().unwrap_or(1.0));
+                    all.push(kept.get(owner(i, next)).copied().unwrap_or(1.0));
                 } else {
-                    all.push(values.next().copied().unwrap_or(1.0));
+                    all.push(kept.get(next).copied().unwrap_or(1.0));
+                    next += 1;
                 }
             }
             (fit, Some(all))
