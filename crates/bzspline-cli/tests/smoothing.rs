@@ -32,6 +32,16 @@ fn ok_stdin(args: &[&str], stdin: &str) -> String {
     o.stdout
 }
 
+/// A curve fit's control points (`values`), flat.
+fn control_points(v: &Value) -> Vec<f64> {
+    v["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(numbers)
+        .collect()
+}
+
 fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()
         .unwrap()
@@ -225,12 +235,7 @@ fn curves_smooth_on_their_parameters() {
         .smoothing(Smoothing::Gcv)
         .build_smoothed()
         .unwrap();
-    let got: Vec<f64> = v["values"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(numbers)
-        .collect();
+    let got = control_points(&v);
     assert_eq!(got, c.fit.points());
     assert_eq!(v["lambda"].as_f64(), Some(c.lambda));
     // A noisy closed contour, smoothed round its loop.
@@ -249,12 +254,7 @@ fn curves_smooth_on_their_parameters() {
         .smoothing(Smoothing::Gcv)
         .build_smoothed()
         .unwrap();
-    let got: Vec<f64> = v["values"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(numbers)
-        .collect();
+    let got = control_points(&v);
     assert_eq!(got, c.fit.points());
     assert_eq!(v["closed"].as_bool(), Some(true));
     assert_eq!(v["dof"].as_f64(), Some(c.dof));

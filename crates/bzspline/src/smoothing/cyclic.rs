@@ -10,8 +10,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::system::{
-    apply, apply_t, continuity_row, invert3, link_mul, mul, mul_t, penalty_forms, t_mul, Row,
-    System, M3,
+    apply, apply_t, continuity_row, invert3, link_mul, mul, mul_t, penalty_forms, pivot, t_mul,
+    Row, System, M3,
 };
 use crate::method::alpha_terms;
 
@@ -192,16 +192,10 @@ impl System for CyclicFactored<'_> {
         // The chain: S_1 = A_1, S_k = A_k - B_k S_{k-1}^-1 B_k^T.
         let mut prev: Option<M3> = None;
         for k in 1..n {
-            let mut s = g.own(k, lambda);
-            if let Some(p) = prev {
-                let b = g.link(k, lambda);
-                let lb = mul_t(&link_mul(&b, &p), &b);
-                for i in 0..3 {
-                    for j in 0..3 {
-                        s[i][j] -= lb[i][j];
-                    }
-                }
-            }
+            let s = match prev {
+                Some(p) => pivot(g.own(k, lambda), &g.link(k, lambda), &p),
+                None => g.own(k, lambda),
+            };
             let Some(si) = invert3(&s) else {
                 return false;
             };

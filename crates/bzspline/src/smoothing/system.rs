@@ -82,6 +82,19 @@ pub(super) fn link_mul(b: &M3, p: &M3) -> M3 {
     ]
 }
 
+/// The pivot block `A - B P B^T` of block elimination: `own` the diagonal
+/// block `A`, `link` the block `B` below the previous pivot, `prev` that
+/// pivot's inverse `P`.
+pub(super) fn pivot(mut own: M3, link: &M3, prev: &M3) -> M3 {
+    let lb = mul_t(&link_mul(link, prev), link);
+    for i in 0..3 {
+        for j in 0..3 {
+            own[i][j] -= lb[i][j];
+        }
+    }
+    own
+}
+
 /// Inverts the `n x n` row-major matrix `a` into `inv` by Gauss-Jordan with
 /// partial pivoting (destroying `a`); `false` when a pivot vanishes.
 fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
@@ -416,15 +429,7 @@ impl<'a> Factored<'a> {
         let hi = &self.head_inv;
         let mut prev: M3 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| hi[(tail + i) * sz + tail + j]));
         for k in grid.head + 1..n {
-            let b = grid.link(k, lambda);
-            let l = link_mul(&b, &prev);
-            let lb = mul_t(&l, &b);
-            let mut s = grid.own(k, lambda);
-            for i in 0..3 {
-                for j in 0..3 {
-                    s[i][j] -= lb[i][j];
-                }
-            }
+            let s = pivot(grid.own(k, lambda), &grid.link(k, lambda), &prev);
             let Some(si) = invert3(&s) else {
                 return false;
             };
