@@ -6,6 +6,8 @@
 //! - [`sweep`]: the fused construction sweeps, which validate nothing and
 //!   allocate nothing (the caller has validated the input and owns every
 //!   buffer);
+//! - [`chunks`]: the system cut into overlapping chunks, solved one after
+//!   the other or side by side, for large inputs;
 //! - [`batch`]: the batch evaluator of a spline's derivatives at many queries;
 //! - [`search`]: the summary of the knots and its index, and the searches of
 //!   one query and of a block of them.
@@ -13,6 +15,7 @@
 //! Nothing here knows the types above it: they hand in slices.
 
 pub(crate) mod batch;
+pub(crate) mod chunks;
 pub(crate) mod search;
 pub(crate) mod sweep;
 

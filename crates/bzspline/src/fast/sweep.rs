@@ -38,6 +38,7 @@
 //! else holds the rows (no scratch vector). The alpha inverses of
 //! per-interval alphas are formed again in the substitution.
 
+use super::chunks::{self, Whole};
 use super::Piece;
 use crate::method::alpha_terms;
 
@@ -101,10 +102,6 @@ fn piece(f0: f64, f1: f64, d0: f64, d1: f64, pt: [f64; 6]) -> [f64; 4] {
 /// Leg `k` of a sweep's output: its `D` pieces, one per coordinate.
 type Leg<const D: usize> = [Piece; D];
 
-/// The slots of rows two at a time (`second` and `first` of
-/// [`Sweep::run`], in pairs), as [`Aside`] keeps the rows in them.
-type SlotPairs<'a, const D: usize> = (&'a mut [[[f64; D]; 2]], &'a mut [[[f64; D]; 2]]);
-
 /// Pairs of legs the substitution appends at a time.
 const BLOCK: usize = 32;
 
@@ -151,6 +148,27 @@ pub(crate) fn build(
         out.truncate(n);
         out.resize(n, 0.0);
     }
+    let (kn, vs) = (
+        knots_out.as_chunks_mut::<1>().0,
+        values_out.as_chunks_mut::<1>().0,
+    );
+    let plan = chunks::plan(knots, alphas, uniform, wscale);
+    if !plan.is_empty() {
+        // Every piece is written by one chunk: no pass to clear them when
+        // the size is unchanged.
+        coefs.truncate(n - 1);
+        coefs.resize(n - 1, Piece::default());
+        let whole = Whole {
+            knots,
+            values: values.as_chunks().0,
+            inv_scale: [inv_scale],
+            alphas,
+            uniform,
+            ws: wscale,
+        };
+        chunks::run::<1, true>(&plan, whole, coefs, kn, vs);
+        return;
+    }
     let input = Sweep::new(
         knots,
         values.as_chunks().0,
@@ -158,10 +176,6 @@ pub(crate) fn build(
         alphas,
         uniform,
         wscale,
-    );
-    let (kn, vs) = (
-        knots_out.as_chunks_mut::<1>().0,
-        values_out.as_chunks_mut::<1>().0,
     );
     if uniform.is_some() {
         input.run::<false, true>(coefs, kn, vs);
@@ -210,6 +224,21 @@ pub(crate) fn build_open_curve<const D: usize>(
         dev.as_chunks_mut::<D>().0,
         points_out.as_chunks_mut::<D>().0,
     );
+    let plan = chunks::plan(knots, alphas, uniform, wscale);
+    if !plan.is_empty() {
+        coefs.truncate((n - 1) * D);
+        coefs.resize((n - 1) * D, Piece::default());
+        let whole = Whole {
+            knots,
+            values,
+            inv_scale,
+            alphas,
+            uniform,
+            ws: wscale,
+        };
+        chunks::run::<D, false>(&plan, whole, coefs, dev, pts);
+        return;
+    }
     let input = Sweep::new(knots, values, inv_scale, alphas, uniform, wscale);
     if uniform.is_some() {
         input.run::<false, false>(coefs, dev, pts);
@@ -226,17 +255,6 @@ fn inverses(a: f64) -> (f64, f64) {
     (u * iau, a * iau)
 }
 
-/// [`inverses`] of `a` when the alphas differ (`PER`), for the sweeps; not
-/// formed (and not read) otherwise.
-#[inline(always)]
-fn inv_of<const PER: bool>(a: f64) -> (f64, f64) {
-    if PER {
-        inverses(a)
-    } else {
-        (0.0, 0.0)
-    }
-}
-
 /// `a - b` coordinate by coordinate.
 #[inline(always)]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
@@ -245,7 +263,7 @@ fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
 
 /// The input of the fused sweeps: `D` right-hand sides (the coordinates of
 /// the points, `values[k][c] * inv_scale[c]`) on one matrix.
-struct Sweep<'a, const D: usize> {
+pub(super) struct Sweep<'a, const D: usize> {
     knots: &'a [f64],
     values: &'a [[f64; D]],
     inv_scale: [f64; D],
@@ -261,7 +279,7 @@ struct Sweep<'a, const D: usize> {
 impl<'a, const D: usize> Sweep<'a, D> {
     /// The input, with the alpha terms of `uniform` (the one alpha of every
     /// interval, when there is one) formed once.
-    fn new(
+    pub(super) fn new(
         knots: &'a [f64],
         values: &'a [[f64; D]],
         inv_scale: [f64; D],
@@ -286,18 +304,18 @@ impl<'a, const D: usize> Sweep<'a, D> {
         core::array::from_fn(|c| v[c] * self.inv_scale[c])
     }
 
-    /// The sweeps of [`build`] and [`build_open_curve`]; `PER` says whether the
-    /// alphas differ (their terms are then formed per interval, else
-    /// `uniform` serves every interval). The elimination, from the last row
-    /// up, keeps row `k` in `second[k]` and `first[k]` (`2 D` slots for
-    /// `D + 1` numbers; `n` of each); the substitution, from the first row
-    /// down, overwrites them with `values[k]` (in `first`) and the deviation
-    /// (in `second`), or with `KNOT` the knot (in `second[k][0]`, for
-    /// `D = 1`): a spline's copies of its knots and values, a curve's
-    /// deviations and copy of its points. It appends the legs to `coefs`
-    /// (cleared first) in order, each once.
+    /// The sweeps of [`build`] and [`build_open_curve`] over the whole
+    /// system; `PER` says whether the alphas differ (their terms are then
+    /// formed per interval, else `uniform` serves every interval). The
+    /// elimination, from the last row up, keeps row `k` in `second[k]` and
+    /// `first[k]` (`2 D` slots for `D + 1` numbers; `n` of each); the
+    /// substitution, from the first row down, overwrites them with
+    /// `values[k]` (in `first`) and the deviation (in `second`), or with
+    /// `KNOT` the knot (in `second[k][0]`, for `D = 1`): a spline's copies of
+    /// its knots and values, a curve's deviations and copy of its points. It
+    /// appends the legs to `coefs` (cleared first) in order, each once.
     #[inline(always)]
-    fn run<const PER: bool, const KNOT: bool>(
+    pub(super) fn run<const PER: bool, const KNOT: bool>(
         &self,
         coefs: &mut Vec<Piece>,
         second: &mut [[f64; D]],
@@ -311,60 +329,59 @@ impl<'a, const D: usize> Sweep<'a, D> {
         let (Some(rows_d), Some(rows_p)) = (dev.get_mut(1..m), pts.get_mut(1..m)) else {
             return;
         };
-        {
-            // Rows n - 2 and n - 3 first: the pairs from the end, each in
-            // the order of the sweep.
-            let (ld, pd) = rows_d.as_rchunks_mut::<2>();
-            let (lp, pp) = rows_p.as_rchunks_mut::<2>();
-            let last = Aside::first(ld, lp);
-            self.eliminate::<PER>((pd, pp), last);
-        }
+        let Some(mut elim) = self.top::<PER>() else {
+            return;
+        };
+        self.eliminate::<PER>(&mut elim, 1, (&mut *rows_d, &mut *rows_p));
         coefs.clear();
         coefs.reserve_exact(m * D);
-        let (pd, ld) = rows_d.as_chunks_mut::<2>();
-        let (pp, lp) = rows_p.as_chunks_mut::<2>();
-        let last = Aside::first(ld, lp);
-        self.substitute::<PER, KNOT>((pd, pp), last, coefs);
-        // The end points: their copies, and deviation zero (or the knot).
+        let mut sub = self.bottom();
+        self.substitute::<PER, KNOT>(&mut sub, 1, (rows_d, rows_p), coefs);
+        self.tail::<PER>(&sub, coefs);
         for i in [0, m] {
-            if let (Some(d), Some(p), Some(v), Some(&k)) = (
-                dev.get_mut(i),
-                pts.get_mut(i),
-                self.values.get(i),
-                self.knots.get(i),
-            ) {
-                *p = *v;
-                if KNOT {
-                    d[0] = k;
-                } else {
-                    *d = [0.0; D];
-                }
+            if let (Some(d), Some(p)) = (dev.get_mut(i), pts.get_mut(i)) {
+                self.end_point::<KNOT>(i, d, p);
             }
         }
     }
 
-    /// The elimination over rows `k = n - 2` down to `1`, two at a time
-    /// (`pairs`, in the sweep's order), then the last, row 1, when their
-    /// number is odd (`last`), kept in their slots: `l_k / piv_k` and the
-    /// swept right-hand sides.
-    ///
-    /// The code reads as a left-to-right sweep of the mirrored system (knots
-    /// in reverse, each width the same, every alpha's terms `A', B1', B2', C'`
-    /// read as `C', B2', B1', A'`), where `l` and `u` trade places and `r_k`
-    /// is unchanged: its `l`, `u`, `df` and `h1`/`hl` are the mirrored ones.
+    /// The copies at end point `i` (deviation zero, or the knot) in its slots.
     #[inline(always)]
-    fn eliminate<'s, const PER: bool>(&self, pairs: SlotPairs<'_, D>, last: Option<Aside<'s, D>>) {
-        let (knots, values, alphas) = (self.knots, self.values, self.alphas);
-        let ws = self.ws;
-        let m = knots.len().saturating_sub(1);
-        let terms = |a: f64, (ia, iu): (f64, f64)| {
-            let [al, b1, b2, cr] = if PER {
-                terms_from_inverses(a, ia, iu)
+    pub(super) fn end_point<const KNOT: bool>(
+        &self,
+        i: usize,
+        second: &mut [f64; D],
+        first: &mut [f64; D],
+    ) {
+        if let (Some(v), Some(&k)) = (self.values.get(i), self.knots.get(i)) {
+            *first = *v;
+            if KNOT {
+                second[0] = k;
             } else {
-                self.uniform
-            };
-            [cr, b2, b1, al]
+                *second = [0.0; D];
+            }
+        }
+    }
+
+    /// The mirrored terms of alpha `a` for the elimination (see
+    /// [`Sweep::eliminate`]).
+    #[inline(always)]
+    fn mirrored<const PER: bool>(&self, a: f64) -> [f64; 4] {
+        let [al, b1, b2, cr] = if PER {
+            let (ia, iu) = inverses(a);
+            terms_from_inverses(a, ia, iu)
+        } else {
+            self.uniform
         };
+        [cr, b2, b1, al]
+    }
+
+    /// The elimination's state before its first row, `n - 2`: the last
+    /// deviation is zero. `None` for fewer than two knots.
+    #[inline(always)]
+    pub(super) fn top<const PER: bool>(&self) -> Option<Elim<D>> {
+        let (knots, values, alphas) = (self.knots, self.values, self.alphas);
+        let m = knots.len().checked_sub(1)?;
         let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
             knots.get(m),
             knots.get(m.wrapping_sub(1)),
@@ -372,38 +389,82 @@ impl<'a, const D: usize> Sweep<'a, D> {
             values.get(m.wrapping_sub(1)),
             alphas.get(m.wrapping_sub(1)),
         ) else {
+            return None;
+        };
+        let fc = self.scaled(v1);
+        Some(Elim {
+            p_prev2: 1.0,
+            p_prev: 1.0,
+            y_prev: [0.0; D],
+            u_prev: 0.0,
+            kc: k1,
+            hl: (k0 - k1) * self.ws,
+            fc,
+            df_l: sub(fc, self.scaled(v0)),
+            terms_l: self.mirrored::<PER>(a0),
+            since: 0,
+        })
+    }
+
+    /// The elimination over rows `r0 + c - 1` down to `r0` (`c` the slots'
+    /// length, `r0 >= 1`), kept in their slots (`rows.0[i]`, `rows.1[i]` for
+    /// row `r0 + i`): `l_k / piv_k` and the swept right-hand sides, two rows
+    /// at a time, then row `r0` alone when `c` is odd. `st` carries the
+    /// state from the rows below (higher `k`) to the rows above.
+    ///
+    /// The code reads as a left-to-right sweep of the mirrored system (knots
+    /// in reverse, each width the same, every alpha's terms `A', B1', B2', C'`
+    /// read as `C', B2', B1', A'`), where `l` and `u` trade places and `r_k`
+    /// is unchanged: its `l`, `u`, `df` and `h1`/`hl` are the mirrored ones.
+    #[inline(always)]
+    pub(super) fn eliminate<const PER: bool>(
+        &self,
+        st: &mut Elim<D>,
+        r0: usize,
+        rows: (&mut [[f64; D]], &mut [[f64; D]]),
+    ) {
+        let (knots, values, alphas) = (self.knots, self.values, self.alphas);
+        let ws = self.ws;
+        let c = rows.0.len().min(rows.1.len());
+        // Row k reads knot, value and alpha k - 1 (and, in a pair, k - 2).
+        let (Some(kn), Some(vs), Some(al), Some(rd), Some(rp)) = (
+            knots.get(r0.wrapping_sub(1)..r0.wrapping_sub(1).wrapping_add(c)),
+            values.get(r0.wrapping_sub(1)..r0.wrapping_sub(1).wrapping_add(c)),
+            alphas.get(r0.wrapping_sub(1)..r0.wrapping_sub(1).wrapping_add(c)),
+            rows.0.get_mut(..c),
+            rows.1.get_mut(..c),
+        ) else {
             return;
         };
-        let v0 = self.scaled(v0);
-
-        let mut p_prev2 = 1.0; // P_{k+2}
-        let mut p_prev = 1.0; // P_{k+1}
-        let mut y_prev = [0.0; D];
-        let mut u_prev = 0.0;
-        let mut kc = k1; // knots[k]
-        let mut hl = (k0 - k1) * ws;
-        let mut fc = self.scaled(v1);
-        let mut df_l = sub(fc, v0); // F_k - F_{k+1}, scaled
-        let mut terms_l = terms(a0, inv_of::<PER>(a0));
-        let mut since = 0;
-        // Knots, values and alphas from the end, two at a time, each pair
-        // in the order of the sweep (`[1]` then `[0]`).
-        let below = m.saturating_sub(1);
-        let (_, kn) = knots.get(..below).unwrap_or_default().as_rchunks::<2>();
-        let (_, vs) = values.get(..below).unwrap_or_default().as_rchunks::<2>();
-        let (_, al) = alphas.get(..below).unwrap_or_default().as_rchunks::<2>();
-        let (pd, pp) = pairs;
+        let Elim {
+            mut p_prev2,
+            mut p_prev,
+            mut y_prev,
+            mut u_prev,
+            mut kc,
+            mut hl,
+            mut fc,
+            mut df_l,
+            mut terms_l,
+            mut since,
+        } = *st;
+        // Pairs from the end, each in the order of the sweep (`[1]` then
+        // `[0]`); the lone row left over, `r0`, in front.
+        let (lk, kn) = kn.as_rchunks::<2>();
+        let (lv, vs) = vs.as_rchunks::<2>();
+        let (la, al) = al.as_rchunks::<2>();
+        let (ld, pd) = rd.as_rchunks_mut::<2>();
+        let (lp, pp) = rp.as_rchunks_mut::<2>();
         // Slices of one length zipped and walked from the end: one index.
-        let rows = pd.iter_mut().zip(pp).zip(kn).zip(vs).zip(al).rev();
-        for (((([d0, d1], [p0, p1]), kn), vs), al) in rows {
+        let pairs = pd.iter_mut().zip(pp).zip(kn).zip(vs).zip(al).rev();
+        for (((([d0, d1], [p0, p1]), kn), vs), al) in pairs {
             let slots = [Aside { p: p1, d: d1 }, Aside { p: p0, d: d0 }];
             // Rows k and k - 1.
             let h1 = (kc - kn[1]) * ws;
             let h2 = (kn[1] - kn[0]) * ws;
             kc = kn[0];
             let (f1, f2) = (self.scaled(vs[1]), self.scaled(vs[0]));
-            let (i1, i2) = (inv_of::<PER>(al[1]), inv_of::<PER>(al[0]));
-            let (t1, t2) = (terms(al[1], i1), terms(al[0], i2));
+            let (t1, t2) = (self.mirrored::<PER>(al[1]), self.mirrored::<PER>(al[0]));
             let l1 = -h1 * terms_l[0];
             let d1 = h1 * terms_l[1] + hl * t1[2];
             let u1 = -hl * t1[3];
@@ -448,66 +509,118 @@ impl<'a, const D: usize> Sweep<'a, D> {
             terms_l = t2;
         }
         if let (Some(mut slot), Some(&kr), Some(&vr), Some(&ar)) =
-            (last, knots.first(), values.first(), alphas.first())
+            (Aside::first(ld, lp), lk.first(), lv.first(), la.first())
         {
-            // Row 1 when their number is odd.
+            // Row r0 when the count is odd.
             let hr = (kc - kr) * ws;
             let fr = self.scaled(vr);
-            let ir = inv_of::<PER>(ar);
-            let terms_r = terms(ar, ir);
+            let terms_r = self.mirrored::<PER>(ar);
             let l = -hr * terms_l[0];
             let d = hr * terms_l[1] + hl * terms_r[2];
             let u = -hl * terms_r[3];
             let p = d * p_prev - (l * u_prev) * p_prev2;
             let inv = p_prev / p;
+            let df_r = sub(fr, fc);
             let y = core::array::from_fn(|c| {
-                (hl * (fr[c] - fc[c]) - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
+                (hl * df_r[c] - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
             });
             slot.put(u * inv, y);
+            p_prev2 = p_prev;
+            p_prev = p;
+            since += 1;
+            if since >= RENORM {
+                renormalise(&mut p_prev, &mut p_prev2);
+                since = 0;
+            }
+            y_prev = y;
+            u_prev = u;
+            kc = kr;
+            hl = hr;
+            df_l = df_r;
+            fc = fr;
+            terms_l = terms_r;
+        }
+        *st = Elim {
+            p_prev2,
+            p_prev,
+            y_prev,
+            u_prev,
+            kc,
+            hl,
+            fc,
+            df_l,
+            terms_l,
+            since,
+        };
+    }
+
+    /// The substitution's state before its first row: the first deviation
+    /// is zero.
+    #[inline(always)]
+    pub(super) fn bottom(&self) -> Subst<D> {
+        Subst {
+            d_prev: [0.0; D],
+            f_prev: self.values.first().map_or([0.0; D], |&v| self.scaled(v)),
         }
     }
 
-    /// The substitution: `d_k` from `d_{k-1}`, two rows at a time from row 1
-    /// (`pairs`: the slots of rows `k, k + 1`, as [`Aside`] keeps them, from
-    /// `k = 1`; then `last`, row `n - 2`, when their number is odd), each
-    /// row's slots overwritten with its copies, and the legs appended to
-    /// `coefs` in order: leg `k - 1` once `d_k` is known, the last leg at the
-    /// end.
+    /// Leg `k` from its values, deviations and alpha.
     #[inline(always)]
-    fn substitute<'s, const PER: bool, const KNOT: bool>(
+    fn leg<const PER: bool>(
         &self,
-        pairs: SlotPairs<'_, D>,
-        last: Option<Aside<'s, D>>,
-        coefs: &mut Vec<Piece>,
+        f0: [f64; D],
+        f1: [f64; D],
+        d0: [f64; D],
+        d1: [f64; D],
+        a: f64,
+    ) -> Leg<D> {
+        let pt = if PER {
+            let (ia, iu) = inverses(a);
+            piece_terms(terms_from_inverses(a, ia, iu))
+        } else {
+            self.uniform_piece
+        };
+        core::array::from_fn(|c| Piece(piece(f0[c], f1[c], d0[c], d1[c], pt)))
+    }
+
+    /// The substitution over rows `r0` to `r0 + c - 1` (`c` the slots'
+    /// length, as [`Sweep::eliminate`] left them): `d_k` from `d_{k-1}`,
+    /// two rows at a time, then the last alone when `c` is odd; each row's
+    /// slots overwritten with its copies, and legs `r0 - 1 ..= r0 + c - 2`
+    /// appended to `coefs` in order (leg `k - 1` once `d_k` is known).
+    #[inline(always)]
+    pub(super) fn substitute<const PER: bool, const KNOT: bool>(
+        &self,
+        st: &mut Subst<D>,
+        r0: usize,
+        rows: (&mut [[f64; D]], &mut [[f64; D]]),
+        coefs: &mut impl Legs,
     ) {
         let (values, alphas, knots) = (self.values, self.alphas, self.knots);
-        let m = knots.len().saturating_sub(1);
-        let pieces = |f0: [f64; D], f1: [f64; D], d0: [f64; D], d1: [f64; D], a: f64| -> Leg<D> {
-            let pt = if PER {
-                let (ia, iu) = inverses(a);
-                piece_terms(terms_from_inverses(a, ia, iu))
-            } else {
-                self.uniform_piece
-            };
-            core::array::from_fn(|c| Piece(piece(f0[c], f1[c], d0[c], d1[c], pt)))
-        };
-        let Some(&v0) = values.first() else {
+        let c = rows.0.len().min(rows.1.len());
+        // Row k reads value and knot k and alpha k - 1.
+        let (Some(vs), Some(al), Some(kn), Some(rd), Some(rp)) = (
+            values.get(r0..r0 + c),
+            alphas.get(r0.wrapping_sub(1)..r0.wrapping_sub(1).wrapping_add(c)),
+            knots.get(r0..r0 + c),
+            rows.0.get_mut(..c),
+            rows.1.get_mut(..c),
+        ) else {
             return;
         };
-        let mut d_prev = [0.0; D];
-        let mut f_prev = self.scaled(v0);
-        let (pd, pp) = pairs;
-        let count = pd.len().min(pp.len());
-        let (vs, _) = values.get(1..m).unwrap_or_default().as_chunks::<2>();
-        let (al, _) = alphas
-            .get(..m.saturating_sub(1))
-            .unwrap_or_default()
-            .as_chunks::<2>();
-        let (kn, _) = knots.get(1..m).unwrap_or_default().as_chunks::<2>();
-        // The legs are appended a block at a time: the vector's length is
-        // checked and the block cleared once (in the cache), then every leg
-        // written; within a block every input is a slice of the same length,
-        // walked by one index.
+        let Subst {
+            mut d_prev,
+            mut f_prev,
+        } = *st;
+        let (pd, ld) = rd.as_chunks_mut::<2>();
+        let (pp, lp) = rp.as_chunks_mut::<2>();
+        let (vs, lv) = vs.as_chunks::<2>();
+        let (al, la) = al.as_chunks::<2>();
+        let (kn, lk) = kn.as_chunks::<2>();
+        let count = pd.len();
+        // The legs are appended a block at a time: the output's length is
+        // checked once a block, then every leg written; within a block every
+        // input is a slice of the same length, walked by one index.
         for start in (0..count).step_by(BLOCK) {
             let at = start..(start + BLOCK).min(count);
             let (Some(pd), Some(pp), Some(vs), Some(al), Some(kn)) = (
@@ -519,12 +632,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
             ) else {
                 break;
             };
-            let len = coefs.len();
-            coefs.resize(len + 2 * D * at.len(), Piece([0.0; 4]));
-            let (legs, _) = coefs
-                .get_mut(len..)
-                .unwrap_or_default()
-                .as_chunks_mut::<D>();
+            let (legs, _) = coefs.next(2 * D * at.len()).as_chunks_mut::<D>();
             let (block, _) = legs.as_chunks_mut::<2>();
             let rows = pd.iter_mut().zip(pp).zip(vs).zip(al).zip(kn);
             for (out, (((([d0, d1], [p0, p1]), vs), al), kn)) in block.iter_mut().zip(rows) {
@@ -543,8 +651,8 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 }
                 let (fk, fk1) = (self.scaled(vs[0]), self.scaled(vs[1]));
                 *out = [
-                    pieces(f_prev, fk, d_prev, d_k, al[0]),
-                    pieces(fk, fk1, d_k, d_k1, al[1]),
+                    self.leg::<PER>(f_prev, fk, d_prev, d_k, al[0]),
+                    self.leg::<PER>(fk, fk1, d_k, d_k1, al[1]),
                 ];
                 a.finish::<KNOT>(vs[0], d_k, kn[0]);
                 b.finish::<KNOT>(vs[1], d_k1, kn[1]);
@@ -552,25 +660,91 @@ impl<'a, const D: usize> Sweep<'a, D> {
                 f_prev = fk1;
             }
         }
-        if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) = (
-            last,
-            values.get(m.wrapping_sub(1)),
-            alphas.get(m.wrapping_sub(2)),
-            knots.get(m.wrapping_sub(1)),
-        ) {
-            // Row n - 2 when the number of rows is odd.
+        if let (Some(mut slot), Some(&v), Some(&a), Some(&kv)) =
+            (Aside::first(ld, lp), lv.first(), la.first(), lk.first())
+        {
+            // The last row when the count is odd.
             let (mb, yb) = slot.row();
             let d = core::array::from_fn(|c| yb[c] - mb * d_prev[c]);
             let fk = self.scaled(v);
-            coefs.extend_from_slice(&pieces(f_prev, fk, d_prev, d, a));
+            let leg = self.leg::<PER>(f_prev, fk, d_prev, d, a);
+            for (o, p) in coefs.next(D).iter_mut().zip(leg) {
+                *o = p;
+            }
             slot.finish::<KNOT>(v, d, kv);
             d_prev = d;
             f_prev = fk;
         }
-        if let (Some(&v), Some(&a)) = (values.get(m), alphas.get(m.wrapping_sub(1))) {
-            let f = self.scaled(v);
-            coefs.extend_from_slice(&pieces(f_prev, f, d_prev, [0.0; D], a));
+        *st = Subst { d_prev, f_prev };
+    }
+
+    /// The last leg, `n - 2`, whose second deviation is zero, appended to
+    /// `coefs` after the substitution of every row.
+    #[inline(always)]
+    pub(super) fn tail<const PER: bool>(&self, st: &Subst<D>, coefs: &mut impl Legs) {
+        let m = self.knots.len().saturating_sub(1);
+        if let (Some(&v), Some(&a)) = (self.values.get(m), self.alphas.get(m.wrapping_sub(1))) {
+            let leg = self.leg::<PER>(st.f_prev, self.scaled(v), st.d_prev, [0.0; D], a);
+            for (o, p) in coefs.next(D).iter_mut().zip(leg) {
+                *o = p;
+            }
         }
+    }
+}
+
+/// The elimination's state between two rows `k + 1` and `k`: the last two
+/// continuants, the last swept right-hand side and upper coefficient, and
+/// what row `k` shares with row `k + 1` (knot `k`, the width and value step
+/// of leg `k`, the mirrored terms of its alpha).
+#[derive(Clone, Copy)]
+pub(super) struct Elim<const D: usize> {
+    p_prev2: f64,
+    p_prev: f64,
+    y_prev: [f64; D],
+    u_prev: f64,
+    kc: f64,
+    hl: f64,
+    fc: [f64; D],
+    df_l: [f64; D],
+    terms_l: [f64; 4],
+    since: usize,
+}
+
+/// The substitution's state between two rows: the last deviation and the
+/// scaled value at its knot.
+#[derive(Clone, Copy)]
+pub(super) struct Subst<const D: usize> {
+    d_prev: [f64; D],
+    f_prev: [f64; D],
+}
+
+/// Where the substitution writes its legs, in order: a vector it grows, or
+/// a slice it fills from the front.
+pub(super) trait Legs {
+    /// The next `count` pieces' slots (fewer at the end of a slice).
+    fn next(&mut self, count: usize) -> &mut [Piece];
+}
+
+impl Legs for Vec<Piece> {
+    #[inline(always)]
+    fn next(&mut self, count: usize) -> &mut [Piece] {
+        let len = self.len();
+        self.resize(len + count, Piece([0.0; 4]));
+        self.get_mut(len..).unwrap_or_default()
+    }
+}
+
+/// A slice filled from the front by [`Legs::next`].
+pub(super) struct Fill<'a>(pub(super) &'a mut [Piece]);
+
+impl Legs for Fill<'_> {
+    #[inline(always)]
+    fn next(&mut self, count: usize) -> &mut [Piece] {
+        let rest = core::mem::take(&mut self.0);
+        let (now, later) = rest.split_at_mut(count.min(rest.len()));
+        self.0 = later;
+        now.fill(Piece([0.0; 4]));
+        now
     }
 }
 

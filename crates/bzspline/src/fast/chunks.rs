@@ -1,0 +1,656 @@
+//! The method's system cut into chunks solved independently, one after the
+//! other or side by side on several cores (with the `rayon` feature).
+//!
+//! Each chunk keeps the pieces of its own legs and runs the fused sweeps of
+//! [`super::sweep`] over its legs plus overlapping rows on both sides, with
+//! the deviations at the two ends of that stretch set to zero. The rows' own
+//! diagonal dominance bounds how much of that truncation reaches the kept
+//! rows: every row damps it by a factor `rho <= 1` formed from its
+//! coefficients (`docs/method.md` §16), and the overlap runs until the product
+//! of those factors is below `2^-64`, so a chunk's deviations differ from the
+//! whole system's by less than `2^-64` of the largest deviation, far below
+//! the rounding of either solve. A cut whose rows would need more than
+//! [`MAX_OVERLAP`] rows of overlap is not made: its chunks stay one.
+//!
+//! The cuts are a function of the number of points and the data only, never
+//! of the number of threads: every thread count gives the same bits.
+
+use super::sweep::{Fill, Sweep};
+use super::Piece;
+use crate::method::alpha_terms;
+
+/// Legs between two cuts (when every cut can be made).
+pub(crate) const CHUNK: usize = 4096;
+
+/// The fewest legs for which the system is cut; fewer are solved by one pair
+/// of sweeps over the whole system.
+pub(crate) const CHUNKED_MIN: usize = 4 * CHUNK;
+
+/// The most rows of overlap on either side of a cut.
+const MAX_OVERLAP: usize = 512;
+
+/// The product of the rows' damping factors an overlap must reach: `2^-64`.
+const TRUNCATION: f64 = 1.0 / 18_446_744_073_709_551_616.0;
+
+/// One chunk: it keeps legs `start..end` and solves the system of knots
+/// `lo..=hi`, whose end deviations are taken as zero.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Chunk {
+    pub(crate) lo: usize,
+    pub(crate) start: usize,
+    pub(crate) end: usize,
+    pub(crate) hi: usize,
+}
+
+/// The whole system's input, as the sweeps take it: `knots` (`n`), `values`
+/// (`n`, scaled by `inv_scale` as they are read), `alphas` (`n - 1`, not read
+/// when `uniform` gives the one alpha) and the power of two `ws` that brings
+/// the span near 1.
+#[derive(Clone, Copy)]
+pub(crate) struct Whole<'a, const D: usize> {
+    pub(crate) knots: &'a [f64],
+    pub(crate) values: &'a [[f64; D]],
+    pub(crate) inv_scale: [f64; D],
+    pub(crate) alphas: &'a [f64],
+    pub(crate) uniform: Option<f64>,
+    pub(crate) ws: f64,
+}
+
+/// The damping factors of row `k` (`1 <= k <= n - 2`) of the sweeps' rows
+/// `l = -h_k A'`, `D = h_k B1' + h_{k-1} B2'`, `u = -h_{k-1} C'`:
+/// `|l| / (D - |u|)`, which bounds how much of an error in `d_{k-1}` reaches
+/// `d_k`, and `|u| / (D - |l|)`, from `d_{k+1}` to `d_k` (§16). Both lie in
+/// `[0, 1]` for alphas in range; anything else (a width that underflowed to
+/// zero on both sides) counts as 1, no damping.
+fn damping(knots: &[f64], ws: f64, left: [f64; 4], right: [f64; 4], k: usize) -> (f64, f64) {
+    let hl = (knots[k] - knots[k - 1]) * ws;
+    let hr = (knots[k + 1] - knots[k]) * ws;
+    let [al, b1, _, _] = left;
+    let [_, _, b2, cr] = right;
+    let down = hr * al / (hr * b1 + hl * (b2 - cr));
+    let up = hl * cr / (hr * (b1 - al) + hl * b2);
+    let sane = |r: f64| if (0.0..=1.0).contains(&r) { r } else { 1.0 };
+    (sane(down), sane(up))
+}
+
+/// The rows of the system, for their damping factors.
+struct Rows<'a> {
+    knots: &'a [f64],
+    alphas: &'a [f64],
+    uniform: Option<[f64; 4]>,
+    ws: f64,
+}
+
+impl Rows<'_> {
+    fn terms(&self, leg: usize) -> [f64; 4] {
+        self.uniform
+            .unwrap_or_else(|| alpha_terms(self.alphas[leg]))
+    }
+
+    fn damping(&self, k: usize) -> (f64, f64) {
+        damping(self.knots, self.ws, self.terms(k - 1), self.terms(k), k)
+    }
+
+    /// The first knot `lo` of the chunk that keeps knot `s` first: the
+    /// product of the downward damping of rows `lo + 1 ..= s` is at most
+    /// [`TRUNCATION`] (or `lo` is 0, the true end). `None` past
+    /// [`MAX_OVERLAP`] rows.
+    fn reach_down(&self, s: usize) -> Option<usize> {
+        let mut product = 1.0;
+        for (i, k) in (1..=s).rev().enumerate() {
+            if i >= MAX_OVERLAP {
+                return None;
+            }
+            product *= self.damping(k).0;
+            if product <= TRUNCATION {
+                return Some(k - 1);
+            }
+        }
+        Some(0)
+    }
+
+    /// The last knot `hi` of the chunk that keeps knot `s` last: the product
+    /// of the upward damping of rows `s ..= hi - 1` is at most
+    /// [`TRUNCATION`] (or `hi` is `n - 1`, the true end).
+    fn reach_up(&self, s: usize) -> Option<usize> {
+        let n = self.knots.len();
+        let mut product = 1.0;
+        for (i, k) in (s..n - 1).enumerate() {
+            if i >= MAX_OVERLAP {
+                return None;
+            }
+            product *= self.damping(k).1;
+            if product <= TRUNCATION {
+                return Some(k + 1);
+            }
+        }
+        Some(n - 1)
+    }
+}
+
+/// The chunks of the system of `knots` (validated: strictly increasing, `n`
+/// of them) with `alphas` (or the one alpha `uniform`): cuts every [`CHUNK`]
+/// legs where the overlap they need is at most [`MAX_OVERLAP`] rows, the last
+/// chunk at least half a chunk long. Empty when the system is solved whole:
+/// fewer than [`CHUNKED_MIN`] legs, or no cut made.
+pub(crate) fn plan(knots: &[f64], alphas: &[f64], uniform: Option<f64>, ws: f64) -> Vec<Chunk> {
+    let m = knots.len().saturating_sub(1);
+    if m < CHUNKED_MIN || (uniform.is_none() && alphas.len() != m) {
+        return Vec::new();
+    }
+    let rows = Rows {
+        knots,
+        alphas,
+        uniform: uniform.map(alpha_terms),
+        ws,
+    };
+    let mut chunks = Vec::with_capacity(m / CHUNK + 1);
+    let (mut lo, mut start) = (0, 0);
+    let mut cut = CHUNK;
+    while cut + CHUNK / 2 <= m {
+        if let (Some(next_lo), Some(hi)) = (rows.reach_down(cut), rows.reach_up(cut)) {
+            chunks.push(Chunk {
+                lo,
+                start,
+                end: cut,
+                hi,
+            });
+            (lo, start) = (next_lo, cut);
+        }
+        cut += CHUNK;
+    }
+    if !chunks.is_empty() {
+        chunks.push(Chunk {
+            lo,
+            start,
+            end: m,
+            hi: m,
+        });
+    }
+    chunks
+}
+
+/// Where one chunk writes: the pieces of its legs (`D` a leg), and the slots
+/// of the knots it owns (`start + 1 ..= end`, and knot 0 for the first
+/// chunk) in the sweeps' two outputs, as [`Sweep::run`] fills them: the
+/// elimination keeps the chunk's own rows there, the substitution then
+/// writes the copies over them. `below` keeps the rows of knots
+/// `lo + 1 ..= start` from the elimination to the substitution.
+struct Out<'a, const D: usize> {
+    coefs: &'a mut [Piece],
+    second: &'a mut [[f64; D]],
+    first: &'a mut [[f64; D]],
+    below: (&'a mut [[f64; D]], &'a mut [[f64; D]]),
+}
+
+/// The rows a chunk eliminates past its own, and the legs it substitutes
+/// before its own: reused from chunk to chunk.
+struct Scratch<const D: usize> {
+    coefs: Vec<Piece>,
+    second: Vec<[f64; D]>,
+    first: Vec<[f64; D]>,
+}
+
+impl<const D: usize> Scratch<D> {
+    fn new() -> Self {
+        // The overlap's rows on one side, and their legs.
+        let rows = MAX_OVERLAP + 2;
+        Scratch {
+            coefs: Vec::with_capacity(rows * D),
+            second: Vec::with_capacity(rows),
+            first: Vec::with_capacity(rows),
+        }
+    }
+}
+
+/// The two sweeps: every chunk's elimination runs before any chunk's
+/// substitution, so that the outputs are walked as the sweeps over the whole
+/// system walk them (a chunk's substitution right after its own elimination
+/// is slower by a fifth once the outputs outgrow the caches).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    Eliminate,
+    Substitute,
+}
+
+/// Solves the chunks of `plan` (from [`plan`], not empty) and writes what
+/// [`Sweep::run`] writes for the whole system: `coefs` (`D` pieces a leg,
+/// already `n - 1` legs long), `second` and `first` (`n` each), with `KNOT`
+/// the knots in `second`, else the deviations.
+pub(crate) fn run<const D: usize, const KNOT: bool>(
+    plan: &[Chunk],
+    whole: Whole<'_, D>,
+    coefs: &mut [Piece],
+    second: &mut [[f64; D]],
+    first: &mut [[f64; D]],
+) {
+    let rows: usize = plan.iter().map(|c| c.start - c.lo).sum();
+    let (mut below_d, mut below_p) = (vec![[0.0; D]; rows], vec![[0.0; D]; rows]);
+    let mut outs = Vec::with_capacity(plan.len());
+    let (mut coefs, mut second, mut first) = (coefs, second, first);
+    let (mut bd, mut bp) = (&mut below_d[..], &mut below_p[..]);
+    for (i, c) in plan.iter().enumerate() {
+        // The first chunk owns the slots of knots 0..=end, the others those
+        // of start+1..=end: the rows they keep.
+        let owned = c.end - c.start + usize::from(i == 0);
+        let below = c.start - c.lo;
+        let (Some((pieces, rest_c)), Some((s, rest_s)), Some((f, rest_f))) = (
+            coefs.split_at_mut_checked((c.end - c.start) * D),
+            second.split_at_mut_checked(owned),
+            first.split_at_mut_checked(owned),
+        ) else {
+            // Not reached: the plan covers the outputs' lengths.
+            return;
+        };
+        let (Some((d, rest_d)), Some((p, rest_p))) = (
+            bd.split_at_mut_checked(below),
+            bp.split_at_mut_checked(below),
+        ) else {
+            return;
+        };
+        outs.push(Out {
+            coefs: pieces,
+            second: s,
+            first: f,
+            below: (d, p),
+        });
+        (coefs, second, first, bd, bp) = (rest_c, rest_s, rest_f, rest_d, rest_p);
+    }
+    #[cfg(feature = "rayon")]
+    {
+        use rayon::prelude::*;
+        if rayon::current_num_threads() > 1 {
+            for phase in [Phase::Eliminate, Phase::Substitute] {
+                outs.par_iter_mut()
+                    .zip(plan)
+                    .for_each_init(Scratch::new, |scratch, (out, &c)| {
+                        solve::<D, KNOT>(whole, c, out, scratch, phase);
+                    });
+            }
+            return;
+        }
+    }
+    let mut scratch = Scratch::new();
+    for phase in [Phase::Eliminate, Phase::Substitute] {
+        for (out, &c) in outs.iter_mut().zip(plan) {
+            solve::<D, KNOT>(whole, c, out, &mut scratch, phase);
+        }
+    }
+}
+
+/// One sweep of one chunk, over its share of the outputs.
+fn solve<const D: usize, const KNOT: bool>(
+    whole: Whole<'_, D>,
+    c: Chunk,
+    out: &mut Out<'_, D>,
+    scratch: &mut Scratch<D>,
+    phase: Phase,
+) {
+    let (Some(knots), Some(values)) = (whole.knots.get(c.lo..=c.hi), whole.values.get(c.lo..=c.hi))
+    else {
+        return;
+    };
+    // With one alpha the knots pace the sweeps in the alphas' place.
+    let alphas = match whole.uniform {
+        Some(_) => whole.knots.get(c.lo..c.hi),
+        None => whole.alphas.get(c.lo..c.hi),
+    }
+    .unwrap_or_default();
+    let sweep = Sweep::new(
+        knots,
+        values,
+        whole.inv_scale,
+        alphas,
+        whole.uniform,
+        whole.ws,
+    );
+    let last = c.hi + 1 == whole.knots.len();
+    match (phase, whole.uniform.is_some()) {
+        (Phase::Eliminate, true) => eliminate::<D, false>(&sweep, c, last, out, scratch),
+        (Phase::Eliminate, false) => eliminate::<D, true>(&sweep, c, last, out, scratch),
+        (Phase::Substitute, true) => substitute::<D, false, KNOT>(&sweep, c, last, out, scratch),
+        (Phase::Substitute, false) => substitute::<D, true, KNOT>(&sweep, c, last, out, scratch),
+    }
+}
+
+/// The rows of a chunk over `sweep`, the system of its knots `lo..=hi`
+/// (counted from `lo` here): rows `s + 1 ..= top` are its own, `top` the
+/// last row before its end deviation (zero only for the last chunk).
+fn own_rows(c: Chunk, last: bool) -> (usize, usize, usize) {
+    let m = c.hi - c.lo;
+    let (s, e) = (c.start - c.lo, c.end - c.lo);
+    let top = if last { m.saturating_sub(1) } else { e };
+    (m, s, top)
+}
+
+/// The elimination of one chunk, in three stretches of rows from the top:
+/// those past its own (kept in `scratch`), its own (kept in `out`'s slots)
+/// and those before them (kept in `out.below`).
+fn eliminate<const D: usize, const PER: bool>(
+    sweep: &Sweep<'_, D>,
+    c: Chunk,
+    last: bool,
+    out: &mut Out<'_, D>,
+    scratch: &mut Scratch<D>,
+) {
+    let (m, s, top) = own_rows(c, last);
+    let above = (m - 1).saturating_sub(top);
+    for v in [&mut scratch.second, &mut scratch.first] {
+        v.truncate(above);
+        v.resize(above, [0.0; D]);
+    }
+    let at = usize::from(s == 0);
+    let own = top - s;
+    let Some(mut elim) = sweep.top::<PER>() else {
+        return;
+    };
+    let (Some(od), Some(op), Some(ad), Some(ap)) = (
+        out.second.get_mut(at..at + own),
+        out.first.get_mut(at..at + own),
+        scratch.second.get_mut(..above),
+        scratch.first.get_mut(..above),
+    ) else {
+        return;
+    };
+    sweep.eliminate::<PER>(&mut elim, top + 1, (ad, ap));
+    sweep.eliminate::<PER>(&mut elim, s + 1, (od, op));
+    sweep.eliminate::<PER>(&mut elim, 1, (&mut *out.below.0, &mut *out.below.1));
+}
+
+/// The substitution of one chunk after its elimination: the rows before its
+/// own (their legs to `scratch`, for the deviation at `start`), then its
+/// own, their legs to `out`; the end points' copies at the system's ends.
+fn substitute<const D: usize, const PER: bool, const KNOT: bool>(
+    sweep: &Sweep<'_, D>,
+    c: Chunk,
+    last: bool,
+    out: &mut Out<'_, D>,
+    scratch: &mut Scratch<D>,
+) {
+    let (m, s, top) = own_rows(c, last);
+    let first = s == 0;
+    let at = usize::from(first);
+    let own = top - s;
+    let mut sub = sweep.bottom();
+    scratch.coefs.clear();
+    sweep.substitute::<PER, KNOT>(
+        &mut sub,
+        1,
+        (&mut *out.below.0, &mut *out.below.1),
+        &mut scratch.coefs,
+    );
+    let (Some(od), Some(op)) = (
+        out.second.get_mut(at..at + own),
+        out.first.get_mut(at..at + own),
+    ) else {
+        return;
+    };
+    let mut fill = Fill(&mut *out.coefs);
+    sweep.substitute::<PER, KNOT>(&mut sub, s + 1, (od, op), &mut fill);
+    if last {
+        sweep.tail::<PER>(&sub, &mut fill);
+        if let (Some(d), Some(p)) = (out.second.last_mut(), out.first.last_mut()) {
+            sweep.end_point::<KNOT>(m, d, p);
+        }
+    }
+    if first {
+        if let (Some(d), Some(p)) = (out.second.first_mut(), out.first.first_mut()) {
+            sweep.end_point::<KNOT>(0, d, p);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A xorshift generator in `[0, 1)`.
+    fn rng(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Knots, values and alphas of one generated case: `grid` 0 random
+    /// widths in `[0.5, 1.5)`, 1 widths over 12 decades; `alphas` 0 random
+    /// in range, 1 only the extremes, 2 alternating 2/3 and 1/3 (the weakest
+    /// rows), 3 the one alpha 1/3, 4 the one alpha 2/3.
+    fn case(
+        n: usize,
+        grid: u8,
+        alphas: u8,
+        seed: u64,
+    ) -> (Vec<f64>, Vec<f64>, Vec<f64>, Option<f64>) {
+        let mut next = rng(seed);
+        let mut knots = Vec::with_capacity(n);
+        let mut x = 0.0;
+        for _ in 0..n {
+            knots.push(x);
+            x += match grid {
+                0 => 0.5 + next(),
+                _ => 10f64.powf(12.0 * next() - 6.0),
+            };
+        }
+        let values: Vec<f64> = (0..n)
+            .map(|i| (i as f64 * 0.01).sin() + 0.3 * (next() - 0.5))
+            .collect();
+        let (lo, hi) = (crate::ALPHA_MIN, crate::ALPHA_MAX);
+        let (a, uniform): (Vec<f64>, _) = match alphas {
+            0 => ((1..n).map(|_| lo + (hi - lo) * next()).collect(), None),
+            1 => (
+                (1..n).map(|_| if next() < 0.5 { lo } else { hi }).collect(),
+                None,
+            ),
+            2 => (
+                (1..n).map(|i| if i % 2 == 1 { hi } else { lo }).collect(),
+                None,
+            ),
+            3 => (Vec::new(), Some(lo)),
+            _ => (Vec::new(), Some(hi)),
+        };
+        (knots, values, a, uniform)
+    }
+
+    /// The pieces and deviations of one solve.
+    type Solved = (Vec<Piece>, Vec<[f64; 1]>);
+
+    /// The pieces and deviations of one sweep over the whole system and of
+    /// the chunks, for `case`.
+    fn both(
+        knots: &[f64],
+        values: &[f64],
+        alphas: &[f64],
+        uniform: Option<f64>,
+    ) -> (Vec<Chunk>, [Solved; 2]) {
+        let n = knots.len();
+        let span = knots[n - 1] - knots[0];
+        let ws = crate::fast::inverse_power_of_two(span);
+        let alphas = if uniform.is_some() {
+            &knots[..n - 1]
+        } else {
+            alphas
+        };
+        let values = values.as_chunks::<1>().0;
+        let plan = plan(knots, alphas, uniform, ws);
+        let mut whole = (Vec::new(), vec![[0.0]; n], vec![[0.0]; n]);
+        let sweep = Sweep::new(knots, values, [1.0], alphas, uniform, ws);
+        if uniform.is_some() {
+            sweep.run::<false, false>(&mut whole.0, &mut whole.1, &mut whole.2);
+        } else {
+            sweep.run::<true, false>(&mut whole.0, &mut whole.1, &mut whole.2);
+        }
+        let mut cut = (
+            vec![Piece::default(); n - 1],
+            vec![[0.0]; n],
+            vec![[0.0]; n],
+        );
+        let input = Whole {
+            knots,
+            values,
+            inv_scale: [1.0],
+            alphas,
+            uniform,
+            ws,
+        };
+        if !plan.is_empty() {
+            run::<1, false>(&plan, input, &mut cut.0, &mut cut.1, &mut cut.2);
+        }
+        assert_eq!(whole.2, cut.2, "the copies of the values");
+        (plan, [(whole.0, whole.1), (cut.0, cut.1)])
+    }
+
+    #[test]
+    fn chunks_agree_with_one_sweep_to_rounding() {
+        let mut worst: f64 = 0.0;
+        for grid in 0..2u8 {
+            for alphas in 0..5u8 {
+                for (seed, n) in [(1, CHUNKED_MIN + 1), (2, 5 * CHUNK + 1234)] {
+                    let (k, v, a, u) = case(n, grid, alphas, seed + 10 * u64::from(alphas));
+                    let (plan, [(pw, dw), (pc, dc)]) = both(&k, &v, &a, u);
+                    let what = format!("grid {grid}, alphas {alphas}, n {n}");
+                    assert!(plan.len() >= 4, "{what}: {plan:?}");
+                    let dmax = dw.iter().fold(0.0f64, |m, d| m.max(d[0].abs()));
+                    let cmax = pw
+                        .iter()
+                        .fold(0.0f64, |m, p| p.0.iter().fold(m, |m, c| m.max(c.abs())));
+                    for (i, (x, y)) in dw.iter().zip(&dc).enumerate() {
+                        let e = (x[0] - y[0]).abs() / (dmax * f64::EPSILON);
+                        worst = worst.max(e);
+                        assert!(e <= 16.0, "{what}: d_{i} {} against {}", y[0], x[0]);
+                    }
+                    for (i, (x, y)) in pw.iter().zip(&pc).enumerate() {
+                        for j in 0..4 {
+                            let e = (x.0[j] - y.0[j]).abs() / (cmax * f64::EPSILON);
+                            assert!(e <= 16.0, "{what}: piece {i}: {:?} against {:?}", y.0, x.0);
+                        }
+                    }
+                }
+            }
+        }
+        eprintln!("largest difference: {worst} ulps of the largest deviation");
+    }
+
+    #[test]
+    fn curves_in_the_plane_agree_with_one_sweep_to_rounding() {
+        // Two coordinates on one matrix, as the curve builder solves them.
+        let n = 6 * CHUNK + 11;
+        let (knots, v, alphas, _) = case(n, 1, 1, 5);
+        let values: Vec<[f64; 2]> = v.iter().map(|&y| [y, y * y - 0.5]).collect();
+        let ws = crate::fast::inverse_power_of_two(knots[n - 1] - knots[0]);
+        let plan = plan(&knots, &alphas, None, ws);
+        assert!(plan.len() >= 4, "{plan:?}");
+        let mut whole = (Vec::new(), vec![[0.0; 2]; n], vec![[0.0; 2]; n]);
+        let sweep = Sweep::new(&knots, &values, [1.0, 0.5], &alphas, None, ws);
+        sweep.run::<true, false>(&mut whole.0, &mut whole.1, &mut whole.2);
+        let mut cut = (
+            vec![Piece::default(); 2 * (n - 1)],
+            vec![[0.0; 2]; n],
+            vec![[0.0; 2]; n],
+        );
+        let input = Whole {
+            knots: &knots,
+            values: &values,
+            inv_scale: [1.0, 0.5],
+            alphas: &alphas,
+            uniform: None,
+            ws,
+        };
+        run::<2, false>(&plan, input, &mut cut.0, &mut cut.1, &mut cut.2);
+        assert_eq!(whole.2, cut.2, "the copies of the points");
+        for c in 0..2 {
+            let dmax = whole.1.iter().fold(0.0f64, |m, d| m.max(d[c].abs()));
+            for (i, (x, y)) in whole.1.iter().zip(&cut.1).enumerate() {
+                let e = (x[c] - y[c]).abs() / (dmax * f64::EPSILON);
+                assert!(e <= 16.0, "coordinate {c}: d_{i} {} against {}", y[c], x[c]);
+            }
+        }
+        let cmax = whole
+            .0
+            .iter()
+            .fold(0.0f64, |m, p| p.0.iter().fold(m, |m, c| m.max(c.abs())));
+        for (i, (x, y)) in whole.0.iter().zip(&cut.0).enumerate() {
+            for j in 0..4 {
+                let e = (x.0[j] - y.0[j]).abs() / (cmax * f64::EPSILON);
+                assert!(e <= 16.0, "piece {i}: {:?} against {:?}", y.0, x.0);
+            }
+        }
+    }
+
+    #[test]
+    fn rows_without_dominance_are_not_cut() {
+        // Alphas outside the theorem's range (which validation refuses): no
+        // row damps, so no overlap reaches 2^-64 and the system stays whole.
+        let n = 6 * CHUNK;
+        let knots: Vec<f64> = (0..n).map(|i| i as f64).collect();
+        let alphas = vec![0.9; n - 1];
+        assert!(plan(&knots, &alphas, None, 1.0 / 32768.0).is_empty());
+        assert!(!plan(&knots, &[], Some(0.5), 1.0 / 32768.0).is_empty());
+    }
+
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn every_thread_count_gives_the_same_bits() {
+        for (alphas, seed) in [(0, 7), (3, 8)] {
+            let (k, v, a, u) = case(20 * CHUNK + 3, 1, alphas, seed);
+            let runs: Vec<_> = [1, 2, 16]
+                .into_iter()
+                .map(|threads| {
+                    let pool = rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads)
+                        .build()
+                        .expect("a pool");
+                    let [_, (pieces, dev)] = pool.install(|| both(&k, &v, &a, u)).1;
+                    let bits: Vec<u64> = pieces
+                        .iter()
+                        .flat_map(|p| p.0)
+                        .chain(dev.iter().map(|d| d[0]))
+                        .map(f64::to_bits)
+                        .collect();
+                    bits
+                })
+                .collect();
+            assert!(runs.iter().all(|r| *r == runs[0]), "alphas {alphas}");
+        }
+    }
+
+    #[test]
+    fn damping_is_at_most_one_and_one_only_at_the_weakest_rows() {
+        for (al, ar) in [(1.0 / 3.0, 1.0 / 3.0), (0.5, 0.5), (2.0 / 3.0, 1.0 / 3.0)] {
+            let knots = [0.0, 1.0, 2.0];
+            let (down, up) = damping(&knots, 1.0, alpha_terms(al), alpha_terms(ar), 1);
+            assert!((0.0..=1.0).contains(&down) && (0.0..=1.0).contains(&up));
+            if al == 2.0 / 3.0 && ar == 1.0 / 3.0 {
+                // The row -4p, 4, -4q: no strict dominance, no damping.
+                assert!(down > 1.0 - 1e-12 && up > 1.0 - 1e-12, "{down} {up}");
+            } else {
+                assert!(down < 0.9 && up < 0.9, "{down} {up}");
+            }
+        }
+    }
+
+    #[test]
+    fn plans_cover_every_leg_once() {
+        for n in [CHUNKED_MIN, CHUNKED_MIN + 1, 5 * CHUNK + 7, 9 * CHUNK] {
+            let knots: Vec<f64> = (0..n).map(|i| i as f64).collect();
+            let plan = plan(&knots, &[], Some(0.5), 1.0 / 8192.0);
+            if n <= CHUNKED_MIN {
+                assert!(plan.is_empty(), "n = {n}");
+                continue;
+            }
+            assert_eq!(plan.first().map(|c| (c.lo, c.start)), Some((0, 0)));
+            assert_eq!(plan.last().map(|c| (c.end, c.hi)), Some((n - 1, n - 1)));
+            for w in plan.windows(2) {
+                assert_eq!(w[0].end, w[1].start);
+                assert!(w[1].lo < w[1].start && w[0].hi > w[0].end);
+            }
+            for c in &plan {
+                // Uniform rows at alpha 1/2 damp by 1/9 a row: 21 rows reach 2^-64.
+                assert!(c.start - c.lo <= 21 && c.hi - c.end <= 21, "{c:?}");
+            }
+        }
+    }
+}
