@@ -91,12 +91,14 @@ impl Curve {
             };
             let alpha = alpha_arg(alpha)?;
             let built = py.allow_threads(|| {
-                bzspline::CurveBuilder::new(&pts, dim)
-                    .closed(closed)
-                    .param(param)
-                    .alpha_choice(alpha.as_alphas())
-                    .through(through)
-                    .build()
+                crate::threads::install(|| {
+                    bzspline::CurveBuilder::new(&pts, dim)
+                        .closed(closed)
+                        .param(param)
+                        .alpha_choice(alpha.as_alphas())
+                        .through(through)
+                        .build()
+                })
             });
             Ok(Curve {
                 inner: Arc::new(built.map_err(value_error)?),
@@ -503,7 +505,7 @@ pub(crate) fn smoothing_curve(
                 if let Some(w) = &w {
                     b = b.weights(w);
                 }
-                b.build_smoothed()
+                crate::threads::install(|| b.build_smoothed())
             })
             .map_err(value_error)?;
         Ok(Curve {

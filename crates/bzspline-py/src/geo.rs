@@ -490,10 +490,10 @@ pub fn _smooth_ragged<'py>(
                         .collect(),
                     None => Vec::new(),
                 };
-                match round {
+                crate::threads::install(|| match round {
                     Some(r) => c.smooth_round(&opts, &start, r, &marks),
                     None => c.smooth_from(&opts, &start),
-                }
+                })
                 .map(|(out, _, ended)| (out, ended))
                 .map_err(|e| coverage_error(&c, index, &e))
             };

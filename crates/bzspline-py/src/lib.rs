@@ -3,13 +3,15 @@
 //! number comes from the `bzspline` crate; the modules convert arrays
 //! ([`args`]), wrap the spline ([`spline`]) and the curve ([`curve`]) and
 //! smooth geometries ([`geo`]), mapping errors to Python exceptions and
-//! releasing the GIL around the work.
+//! releasing the GIL around the work, which large inputs spread over the
+//! cores ([`threads`]).
 
 mod alloc;
 mod args;
 mod curve;
 mod geo;
 mod spline;
+mod threads;
 
 #[global_allocator]
 static ALLOCATOR: alloc::HugePages = alloc::HugePages;

@@ -212,11 +212,13 @@ fn build_spline(
     py: Python<'_>,
 ) -> PyResult<bzspline::Spline> {
     let built = py.allow_threads(|| {
-        if through {
-            bzspline::Spline::through(x, y, alpha.as_alphas())
-        } else {
-            bzspline::Spline::build(x, y, alpha.as_alphas())
-        }
+        crate::threads::install(|| {
+            if through {
+                bzspline::Spline::through(x, y, alpha.as_alphas())
+            } else {
+                bzspline::Spline::build(x, y, alpha.as_alphas())
+            }
+        })
     });
     Ok(built.map_err(value_error)?.with_extrapolation(outside))
 }
@@ -926,11 +928,13 @@ pub(crate) fn smoothing_spline(
         let fit = py
             .allow_threads(|| {
                 let (w, alphas) = (w.as_deref(), alpha.as_alphas());
-                if robust {
-                    bzspline::Spline::smoothing_robust(&x, &y, w, alphas, how)
-                } else {
-                    bzspline::Spline::smoothing(&x, &y, w, alphas, how)
-                }
+                crate::threads::install(|| {
+                    if robust {
+                        bzspline::Spline::smoothing_robust(&x, &y, w, alphas, how)
+                    } else {
+                        bzspline::Spline::smoothing(&x, &y, w, alphas, how)
+                    }
+                })
             })
             .map_err(value_error)?;
         Ok(Spline {
