@@ -308,6 +308,7 @@ def main():
                     sp[k] = {q: min(sp[k][q], t) for q, t in v.items()}
     rows = [
         ("construct (ns/point)", "construct_ns_per_point", "construct"),
+        ("construct, one thread", "construct_one_thread_ns_per_point", "construct"),
         ("construct, fresh allocation", "construct_fresh_ns_per_point", "construct"),
         ("eval sorted (ns/query)", "eval_sorted_ns_per_point", "eval_sorted"),
         ("eval random (ns/query)", "eval_random_ns_per_point", "eval_random"),
