@@ -1,4 +1,4 @@
-//! The threads a construction spreads a large system over (from 16,385
+//! The threads a construction spreads a large system over (from 131,073
 //! points on, the `bzspline` crate solves it in chunks side by side): one
 //! pool per process, made again in a child after `fork`, whose copy of the
 //! parent's pool has no threads, so that `multiprocessing` and dask's process

@@ -12,8 +12,9 @@ import numpy as np
 
 import bzspline
 
-# Above the 16,384 legs from which the system is solved in chunks.
-N = 60_001
+# Above the 131,072 legs from which the chunks of a system are spread over
+# threads (from 16,385 it is solved in chunks).
+N = 200_001
 
 DIGEST = """
 import hashlib, sys

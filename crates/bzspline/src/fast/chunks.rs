@@ -26,6 +26,13 @@ pub(crate) const CHUNK: usize = 4096;
 /// of sweeps over the whole system.
 pub(crate) const CHUNKED_MIN: usize = 4 * CHUNK;
 
+/// The fewest legs whose chunks are spread over threads: below, waking a
+/// second thread cost about what it saved (measured at 10^5 and 2 * 10^5
+/// points on two cores, BENCHMARKS.md). The result is the same bits either
+/// way.
+#[cfg(feature = "rayon")]
+const PARALLEL_MIN: usize = 32 * CHUNK;
+
 /// The most rows of overlap on either side of a cut.
 const MAX_OVERLAP: usize = 512;
 
@@ -259,7 +266,7 @@ pub(crate) fn run<const D: usize, const KNOT: bool>(
     #[cfg(feature = "rayon")]
     {
         use rayon::prelude::*;
-        if rayon::current_num_threads() > 1 {
+        if rayon::current_num_threads() > 1 && whole.knots.len() > PARALLEL_MIN {
             for phase in [Phase::Eliminate, Phase::Substitute] {
                 outs.par_iter_mut()
                     .zip(plan)
@@ -595,7 +602,7 @@ mod tests {
     #[test]
     fn every_thread_count_gives_the_same_bits() {
         for (alphas, seed) in [(0, 7), (3, 8)] {
-            let (k, v, a, u) = case(20 * CHUNK + 3, 1, alphas, seed);
+            let (k, v, a, u) = case(40 * CHUNK + 3, 1, alphas, seed);
             let runs: Vec<_> = [1, 2, 16]
                 .into_iter()
                 .map(|threads| {
