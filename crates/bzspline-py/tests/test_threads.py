@@ -13,7 +13,7 @@ import numpy as np
 import bzspline
 
 # Above the 131,072 legs from which the chunks of a system are spread over
-# threads (from 16,385 it is solved in chunks).
+# threads (from 65,537 it is solved in chunks).
 N = 200_001
 
 DIGEST = """

@@ -20,7 +20,7 @@ use super::Piece;
 use crate::method::alpha_terms;
 
 /// Legs between two cuts (when every cut can be made).
-pub(crate) const CHUNK: usize = 4096;
+pub(crate) const CHUNK: usize = 16384;
 
 /// The fewest legs for which the system is cut; fewer are solved by one pair
 /// of sweeps over the whole system.
@@ -31,7 +31,7 @@ pub(crate) const CHUNKED_MIN: usize = 4 * CHUNK;
 /// points on two cores, BENCHMARKS.md). The result is the same bits either
 /// way.
 #[cfg(feature = "rayon")]
-const PARALLEL_MIN: usize = 32 * CHUNK;
+const PARALLEL_MIN: usize = 131_072;
 
 /// The most rows of overlap on either side of a cut.
 const MAX_OVERLAP: usize = 512;
@@ -602,7 +602,7 @@ mod tests {
     #[test]
     fn every_thread_count_gives_the_same_bits() {
         for (alphas, seed) in [(0, 7), (3, 8)] {
-            let (k, v, a, u) = case(40 * CHUNK + 3, 1, alphas, seed);
+            let (k, v, a, u) = case(10 * CHUNK + 3, 1, alphas, seed);
             let runs: Vec<_> = [1, 2, 16]
                 .into_iter()
                 .map(|threads| {
