@@ -330,6 +330,21 @@ fn own_rows(c: Chunk, last: bool) -> (usize, usize, usize) {
     (m, s, top)
 }
 
+/// Rows' slots in the sweeps' two outputs.
+type Slots<'o, const D: usize> = (&'o mut [[f64; D]], &'o mut [[f64; D]]);
+
+/// The slots of a chunk's own rows `s + 1 ..= top` in its share of the two
+/// outputs, after those of knot 0 in the first chunk's.
+fn own_slots<'o, const D: usize>(
+    (second, first): Slots<'o, D>,
+    s: usize,
+    top: usize,
+) -> Option<Slots<'o, D>> {
+    let at = usize::from(s == 0);
+    let own = at..at + (top - s);
+    Some((second.get_mut(own.clone())?, first.get_mut(own)?))
+}
+
 /// The elimination of one chunk, in three stretches of rows from the top:
 /// those past its own (kept in `scratch`), its own (kept in `out`'s slots)
 /// and those before them (kept in `out.below`).
@@ -346,14 +361,11 @@ fn eliminate<const D: usize, const PER: bool>(
         v.truncate(above);
         v.resize(above, [0.0; D]);
     }
-    let at = usize::from(s == 0);
-    let own = top - s;
     let Some(mut elim) = sweep.top::<PER>() else {
         return;
     };
-    let (Some(od), Some(op), Some(ad), Some(ap)) = (
-        out.second.get_mut(at..at + own),
-        out.first.get_mut(at..at + own),
+    let (Some((od, op)), Some(ad), Some(ap)) = (
+        own_slots((&mut *out.second, &mut *out.first), s, top),
         scratch.second.get_mut(..above),
         scratch.first.get_mut(..above),
     ) else {
@@ -375,9 +387,6 @@ fn substitute<const D: usize, const PER: bool, const KNOT: bool>(
     scratch: &mut Scratch<D>,
 ) {
     let (m, s, top) = own_rows(c, last);
-    let first = s == 0;
-    let at = usize::from(first);
-    let own = top - s;
     let mut sub = sweep.bottom();
     scratch.coefs.clear();
     sweep.substitute::<PER, KNOT>(
@@ -386,10 +395,7 @@ fn substitute<const D: usize, const PER: bool, const KNOT: bool>(
         (&mut *out.below.0, &mut *out.below.1),
         &mut scratch.coefs,
     );
-    let (Some(od), Some(op)) = (
-        out.second.get_mut(at..at + own),
-        out.first.get_mut(at..at + own),
-    ) else {
+    let Some((od, op)) = own_slots((&mut *out.second, &mut *out.first), s, top) else {
         return;
     };
     let mut fill = Fill(&mut *out.coefs);
@@ -400,7 +406,7 @@ fn substitute<const D: usize, const PER: bool, const KNOT: bool>(
             sweep.end_point::<KNOT>(m, d, p);
         }
     }
-    if first {
+    if s == 0 {
         if let (Some(d), Some(p)) = (out.second.first_mut(), out.first.first_mut()) {
             sweep.end_point::<KNOT>(0, d, p);
         }
