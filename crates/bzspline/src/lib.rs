@@ -96,6 +96,8 @@ mod poly;
 mod polyline;
 mod smoothing;
 mod spline;
+#[cfg(test)]
+mod testing;
 mod traits;
 mod tridiag;
 mod validate;

@@ -358,7 +358,7 @@ fn solve_for<S: System>(
     let mut eval = Evaluator {
         problem,
         system: system(),
-        phi: Vec::new(),
+        phis: Vec::new(),
         d: Vec::new(),
     };
     let lambda = choose(&mut eval, smoothing, unit, span)?;
@@ -606,7 +606,9 @@ fn gcv_score(rss: f64, dof: f64, n: f64) -> f64 {
 struct Evaluator<'a, S> {
     problem: &'a Problem<'a>,
     system: S,
-    phi: Vec<f64>,
+    /// Each coordinate's knot values.
+    phis: Vec<Vec<f64>>,
+    /// Scratch for the deviations.
     d: Vec<f64>,
 }
 
@@ -617,20 +619,24 @@ impl<S: System> Evaluator<'_, S> {
         let p = self.problem;
         let n = p.weights.len();
         let lambda = exp10(t);
-        let f = &mut self.system;
-        if lambda < p.floor || !f.factor(lambda) {
+        if lambda < p.floor {
             return f64::INFINITY;
         }
-        let (phi, d) = (&mut self.phi, &mut self.d);
-        phi.resize(n, 0.0);
-        d.resize(n, 0.0);
+        let ys: Vec<&[f64]> = p.coords.iter().map(|(_, y)| y.as_slice()).collect();
+        self.phis.resize_with(ys.len(), Vec::new);
+        self.phis.iter_mut().for_each(|phi| phi.resize(n, 0.0));
+        let Some(trace) = self
+            .system
+            .evaluate(lambda, &ys, &mut self.phis, &mut self.d)
+        else {
+            return f64::INFINITY;
+        };
         let mut rss = 0.0;
-        for (scale, y) in p.coords {
-            f.solve(y, phi, d);
+        for ((scale, y), phi) in p.coords.iter().zip(&self.phis) {
             let s: f64 = (0..n).map(|i| p.weights[i] * (y[i] - phi[i]).powi(2)).sum();
             rss += s * scale * scale;
         }
-        let s = gcv_score(rss * p.mean_w / p.coords.len() as f64, f.trace(), p.count);
+        let s = gcv_score(rss * p.mean_w / p.coords.len() as f64, trace, p.count);
         if s.is_finite() {
             s
         } else {

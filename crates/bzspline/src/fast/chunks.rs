@@ -416,17 +416,7 @@ fn substitute<const D: usize, const PER: bool, const KNOT: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A xorshift generator in `[0, 1)`.
-    fn rng(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::testing::rng;
 
     /// Knots, values and alphas of one generated case: `grid` 0 random
     /// widths in `[0.5, 1.5)`, 1 widths over 12 decades; `alphas` 0 random

@@ -84,14 +84,31 @@ pub(super) fn link_mul(b: &M3, p: &M3) -> M3 {
 
 /// The pivot block `A - B P B^T` of block elimination: `own` the diagonal
 /// block `A`, `link` the block `B` below the previous pivot, `prev` that
-/// pivot's inverse `P`.
+/// pivot's inverse `P`. Symmetric: only the upper triangle is formed (from
+/// the five entries of `B`, the products with its zeros left out), the
+/// lower mirrors it.
+#[inline(always)]
 pub(super) fn pivot(mut own: M3, link: &M3, prev: &M3) -> M3 {
-    let lb = mul_t(&link_mul(link, prev), link);
-    for i in 0..3 {
-        for j in 0..3 {
-            own[i][j] -= lb[i][j];
-        }
-    }
+    let (b02, b11, b12, b20, b21) = (link[0][2], link[1][1], link[1][2], link[2][0], link[2][1]);
+    let p = prev;
+    // Rows of B P (the entries the upper triangle uses).
+    let a0 = [b02 * p[2][0], b02 * p[2][1], b02 * p[2][2]];
+    let a1 = [
+        b11 * p[1][0] + b12 * p[2][0],
+        b11 * p[1][1] + b12 * p[2][1],
+        b11 * p[1][2] + b12 * p[2][2],
+    ];
+    let a20 = b20 * p[0][0] + b21 * p[1][0];
+    let a21 = b20 * p[0][1] + b21 * p[1][1];
+    own[0][0] -= a0[2] * b02;
+    own[0][1] -= a0[1] * b11 + a0[2] * b12;
+    own[0][2] -= a0[0] * b20 + a0[1] * b21;
+    own[1][1] -= a1[1] * b11 + a1[2] * b12;
+    own[1][2] -= a1[0] * b20 + a1[1] * b21;
+    own[2][2] -= a20 * b20 + a21 * b21;
+    own[1][0] = own[0][1];
+    own[2][0] = own[0][2];
+    own[2][1] = own[1][2];
     own
 }
 
@@ -142,6 +159,7 @@ fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
 /// 2 determinant, so a diagonal scaling of the matrix scales them alike and
 /// does not cost accuracy); where the determinant cancels, by
 /// [`invert3_pivoting`].
+#[inline(always)]
 pub(super) fn invert3(m: &M3) -> Option<M3> {
     let [[a, b, c], [_, d, e], [_, _, f]] = *m;
     let c00 = d * f - e * e;
@@ -165,6 +183,8 @@ pub(super) fn invert3(m: &M3) -> Option<M3> {
 
 /// The inverse of a 3 by 3 matrix by Gauss-Jordan with partial pivoting,
 /// unrolled; `None` when a pivot vanishes.
+#[cold]
+#[inline(never)]
 fn invert3_pivoting(m: &M3) -> Option<M3> {
     let norm = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
     let mut a = *m;
@@ -222,6 +242,37 @@ pub(crate) trait System {
     fn trace(&self) -> f64;
     /// The posterior covariances a [`super::Posterior`] keeps, one a knot.
     fn covariances(&self) -> Vec<[f64; 7]>;
+    /// What one score of `lambda` needs: factors for it, solves for the knot
+    /// values of each coordinate `ys[c]` into `phis[c]` (of length N, as the
+    /// data) and returns the trace; `None` when singular. `d` is scratch.
+    fn evaluate(
+        &mut self,
+        lambda: f64,
+        ys: &[&[f64]],
+        phis: &mut [Vec<f64>],
+        d: &mut Vec<f64>,
+    ) -> Option<f64> {
+        evaluate_in_turn(self, lambda, ys, phis, d)
+    }
+}
+
+/// [`System::evaluate`] by [`System::factor`], [`System::solve`] and
+/// [`System::trace`] in turn.
+fn evaluate_in_turn<S: System + ?Sized>(
+    system: &mut S,
+    lambda: f64,
+    ys: &[&[f64]],
+    phis: &mut [Vec<f64>],
+    d: &mut Vec<f64>,
+) -> Option<f64> {
+    if !system.factor(lambda) {
+        return None;
+    }
+    for (y, phi) in ys.iter().zip(phis.iter_mut()) {
+        d.resize(y.len(), 0.0);
+        system.solve(y, phi, d);
+    }
+    Some(system.trace())
 }
 
 impl System for Factored<'_> {
@@ -236,6 +287,20 @@ impl System for Factored<'_> {
     }
     fn covariances(&self) -> Vec<[f64; 7]> {
         Factored::covariances(self)
+    }
+    fn evaluate(
+        &mut self,
+        lambda: f64,
+        ys: &[&[f64]],
+        phis: &mut [Vec<f64>],
+        d: &mut Vec<f64>,
+    ) -> Option<f64> {
+        match ys.len() {
+            1 => self.evaluate_fused::<1>(lambda, ys, phis),
+            2 => self.evaluate_fused::<2>(lambda, ys, phis),
+            3 => self.evaluate_fused::<3>(lambda, ys, phis),
+            _ => evaluate_in_turn(self, lambda, ys, phis, d),
+        }
     }
 }
 
@@ -269,17 +334,32 @@ pub(super) fn continuity_row(hl: f64, hr: f64, left: &[f64; 4], right: &[f64; 4]
     Row { lo, di, up, p, q }
 }
 
+/// One knot's share of the optimality system apart from `lambda`: its
+/// diagonal block and its link block to the knot before (see [`Grid::own`]
+/// and [`Grid::link`]), side by side in memory.
+#[derive(Clone, Copy, Default)]
+struct Knot {
+    /// The weight.
+    w: f64,
+    /// `Q[k][k]` of the penalty `int S''^2 = d^T Q d`.
+    q_diag: f64,
+    /// `Q[k][k-1]`.
+    q_off: f64,
+    /// `di` of the knot's continuity row; `lo` and `p` likewise.
+    di: f64,
+    lo: f64,
+    p: f64,
+    /// `up` and `q` of the previous knot's continuity row.
+    up_prev: f64,
+    q_prev: f64,
+}
+
 /// One smoothing problem's grid and weights in the normalised units of §12
 /// (knots spanning 1, weights of mean 1), with everything that does not
 /// depend on `lambda` formed once.
 pub(crate) struct Grid {
-    /// One weight per knot.
-    w: Vec<f64>,
-    /// Row of interior knot `k` at `k` (0 and N-1 unused).
-    rows: Vec<Row>,
-    /// `Q[k][k]` and `Q[k+1][k]` of the penalty `int S''^2 = d^T Q d`, at `k`.
-    q_diag: Vec<f64>,
-    q_off: Vec<f64>,
+    /// One a knot.
+    knots: Vec<Knot>,
     /// The last knot of the head block.
     head: usize,
 }
@@ -292,56 +372,75 @@ impl Grid {
         let terms: Vec<[f64; 4]> = alphas.iter().map(|&a| alpha_terms(a)).collect();
         let forms = penalty_forms(widths, &terms);
         let mut rows = vec![Row::default(); n];
-        let mut q_diag = vec![0.0; n];
-        let mut q_off = vec![0.0; n];
         for k in 1..n - 1 {
             rows[k] = continuity_row(widths[k - 1], widths[k], &terms[k - 1], &terms[k]);
-            q_diag[k] = forms[k - 1][2] + forms[k][0];
-            q_off[k] = forms[k][1];
         }
+        let knots = (0..n)
+            .map(|k| {
+                let interior = k > 0 && k < n - 1;
+                let r = rows[k];
+                Knot {
+                    w: weights[k],
+                    q_diag: if interior {
+                        forms[k - 1][2] + forms[k][0]
+                    } else {
+                        0.0
+                    },
+                    q_off: if k > 1 { forms[k - 1][1] } else { 0.0 },
+                    di: r.di,
+                    lo: r.lo,
+                    p: r.p,
+                    up_prev: if k > 0 { rows[k - 1].up } else { 0.0 },
+                    q_prev: if k > 0 { rows[k - 1].q } else { 0.0 },
+                }
+            })
+            .collect();
         let first = weights
             .iter()
             .position(|&w| w >= super::NEGLIGIBLE_WEIGHT)
             .unwrap_or(0);
         Grid {
-            w: weights.to_vec(),
-            rows,
-            q_diag,
-            q_off,
+            knots,
             head: first.clamp(1, n - 2),
         }
     }
 
     fn n(&self) -> usize {
-        self.w.len()
+        self.knots.len()
+    }
+
+    /// The weight of knot `k`.
+    fn w(&self, k: usize) -> f64 {
+        self.knots[k].w
     }
 
     /// The diagonal block of interior knot `k` (or of `phi_{N-1}`, padded,
     /// for `k = N - 1`).
+    #[inline(always)]
     fn own(&self, k: usize, lambda: f64) -> M3 {
+        let kn = &self.knots[k];
         if k == self.n() - 1 {
-            return [[self.w[k], 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            return [[kn.w, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         }
-        let r = self.rows[k];
         [
-            [self.w[k], 0.0, 1.0],
-            [0.0, lambda * self.q_diag[k], r.di],
-            [1.0, r.di, 0.0],
+            [kn.w, 0.0, 1.0],
+            [0.0, lambda * kn.q_diag, kn.di],
+            [1.0, kn.di, 0.0],
         ]
     }
 
     /// `H[knot k, knot k-1]`: rows `(phi, d, m)` of knot `k` (or `phi_{N-1}`
     /// and padding for `k = N - 1`), columns those of knot `k - 1`.
+    #[inline(always)]
     fn link(&self, k: usize, lambda: f64) -> M3 {
-        let prev = self.rows[k - 1];
+        let kn = &self.knots[k];
         if k == self.n() - 1 {
-            return [[0.0, 0.0, -prev.q], [0.0; 3], [0.0; 3]];
+            return [[0.0, 0.0, -kn.q_prev], [0.0; 3], [0.0; 3]];
         }
-        let r = self.rows[k];
         [
-            [0.0, 0.0, -prev.q],
-            [0.0, lambda * self.q_off[k - 1], prev.up],
-            [-r.p, r.lo, 0.0],
+            [0.0, 0.0, -kn.q_prev],
+            [0.0, lambda * kn.q_off, kn.up_prev],
+            [-kn.p, kn.lo, 0.0],
         ]
     }
 
@@ -359,8 +458,8 @@ impl Grid {
             a[i * sz + j] = v;
             a[j * sz + i] = v;
         };
-        put(0, 0, self.w[0]);
-        put(at(1, 2), 0, -self.rows[1].p);
+        put(0, 0, self.w(0));
+        put(at(1, 2), 0, -self.knots[1].p);
         for k in 1..=self.head {
             let own = self.own(k, lambda);
             for i in 0..3 {
@@ -393,8 +492,11 @@ pub(crate) struct Factored<'a> {
     head_inv: Vec<f64>,
     /// Pivot inverses of knots `head + 1 ..= N - 1` (the last is `phi_{N-1}`'s).
     inv: Vec<M3>,
-    /// The forward sweep's right-hand sides, kept between solves.
+    /// The forward sweep's right-hand sides after the head, kept between
+    /// solves: block by block, each block's coordinates in turn.
     z: Vec<[f64; 3]>,
+    /// The head's right-hand sides, one head-sized run a coordinate.
+    z0: Vec<f64>,
 }
 
 impl<'a> Factored<'a> {
@@ -406,105 +508,244 @@ impl<'a> Factored<'a> {
             head_inv: Vec::new(),
             inv: Vec::with_capacity(grid.n() - 1 - grid.head),
             z: Vec::new(),
+            z0: Vec::new(),
         }
     }
 
     /// Factors the system for `lambda` (normalised units); `false` when a
     /// pivot block is singular: the problem has no unique solution.
     pub(crate) fn factor(&mut self, lambda: f64) -> bool {
+        let Some(prev) = self.factor_head(lambda) else {
+            return false;
+        };
+        self.forward::<0, true>([], [], prev)
+    }
+
+    /// Starts factoring for `lambda`: inverts the head block (the later
+    /// pivots are then formed by [`Factored::forward`]). Returns the head inverse's block at its last knot, all
+    /// that the first later pivot needs of it (that block meets the head
+    /// through its last knot only: `S = A - B (S_head^-1)_tail B^T`); `None`
+    /// when the head is singular.
+    fn factor_head(&mut self, lambda: f64) -> Option<M3> {
         let grid = self.grid;
         self.lambda = lambda;
-        let n = grid.n();
         let sz = grid.head_size();
         let mut a = grid.head_block(lambda);
         self.head_inv.clear();
         self.head_inv.resize(sz * sz, 0.0);
-        self.inv.clear();
         if !invert(&mut a, sz, &mut self.head_inv) {
-            return false;
+            return None;
         }
-        // The first later block meets the head through its last knot only:
-        // S = A - B (S_head^-1 restricted to that knot) B^T.
         let tail = sz - 3;
         let hi = &self.head_inv;
-        let mut prev: M3 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| hi[(tail + i) * sz + tail + j]));
-        for k in grid.head + 1..n {
-            let s = pivot(grid.own(k, lambda), &grid.link(k, lambda), &prev);
-            let Some(si) = invert3(&s) else {
-                return false;
-            };
-            self.inv.push(si);
-            prev = si;
+        Some([0, 1, 2].map(|i| [0, 1, 2].map(|j| hi[(tail + i) * sz + tail + j])))
+    }
+
+    /// The forward sweep through the head for the data `y`: its right-hand
+    /// side into `z0` (head-sized), and `S_head^-1 z0` at the head's last
+    /// knot, which the next block needs.
+    fn forward_head(&self, y: &[f64], z0: &mut [f64]) -> [f64; 3] {
+        let g = self.grid;
+        let sz = g.head_size();
+        let tail = sz - 3;
+        z0.fill(0.0);
+        z0[0] = g.w(0) * y[0];
+        for k in 1..=g.head {
+            z0[1 + 3 * (k - 1)] = g.w(k) * y[k];
         }
-        true
+        let mut s0z0 = [0.0; 3];
+        for (i, v) in s0z0.iter_mut().enumerate() {
+            let row = &self.head_inv[(tail + i) * sz..(tail + i + 1) * sz];
+            *v = row.iter().zip(&*z0).map(|(a, b)| a * b).sum();
+        }
+        s0z0
+    }
+
+    /// The backward sweep through the head, from its forward right-hand side
+    /// `z0` (spent) and the first later block's solution `next`: the knot
+    /// values of knots `0..=head` into `phi`, their deviations into `d` when
+    /// asked for.
+    fn backward_head(
+        &self,
+        z0: &mut [f64],
+        next: &[f64; 3],
+        phi: &mut [f64],
+        d: Option<&mut [f64]>,
+    ) {
+        let g = self.grid;
+        let sz = g.head_size();
+        let tail = sz - 3;
+        let bt = apply_t(&g.link(g.head + 1, self.lambda), next);
+        for i in 0..3 {
+            z0[tail + i] -= bt[i];
+        }
+        let x = |i: usize| -> f64 {
+            self.head_inv[i * sz..(i + 1) * sz]
+                .iter()
+                .zip(&*z0)
+                .map(|(a, b)| a * b)
+                .sum()
+        };
+        phi[0] = x(0);
+        for k in 1..=g.head {
+            phi[k] = x(1 + 3 * (k - 1));
+        }
+        if let Some(d) = d {
+            for k in 1..=g.head {
+                d[k] = x(2 + 3 * (k - 1));
+            }
+        }
     }
 
     /// Solves for the knot values `phi` and deviations `d` (both length N,
     /// `d` zero at the ends) of the data `y`.
     pub(crate) fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]) {
+        let n = self.grid.n();
+        let mut z0 = std::mem::take(&mut self.z0);
+        z0.resize(self.grid.head_size(), 0.0);
+        let sz = self.forward_head(y, &mut z0);
+        self.forward::<1, false>([y], [sz], [[0.0; 3]; 3]);
+        let (next, _) = self.backward::<1, false>(&mut [&mut *phi], Some(&mut *d));
+        self.backward_head(&mut z0, &next[0], phi, Some(d));
+        d[0] = 0.0;
+        d[n - 1] = 0.0;
+        self.z0 = z0;
+    }
+
+    /// The forward sweep after the head for the data `ys`, `sz` holding each
+    /// one's `S_head^-1 z0` at the head's last knot ([`Factored::forward_head`]):
+    /// the right-hand sides `z_b = r_b - B_b S_{b-1}^-1 z_{b-1}` into `z`.
+    /// With `FACTOR` the pivot inverses are formed on the way (`prev` the
+    /// head inverse's block at its last knot, from [`Factored::factor_head`]),
+    /// else those kept are used. `false` when a pivot is singular.
+    #[inline(always)]
+    fn forward<const D: usize, const FACTOR: bool>(
+        &mut self,
+        ys: [&[f64]; D],
+        mut sz: [[f64; 3]; D],
+        mut prev: M3,
+    ) -> bool {
         let g = self.grid;
-        let n = g.n();
-        let sz = g.head_size();
-        let tail = sz - 3;
-        // Forward: z_0 = r_0; z_b = r_b - B_b S_{b-1}^-1 z_{b-1}.
-        let mut z0 = vec![0.0; sz];
-        z0[0] = g.w[0] * y[0];
-        for k in 1..=g.head {
-            z0[1 + 3 * (k - 1)] = g.w[k] * y[k];
+        let lambda = self.lambda;
+        let (n, first) = (g.n(), g.head + 1);
+        self.z.resize(D * (n - first), [0.0; 3]);
+        if FACTOR {
+            self.inv.resize(n - first, [[0.0; 3]; 3]);
         }
-        let mut s0z0 = [0.0; 3];
-        for (i, v) in s0z0.iter_mut().enumerate() {
-            let row = &self.head_inv[(tail + i) * sz..(tail + i + 1) * sz];
-            *v = row.iter().zip(&z0).map(|(a, b)| a * b).sum();
+        let ys = ys.map(|y| &y[..n]);
+        for (b, inv) in self.inv.iter_mut().enumerate() {
+            let k = first + b;
+            let link = g.link(k, lambda);
+            let si = if FACTOR {
+                let Some(si) = invert3(&pivot(g.own(k, lambda), &link, &prev)) else {
+                    return false;
+                };
+                *inv = si;
+                prev = si;
+                si
+            } else {
+                *inv
+            };
+            let zs = &mut self.z[D * b..D * (b + 1)];
+            for c in 0..D {
+                let lz = apply(&link, &sz[c]);
+                let zb = [g.w(k) * ys[c][k] - lz[0], -lz[1], -lz[2]];
+                sz[c] = apply(&si, &zb);
+                zs[c] = zb;
+            }
         }
-        let mut z = std::mem::take(&mut self.z);
-        z.clear();
-        let mut prev_sz = s0z0;
-        for (b, k) in (g.head + 1..n).enumerate() {
-            let link = g.link(k, self.lambda);
-            let lz = apply(&link, &prev_sz);
-            let zb = [g.w[k] * y[k] - lz[0], -lz[1], -lz[2]];
-            prev_sz = apply(&self.inv[b], &zb);
-            z.push(zb);
+        true
+    }
+
+    /// The backward sweep after the head, from the right-hand sides in `z`:
+    /// `x_b = S_b^-1 (z_b - B_{b+1}^T x_{b+1})`, each coordinate's knot values
+    /// into `phis` (and the first one's deviations into `d` when given). With
+    /// `TRACE`, beside it the recurrence for the inverse's diagonal blocks,
+    /// `Z_b = S_b^-1 + L^T Z_{b+1} L` with `L = B_{b+1} S_b^-1`, summing the
+    /// trace of the knots after the head. Returns the first later block's
+    /// solutions (for [`Factored::backward_head`]), and its `Z` with that
+    /// sum (for [`Factored::trace_head`]).
+    #[inline(always)]
+    fn backward<const D: usize, const TRACE: bool>(
+        &self,
+        phis: &mut [&mut [f64]; D],
+        mut d: Option<&mut [f64]>,
+    ) -> ([[f64; 3]; D], (M3, f64)) {
+        let g = self.grid;
+        let lambda = self.lambda;
+        let (n, first) = (g.n(), g.head + 1);
+        let last = self.inv.len() - 1;
+        let mut next = [[0.0; 3]; D];
+        // Knot N - 1: phi_{N-1} and padding.
+        let inv = &self.inv[last];
+        for c in 0..D {
+            next[c] = apply(inv, &self.z[D * last + c]);
+            phis[c][n - 1] = next[c][0];
         }
-        // Backward: x_b = S_b^-1 (z_b - B_{b+1}^T x_{b+1}).
-        let mut next = [0.0; 3];
-        for (b, k) in (g.head + 1..n).enumerate().rev() {
-            let mut rhs = z[b];
-            if k < n - 1 {
-                let bt = apply_t(&g.link(k + 1, self.lambda), &next);
+        let mut zm = *inv;
+        let mut tr = if TRACE { g.w(n - 1) * zm[0][0] } else { 0.0 };
+        for b in (0..last).rev() {
+            let k = first + b;
+            let inv = &self.inv[b];
+            let link = g.link(k + 1, lambda);
+            for c in 0..D {
+                let mut rhs = self.z[D * b + c];
+                let bt = apply_t(&link, &next[c]);
                 for i in 0..3 {
                     rhs[i] -= bt[i];
                 }
+                next[c] = apply(inv, &rhs);
+                phis[c][k] = next[c][0];
             }
-            next = apply(&self.inv[b], &rhs);
-            if k == n - 1 {
-                phi[k] = next[0];
-            } else {
-                phi[k] = next[0];
-                d[k] = next[1];
+            if let Some(d) = d.as_deref_mut() {
+                d[k] = next[0][1];
+            }
+            if TRACE {
+                let l = link_mul(&link, inv);
+                let mut z = t_mul(&l, &mul(&zm, &l));
+                for i in 0..3 {
+                    for j in 0..3 {
+                        z[i][j] += inv[i][j];
+                    }
+                }
+                zm = z;
+                tr += g.w(k) * zm[0][0];
             }
         }
-        self.z = z;
-        let bt = apply_t(&g.link(g.head + 1, self.lambda), &next);
-        for i in 0..3 {
-            z0[tail + i] -= bt[i];
-        }
-        let mut x0 = vec![0.0; sz];
-        for (i, v) in x0.iter_mut().enumerate() {
-            *v = self.head_inv[i * sz..(i + 1) * sz]
-                .iter()
-                .zip(&z0)
-                .map(|(a, b)| a * b)
-                .sum();
-        }
-        phi[0] = x0[0];
-        for k in 1..=g.head {
-            phi[k] = x0[1 + 3 * (k - 1)];
-            d[k] = x0[2 + 3 * (k - 1)];
-        }
-        d[0] = 0.0;
-        d[n - 1] = 0.0;
+        (next, (zm, tr))
+    }
+
+    /// [`System::evaluate`] for `D` coordinates in one pass forward and one
+    /// back: the pivot chain beside the forward sweeps, then the backward
+    /// sweeps beside the trace's recurrence, so that their chains of
+    /// dependent operations overlap and the pivot inverses are read twice,
+    /// not four times. The same operations as [`Factored::factor`],
+    /// [`Factored::solve`] and [`Factored::trace`] in turn: the same bits.
+    fn evaluate_fused<const D: usize>(
+        &mut self,
+        lambda: f64,
+        ys: &[&[f64]],
+        phis: &mut [Vec<f64>],
+    ) -> Option<f64> {
+        let size = self.grid.head_size();
+        let ys: [&[f64]; D] = std::array::from_fn(|c| ys[c]);
+        let prev = self.factor_head(lambda)?;
+        let mut z0 = std::mem::take(&mut self.z0);
+        z0.resize(size * D, 0.0);
+        let mut heads = z0.chunks_exact_mut(size);
+        let sz = ys.map(|y| self.forward_head(y, heads.next().expect("a head a coordinate")));
+        let factored = self.forward::<D, true>(ys, sz, prev);
+        let mut phis = phis.iter_mut();
+        let mut phis = [(); D].map(|()| phis.next().expect("a coordinate").as_mut_slice());
+        let trace = factored.then(|| {
+            let (next, (zm, tr)) = self.backward::<D, true>(&mut phis, None);
+            for (c, z0) in z0.chunks_exact_mut(size).enumerate() {
+                self.backward_head(z0, &next[c], phis[c], None);
+            }
+            self.trace_head(&zm, tr)
+        });
+        self.z0 = z0;
+        trace
     }
 
     /// The posterior covariance (over `sigma^2`) of each knot's value and
@@ -596,24 +837,16 @@ impl<'a> Factored<'a> {
     /// Z_{b+1} L_{b+1}` with `L_{b+1} = B_{b+1} S_b^-1`, without forming any
     /// other part of it.
     pub(crate) fn trace(&self) -> f64 {
+        let (_, (zm, tr)) = self.backward::<0, true>(&mut [], None);
+        self.trace_head(&zm, tr)
+    }
+
+    /// The trace `tr` of the knots after the head, completed with the head's
+    /// share, given `zm`, the inverse's diagonal block of the first later
+    /// block.
+    fn trace_head(&self, zm: &M3, mut tr: f64) -> f64 {
         let g = self.grid;
-        let n = g.n();
-        let last = self.inv.len() - 1;
-        let mut zm = self.inv[last];
-        let mut tr = g.w[n - 1] * zm[0][0];
-        for b in (0..last).rev() {
-            let k = g.head + 1 + b;
-            let l = link_mul(&g.link(k + 1, self.lambda), &self.inv[b]);
-            let mut next = t_mul(&l, &mul(&zm, &l));
-            for i in 0..3 {
-                for j in 0..3 {
-                    next[i][j] += self.inv[b][i][j];
-                }
-            }
-            zm = next;
-            tr += g.w[k] * zm[0][0];
-        }
-        // The head: L = B (rows of S_head^-1 at its last knot), 3 x size;
+        // L = B (rows of S_head^-1 at its last knot), 3 x size;
         // (Z_head)_ii = (S_head^-1)_ii + l_i^T Z l_i for column l_i of L.
         let sz = g.head_size();
         let tail = sz - 3;
@@ -626,10 +859,93 @@ impl<'a> Factored<'a> {
                     .map(|c| b[r][c] * self.head_inv[(tail + c) * sz + i])
                     .sum()
             });
-            let zl = apply(&zm, &col);
+            let zl = apply(zm, &col);
             let quad: f64 = (0..3).map(|r| col[r] * zl[r]).sum();
-            tr += g.w[knot(i)] * (self.head_inv[i * sz + i] + quad);
+            tr += g.w(knot(i)) * (self.head_inv[i * sz + i] + quad);
         }
         tr
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::rng;
+
+    /// The fused evaluation gives the bits of factoring, solving and taking
+    /// the trace in turn, for one to four coordinates, on grids of random
+    /// and many-decade widths, random and extreme alphas, weights with zeros
+    /// (heads longer than one knot), and lambdas from interpolation to the
+    /// straight line.
+    #[test]
+    fn fused_evaluation_is_factor_solve_trace_bit_for_bit() {
+        let mut cases = 0;
+        for seed in 0..40u64 {
+            let mut next = rng(seed);
+            let n = 3 + (next() * 60.0) as usize + if seed % 7 == 0 { 3000 } else { 0 };
+            let widths: Vec<f64> = (0..n - 1)
+                .map(|_| {
+                    if seed % 3 == 1 {
+                        10f64.powf(-6.0 * next())
+                    } else {
+                        0.5 + next()
+                    }
+                })
+                .collect();
+            let span: f64 = widths.iter().sum();
+            let widths: Vec<f64> = widths.iter().map(|h| h / span).collect();
+            let alphas: Vec<f64> = (0..n - 1)
+                .map(|_| match seed % 4 {
+                    0 => 1.0 / 3.0 + next() / 3.0,
+                    1 => [1.0 / 3.0, 2.0 / 3.0][(next() * 2.0) as usize],
+                    _ => 0.5,
+                })
+                .collect();
+            let zeros = (seed % 5) as usize;
+            let mut w: Vec<f64> = (0..n)
+                .map(|k| if k < zeros { 0.0 } else { 0.2 + next() })
+                .collect();
+            let mean = w.iter().sum::<f64>() / n as f64;
+            w.iter_mut().for_each(|v| *v /= mean);
+            let grid = Grid::new(&widths, &alphas, &w);
+            let dim = 1 + (seed % 4) as usize;
+            let ys: Vec<Vec<f64>> = (0..dim)
+                .map(|_| (0..n).map(|_| next() - 0.5).collect())
+                .collect();
+            let ys: Vec<&[f64]> = ys.iter().map(Vec::as_slice).collect();
+            for t in [-12.0, -7.0, -3.5, -1.0, 0.0, 2.0, 6.0] {
+                let lambda = 10f64.powf(t);
+                let (mut fused, mut in_turn) = (Factored::new(&grid), Factored::new(&grid));
+                let mut a = vec![vec![0.0; n]; dim];
+                let mut b = vec![vec![0.0; n]; dim];
+                let mut d = Vec::new();
+                // Twice, so that reused buffers are exercised too.
+                for _ in 0..2 {
+                    let ta = System::evaluate(&mut fused, lambda, &ys, &mut a, &mut d);
+                    let tb = evaluate_in_turn(&mut in_turn, lambda, &ys, &mut b, &mut d);
+                    let (Some(ta), Some(tb)) = (ta, tb) else {
+                        assert_eq!(ta.is_some(), tb.is_some(), "seed {seed}, lambda {lambda:e}");
+                        continue;
+                    };
+                    assert_eq!(
+                        ta.to_bits(),
+                        tb.to_bits(),
+                        "trace, seed {seed}, lambda {lambda:e}"
+                    );
+                    for c in 0..dim {
+                        for k in 0..n {
+                            assert_eq!(
+                                a[c][k].to_bits(),
+                                b[c][k].to_bits(),
+                                "seed {seed}, lambda {lambda:e}, coordinate {c}, knot {k}"
+                            );
+                        }
+                    }
+                    assert!(ta > 0.0 && ta <= n as f64 + 1e-6, "trace {ta}");
+                    cases += 1;
+                }
+            }
+        }
+        assert!(cases > 400, "{cases} cases compared");
     }
 }
