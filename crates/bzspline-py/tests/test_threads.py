@@ -1,5 +1,5 @@
-"""Large constructions on several threads: the same bits for any number of
-threads, and a pool that survives ``fork`` (multiprocessing, dask's process
+"""Large constructions and smoothing fits on several threads: the same bits
+for any number of threads, and a pool that survives ``fork`` (multiprocessing, dask's process
 workers)."""
 
 import hashlib
@@ -28,6 +28,9 @@ s = bzspline.Spline(x, y, alpha=a)
 c = bzspline.Curve(np.column_stack([x, y]), alpha=0.5)
 h = hashlib.sha256(np.ascontiguousarray(s.segments).tobytes())
 h.update(np.ascontiguousarray(c.segments).tobytes())
+f = bzspline.smoothing_spline(x[:50_001], y[:50_001])
+h.update(np.float64([f.lam, f.dof]).tobytes())
+h.update(np.ascontiguousarray(f.segments).tobytes())
 print(h.hexdigest())
 """
 
