@@ -38,7 +38,9 @@
 //! [`Spline::smoothing`] fits noisy data; the module [`text`] holds the number
 //! writer and readers that every output and option parser uses. Optional
 //! features: `serde` (Serialize/Deserialize on the data types), `kurbo`
-//! (conversion into `kurbo::BezPath`) and `rayon` (parallel batches).
+//! (conversion into `kurbo::BezPath`) and `rayon` (parallel batches, large
+//! constructions and the smoothing fit's search on several threads, the same
+//! bits as on one).
 //!
 //! ```
 //! use bzspline::{Arclen, Curve, DEFAULT_ACCURACY};
