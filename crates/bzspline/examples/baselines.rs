@@ -11,7 +11,7 @@
 //! sorted queries (about 1.9 ns per query), a branchless binary search on 16
 //! queries at a time (about 30 ns per random query), a one-core memory stream
 //! (about 39 GB/s) and the page faults of a fresh allocation (about 3 ns per
-//! f64). None of these uses bzspline: they say how fast this machine is at the
+//! f64); beside them, the scaling stream on two threads at once. None of these uses bzspline: they say how fast this machine is at the
 //! work the targets were scaled from, so that `bench/compare.py` can scale the
 //! targets to it.
 //!
@@ -216,6 +216,13 @@ fn sum4(v: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + c.remainder().iter().sum::<f64>()
 }
 
+/// `dst = 2 src` (a read stream and a write stream).
+fn scale_into(dst: &mut [f64], src: &[f64]) {
+    for (d, s) in dst.iter_mut().zip(src) {
+        *d = 2.0 * s;
+    }
+}
+
 fn main() {
     let args = args_or_exit("baselines", 3, true);
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
@@ -249,9 +256,18 @@ fn main() {
         black_box(sum4(black_box(&src)));
     });
     let scale = median_ns(r, || {
-        for (d, s) in dst.iter_mut().zip(&src) {
-            *d = 2.0 * s;
-        }
+        scale_into(&mut dst, &src);
+        black_box(&dst);
+    });
+    // The same scaling on two threads, each over its half: what two cores
+    // together can stream (the ceiling of any two-thread pass over memory).
+    let scale_two = median_ns(r, || {
+        let (d0, d1) = dst.split_at_mut(len / 2);
+        let (s0, s1) = src.split_at(len / 2);
+        std::thread::scope(|scope| {
+            scope.spawn(|| scale_into(d1, s1));
+            scale_into(d0, s0);
+        });
         black_box(&dst);
     });
     // Writing a buffer that is already mapped, against writing a fresh one
@@ -271,7 +287,7 @@ fn main() {
          \"thomas_max_residual\": {}, \"thomas_off_chain_max_residual\": {}, \
          \"horner_walk_sorted_ns_per_query\": {}, \"search16_random_ns_per_query\": {}, \
          \"stream_read_gb_per_s\": {}, \"stream_scale_gb_per_s\": {}, \
-         \"fresh_alloc_ns_per_f64\": {}}}",
+         \"stream_scale_two_threads_gb_per_s\": {}, \"fresh_alloc_ns_per_f64\": {}}}",
         f(plain / n as f64),
         f(off / n as f64),
         e(plain_res),
@@ -280,6 +296,7 @@ fn main() {
         f(search / mr.max(1) as f64),
         gb(8.0 * len as f64, read),
         gb(16.0 * len as f64, scale),
+        gb(16.0 * len as f64, scale_two),
         f(((fresh - fill) / len as f64).max(0.0)),
     );
 }
