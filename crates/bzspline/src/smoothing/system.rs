@@ -13,8 +13,10 @@
 //! first point of positive weight (knot 1 when `w_0 > 0`), factored densely;
 //! every later interior knot is a 3 by 3 block `(phi_k, d_k, m_k)`; and
 //! `phi_{N-1}` closes the sequence in a block of its own (padded to 3 by 3
-//! with two decoupled unit rows). Each pivot block is inverted by
-//! Gauss-Jordan with partial pivoting.
+//! with two decoupled unit rows). The head is inverted by Gauss-Jordan with
+//! partial pivoting, each 3 by 3 pivot block from its cofactors. A score of
+//! `lambda` needs one pass forward (pivots and forward sweeps side by side)
+//! and one back (backward sweeps and the trace's recurrence).
 
 // Small fixed-size matrices read best indexed as they are written on paper.
 #![allow(clippy::needless_range_loop)]
