@@ -981,7 +981,9 @@ fn smoothing_spline(
 mod tests {
     use super::{decade, exp10};
     #[cfg(feature = "rayon")]
-    use crate::{testing::rng, Alphas, Smoothing, Spline};
+    use crate::testing::{on_threads, rng};
+    #[cfg(feature = "rayon")]
+    use crate::{Alphas, Smoothing, Spline};
 
     /// The search for lambda shared with a second thread gives the bits of
     /// the search on one: lambda, the degrees of freedom and every control
@@ -1009,21 +1011,10 @@ mod tests {
             let runs: Vec<Vec<u64>> = [1, 2, 16]
                 .into_iter()
                 .map(|threads| {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads)
-                        .build()
-                        .expect("a pool");
-                    let s = pool
-                        .install(|| {
-                            Spline::smoothing(
-                                &x,
-                                &y,
-                                w.as_deref(),
-                                Alphas::default(),
-                                Smoothing::Gcv,
-                            )
-                        })
-                        .expect("a fit");
+                    let s = on_threads(threads, || {
+                        Spline::smoothing(&x, &y, w.as_deref(), Alphas::default(), Smoothing::Gcv)
+                    })
+                    .expect("a fit");
                     [s.lambda, s.dof]
                         .into_iter()
                         .chain(s.fit.values().iter().copied())

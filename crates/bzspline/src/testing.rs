@@ -1,4 +1,5 @@
-//! What the unit tests share: a small deterministic generator.
+//! What the unit tests share: a small deterministic generator, and a pool
+//! of a given number of threads.
 
 /// A xorshift generator in `[0, 1)`, one stream a seed.
 pub(crate) fn rng(seed: u64) -> impl FnMut() -> f64 {
@@ -9,4 +10,14 @@ pub(crate) fn rng(seed: u64) -> impl FnMut() -> f64 {
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64
     }
+}
+
+/// `op` run in a pool of `threads` threads of its own.
+#[cfg(feature = "rayon")]
+pub(crate) fn on_threads<R: Send>(threads: usize, op: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a pool")
+        .install(op)
 }

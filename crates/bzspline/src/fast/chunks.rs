@@ -602,11 +602,8 @@ mod tests {
             let runs: Vec<_> = [1, 2, 16]
                 .into_iter()
                 .map(|threads| {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads)
-                        .build()
-                        .expect("a pool");
-                    let [_, (pieces, dev)] = pool.install(|| both(&k, &v, &a, u)).1;
+                    let [_, (pieces, dev)] =
+                        crate::testing::on_threads(threads, || both(&k, &v, &a, u)).1;
                     let bits: Vec<u64> = pieces
                         .iter()
                         .flat_map(|p| p.0)
