@@ -114,6 +114,23 @@ pub(super) fn pivot(mut own: M3, link: &M3, prev: &M3) -> M3 {
     own
 }
 
+/// One step back of the recurrence for the diagonal blocks of the inverse:
+/// from `zm = Z_{b+1}`, the link block `B_{b+1}` below pivot `b` and that
+/// pivot's inverse, `(Z_{b+1} L, Z_b)` with `L = B_{b+1} S_b^-1` and
+/// `Z_b = S_b^-1 + L^T Z_{b+1} L`.
+#[inline(always)]
+fn inverse_block(link: &M3, inv: &M3, zm: &M3) -> (M3, M3) {
+    let l = link_mul(link, inv);
+    let zl = mul(zm, &l);
+    let mut z = t_mul(&l, &zl);
+    for i in 0..3 {
+        for j in 0..3 {
+            z[i][j] += inv[i][j];
+        }
+    }
+    (zl, z)
+}
+
 /// Inverts the `n x n` row-major matrix `a` into `inv` by Gauss-Jordan with
 /// partial pivoting (destroying `a`); `false` when a pivot vanishes.
 fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
@@ -524,10 +541,10 @@ impl<'a> Factored<'a> {
     }
 
     /// Starts factoring for `lambda`: inverts the head block (the later
-    /// pivots are then formed by [`Factored::forward`]). Returns the head inverse's block at its last knot, all
-    /// that the first later pivot needs of it (that block meets the head
-    /// through its last knot only: `S = A - B (S_head^-1)_tail B^T`); `None`
-    /// when the head is singular.
+    /// pivots are then formed by [`Factored::forward`]). Returns the head
+    /// inverse's block at its last knot, all that the first later pivot needs
+    /// of it (that block meets the head through its last knot only:
+    /// `S = A - B (S_head^-1)_tail B^T`); `None` when the head is singular.
     fn factor_head(&mut self, lambda: f64) -> Option<M3> {
         let grid = self.grid;
         self.lambda = lambda;
@@ -703,14 +720,7 @@ impl<'a> Factored<'a> {
                 d[k] = next[0][1];
             }
             if TRACE {
-                let l = link_mul(&link, inv);
-                let mut z = t_mul(&l, &mul(&zm, &l));
-                for i in 0..3 {
-                    for j in 0..3 {
-                        z[i][j] += inv[i][j];
-                    }
-                }
-                zm = z;
+                zm = inverse_block(&link, inv, &zm).1;
                 tr += g.w(k) * zm[0][0];
             }
         }
@@ -767,16 +777,9 @@ impl<'a> Factored<'a> {
         out[n - 1][0] = zm[0][0];
         for b in (0..last).rev() {
             let k = g.head + 1 + b;
-            let l = link_mul(&g.link(k + 1, self.lambda), &self.inv[b]);
             // Z_{k+1,k} = -Z_{k+1} L: rows knot k+1, columns knot k.
-            let cross = mul(&zm, &l);
-            let mut next = t_mul(&l, &cross);
-            for i in 0..3 {
-                for j in 0..3 {
-                    next[i][j] += self.inv[b][i][j];
-                }
-            }
-            zm = next;
+            let cross;
+            (cross, zm) = inverse_block(&g.link(k + 1, self.lambda), &self.inv[b], &zm);
             out[k] = [
                 zm[0][0],
                 zm[0][1],
