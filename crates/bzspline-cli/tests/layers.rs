@@ -185,7 +185,8 @@ fn every_coverage_round_trips_through_every_format() {
             files::write(Path::new(&file), output, &doc, None)
                 .unwrap_or_else(|e| panic!("{name} as {ext}: {e}"));
             let back = files::read(Path::new(&file), format, None, u64::MAX).unwrap();
-            let got = back.features["features"].as_array().unwrap();
+            let back_fc = back.features.to_value();
+            let got = back_fc["features"].as_array().unwrap();
             assert_eq!(got.len(), features.len(), "{name} as {ext}");
             match ext {
                 "gpkg" | "parquet" => {
@@ -279,20 +280,26 @@ fn smoothing_a_layer_file_gives_what_its_geojson_gives() {
             // Its GeoJSON: the same features, in the file's order.
             let layer = files::read(Path::new(&file), format, None, u64::MAX).unwrap();
             let geojson = path(dir.path(), &format!("{name}-{ext}.geojson"));
-            std::fs::write(&geojson, layer.features.to_string()).unwrap();
-            let a: Value =
-                serde_json::from_str(&succeeds(&["smooth", &file, "--tolerance", "0.01"])).unwrap();
-            let b: Value =
-                serde_json::from_str(&succeeds(&["smooth", &geojson, "--tolerance", "0.01"]))
-                    .unwrap();
-            assert_eq!(a, b, "{name} as {ext}");
+            std::fs::write(&geojson, layer.features.to_value().to_string()).unwrap();
+            // The same text: a layer's features are written one at a time,
+            // a document's as one tree.
+            let a = succeeds(&["smooth", &file, "--tolerance", "0.01"]);
+            let b = succeeds(&["smooth", &geojson, "--tolerance", "0.01"]);
+            assert!(a == b, "{name} as {ext}: the outputs differ");
+            let each = |f: &str| succeeds(&["smooth", f, "--tolerance", "0.01", "--independent"]);
+            assert!(
+                each(&file) == each(&geojson),
+                "{name} as {ext}: --independent: the outputs differ"
+            );
+            let a: Value = serde_json::from_str(&a).unwrap();
             // Written to a file of the same format, then read: the same.
             let out = path(dir.path(), &format!("out.{ext}"));
             succeeds(&["smooth", &file, "--tolerance", "0.01", "-o", &out]);
             let back = files::read(Path::new(&out), format, None, u64::MAX).unwrap();
+            let back = back.features.to_value();
             let (a, b) = (
                 a["features"].as_array().unwrap(),
-                back.features["features"].as_array().unwrap(),
+                back["features"].as_array().unwrap(),
             );
             match ext {
                 "fgb" => same_features(a, b, &format!("{name} as {ext}")),
@@ -348,7 +355,8 @@ fn gdal_reads_what_we_write_and_we_read_what_gdal_writes() {
                 succeeds(&["smooth", &input, "--tolerance", "0.01", "-o", &out]);
                 let theirs = gdal_features(&out);
                 let bits = files::read(Path::new(&out), format2, None, u64::MAX).unwrap();
-                let bits = bits.features["features"].as_array().unwrap();
+                let bits = bits.features.to_value();
+                let bits = bits["features"].as_array().unwrap();
                 assert_eq!(theirs.len(), ours.len(), "{name}.{ext} to {ext2}: count");
                 // GDAL's reading against ours, feature by feature in the
                 // written file's order.
@@ -454,7 +462,8 @@ fn geopackages_carry_a_spatial_index_that_gdal_uses_and_keeps() {
     );
     // A window's features through the index, against every feature's
     // envelope checked by brute force.
-    let features = back.features["features"].as_array().unwrap();
+    let back = back.features.to_value();
+    let features = back["features"].as_array().unwrap();
     assert_eq!(features.len(), doc["features"].as_array().unwrap().len());
     let (x0, y0, x1, y1) = (0.3, 0.2, 0.9, 0.6);
     let want = features

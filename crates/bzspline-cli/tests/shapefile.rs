@@ -51,7 +51,8 @@ fn a_shapefile_smooths_as_its_geojson_and_gdal_reads_the_result() {
         let theirs = gdal_features(&out);
         let bits = bzspline_io::shp::read(Path::new(&out), u64::MAX)
             .unwrap()
-            .features;
+            .features
+            .to_value();
         let bits = bits["features"].as_array().unwrap();
         assert_eq!(theirs.len(), ours.len(), "{name}: feature count");
         for (i, a) in ours.iter().enumerate() {

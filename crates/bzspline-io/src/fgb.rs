@@ -20,6 +20,7 @@ use flatgeobuf::{ColumnType, FgbCrs, FgbWriter, FgbWriterOptions, Geometry, Geom
 use geozero::{ColumnValue, GeozeroGeometry, PropertyProcessor};
 use serde_json::{json, Map, Value};
 
+use crate::features::{Features, Source};
 use crate::geom;
 use crate::layer::{self, one_line, Crs, Field, FieldKind, Layer, Schema};
 
@@ -132,7 +133,7 @@ pub fn read_from<R: Read>(name: &str, mut reader: R) -> Result<Layer> {
             bail!("{name}: ends inside its spatial index");
         }
     }
-    let mut features = Vec::new();
+    let mut features = Features::new(columns.iter().map(|(f, _)| f.name.clone()).collect());
     loop {
         let i = features.len();
         let here = format!("{name}: feature {i}");
@@ -167,10 +168,10 @@ pub fn read_from<R: Read>(name: &str, mut reader: R) -> Result<Layer> {
             read_properties(bytes.bytes(), &columns, &mut properties)
                 .map_err(|e| anyhow!("{here}: {}", one_line(&e)))?;
         }
-        features.push(json!({"type": "Feature", "properties": properties, "geometry": geometry}));
+        features.push(properties, geometry);
     }
     Ok(Layer {
-        features: json!({"type": "FeatureCollection", "features": features}),
+        features,
         schema: Schema {
             name: layer_name,
             fields: columns.into_iter().map(|c| c.0).collect(),
@@ -329,7 +330,7 @@ fn number(x: f64) -> Value {
 /// A FlatGeobuf geometry type for a layer's geometries: their one type,
 /// else `Unknown` (each feature then carries its own; so does a layer with
 /// a feature without geometry).
-fn geometry_type(features: &[Value]) -> GeometryType {
+fn geometry_type(features: &dyn Source) -> GeometryType {
     match geom::one_type(features, true) {
         Some("Point") => GeometryType::Point,
         Some("MultiPoint") => GeometryType::MultiPoint,
@@ -365,11 +366,12 @@ impl GeozeroGeometry for Json<'_> {
 ///
 /// A feature without geometry, a property its field cannot hold (naming
 /// the feature and field), I/O errors.
-pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
+pub fn write(path: &Path, features: &dyn Source, schema: Option<&Schema>) -> Result<()> {
     let stem = path
         .file_stem()
         .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-    let bytes = to_bytes(fc, schema, &stem).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    let bytes =
+        to_bytes(features, schema, &stem).map_err(|e| anyhow!("{}: {e}", path.display()))?;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -390,11 +392,7 @@ pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
 /// # Errors
 ///
 /// As [`write()`].
-pub fn to_bytes(fc: &Value, schema: Option<&Schema>, name: &str) -> Result<Vec<u8>> {
-    let features = fc
-        .get("features")
-        .and_then(Value::as_array)
-        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as FlatGeobuf"))?;
+pub fn to_bytes(features: &dyn Source, schema: Option<&Schema>, name: &str) -> Result<Vec<u8>> {
     let name = match schema {
         Some(s) if !s.name.is_empty() => s.name.clone(),
         _ => name.to_owned(),
@@ -407,7 +405,7 @@ pub fn to_bytes(fc: &Value, schema: Option<&Schema>, name: &str) -> Result<Vec<u
         Some(s) => s.crs.clone(),
         None => Some(Crs::wgs84()),
     };
-    let z = features.iter().any(|f| geom::has_z(&f["geometry"]));
+    let z = (0..features.count()).any(|i| features.has_z(i));
     let (org, code) = match crs.as_ref().and_then(|c| c.authority.clone()) {
         Some((org, code)) => (Some(org), code),
         None => (None, 0),
@@ -451,11 +449,10 @@ pub fn to_bytes(fc: &Value, schema: Option<&Schema>, name: &str) -> Result<Vec<u
             col.width = width;
         });
     }
-    for (i, feature) in features.iter().enumerate() {
-        let props = &feature["properties"];
+    for i in 0..features.count() {
         let mut values = Vec::new();
         for (k, f) in fields.iter().enumerate() {
-            let v = props.get(&f.name).unwrap_or(&Value::Null);
+            let v = features.property(i, &f.name).unwrap_or(&Value::Null);
             if let Some(v) =
                 column_value(v, f).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?
             {
@@ -463,7 +460,7 @@ pub fn to_bytes(fc: &Value, schema: Option<&Schema>, name: &str) -> Result<Vec<u
             }
         }
         let mut failed = None;
-        fgb.add_feature_geom(Json(&feature["geometry"]), |w| {
+        fgb.add_feature_geom(Json(&features.geometry(i)), |w| {
             for (k, v) in &values {
                 let cv = match v {
                     Cell::Bool(b) => ColumnValue::Bool(*b),
@@ -560,7 +557,10 @@ mod tests {
         assert!(sniff(&bytes));
         let layer = read(&path, u64::MAX).unwrap();
         // The spatial index orders features along a Hilbert curve.
-        let mut got = layer.features["features"].as_array().unwrap().clone();
+        let mut got = layer.features.to_value()["features"]
+            .as_array()
+            .unwrap()
+            .clone();
         got.sort_by_key(|f| f["properties"]["area"].as_f64().map(|a| (a * 10.0) as i64));
         let mut want = input["features"].as_array().unwrap().clone();
         want.sort_by_key(|f| f["properties"]["area"].as_f64().map(|a| (a * 10.0) as i64));
@@ -607,14 +607,14 @@ mod tests {
              "geometry": {"type": "LineString", "coordinates": [[0.0, 0.0, 5.0], [1.0, 2.0, 6.5]]}},
         ]));
         write(&path, &input, None).unwrap();
-        assert_eq!(read(&path, u64::MAX).unwrap().features, input);
+        assert_eq!(read(&path, u64::MAX).unwrap().features.to_value(), input);
         // A feature without geometry among others.
         let some = fc(json!([
             {"type": "Feature", "properties": {"id": 1}, "geometry": {"type": "Point", "coordinates": [1.0, 2.0]}},
             {"type": "Feature", "properties": {"id": 2}, "geometry": null},
         ]));
         write(&path, &some, None).unwrap();
-        let mut back = read(&path, u64::MAX).unwrap().features;
+        let mut back = read(&path, u64::MAX).unwrap().features.to_value();
         back["features"]
             .as_array_mut()
             .unwrap()

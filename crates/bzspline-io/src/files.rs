@@ -9,6 +9,7 @@ use std::path::Path;
 use anyhow::{bail, Result};
 use serde_json::Value;
 
+use crate::features::Source;
 use crate::input::InputFormat;
 use crate::layer::{Layer, Schema};
 use crate::smooth::job::Output;
@@ -108,29 +109,56 @@ pub fn as_collection(doc: &Value) -> std::borrow::Cow<'_, Value> {
 
 /// Writes a GeoJSON document (a FeatureCollection, or a Feature or geometry
 /// as a layer of one feature) as the layer file `path` in `output`'s
-/// format, with `schema` (the layer read) when given; every file is
-/// complete before it replaces what was at `path`.
+/// format, as [`write()`].
+///
+/// # Errors
+///
+/// A document that is not GeoJSON (a TopoJSON Topology), and [`write()`]'s.
+pub fn write_document(
+    path: &Path,
+    output: Output,
+    doc: &Value,
+    schema: Option<&Schema>,
+) -> Result<()> {
+    let fc = as_collection(doc);
+    let Some(features) = crate::features::of_collection(&fc) else {
+        bail!(
+            "{}: only GeoJSON features can be written as {}",
+            path.display(),
+            output.name()
+        );
+    };
+    write(path, output, features, schema)
+}
+
+/// Writes features as the layer file `path` in `output`'s format, with
+/// `schema` (the layer read) when given; every file is complete before it
+/// replaces what was at `path`.
 ///
 /// # Errors
 ///
 /// A format this build does not write, and the format's writer's errors.
 #[allow(unused_variables)]
-pub fn write(path: &Path, output: Output, doc: &Value, schema: Option<&Schema>) -> Result<()> {
+pub fn write(
+    path: &Path,
+    output: Output,
+    features: &dyn Source,
+    schema: Option<&Schema>,
+) -> Result<()> {
     let name = path.display();
-    let fc = &*as_collection(doc);
     match output {
         #[cfg(feature = "shapefile")]
         Output::Shapefile => {
             let files =
-                crate::shp::write(fc, schema).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
+                crate::shp::write(features, schema).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
             crate::shp::save(path, &files)
         }
         #[cfg(feature = "geopackage")]
-        Output::Geopackage => crate::gpkg::write(path, fc, schema),
+        Output::Geopackage => crate::gpkg::write(path, features, schema),
         #[cfg(feature = "flatgeobuf")]
-        Output::Flatgeobuf => crate::fgb::write(path, fc, schema),
+        Output::Flatgeobuf => crate::fgb::write(path, features, schema),
         #[cfg(feature = "geoparquet")]
-        Output::Geoparquet => crate::geoparquet::write(path, fc, schema),
+        Output::Geoparquet => crate::geoparquet::write(path, features, schema),
         o => bail!("{name}: this build writes no {o:?} (a cargo feature of bzspline-io)"),
     }
 }

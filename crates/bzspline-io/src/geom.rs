@@ -7,6 +7,8 @@ use geozero::error::{GeozeroError, Result};
 use geozero::GeomProcessor;
 use serde_json::{json, Value};
 
+use crate::features::{has_z, Source};
+
 /// Geometries nested deeper than this (collections in collections) are
 /// refused, so that no input can exhaust the stack.
 const MAX_DEPTH: usize = 32;
@@ -238,10 +240,10 @@ impl GeomProcessor for ToJson {
 /// their types differ or there are none; features without geometry are
 /// passed over unless `null_differs`.
 #[must_use]
-pub fn one_type(features: &[Value], null_differs: bool) -> Option<&str> {
+pub fn one_type(features: &dyn Source, null_differs: bool) -> Option<&'static str> {
     let mut kind: Option<&str> = None;
-    for f in features {
-        match (kind, f["geometry"]["type"].as_str()) {
+    for i in 0..features.count() {
+        match (kind, features.geometry_type(i)) {
             (_, None) if null_differs => return None,
             (_, None) => {}
             (None, Some(t)) => kind = Some(t),
@@ -250,22 +252,6 @@ pub fn one_type(features: &[Value], null_differs: bool) -> Option<&str> {
         }
     }
     kind
-}
-
-/// Whether any position of a geometry has z.
-#[must_use]
-pub fn has_z(g: &Value) -> bool {
-    fn coords(c: &Value) -> bool {
-        match c.as_array() {
-            Some(a) if a.first().is_some_and(Value::is_number) => a.len() >= 3,
-            Some(a) => a.iter().any(coords),
-            None => false,
-        }
-    }
-    match g.get("geometries").and_then(Value::as_array) {
-        Some(members) => members.iter().any(has_z),
-        None => coords(&g["coordinates"]),
-    }
 }
 
 /// Gives every position of a geometry with z somewhere z = 0 where it has

@@ -33,6 +33,7 @@ use parquet::record::Field as Cell;
 use parquet::schema::types::{Type, TypePtr};
 use serde_json::{json, Map, Value};
 
+use crate::features::{has_z, Features, Source};
 use crate::geom;
 use crate::layer::{self, one_line, Crs, Field, FieldKind, Layer, Schema};
 
@@ -305,7 +306,7 @@ fn read_with(name: &str, reader: &dyn FileReader, stem: &str, size: u64) -> Resu
     let rows = reader
         .get_row_iter(None)
         .map_err(|e| anyhow!("{name}: {}", one_line(&e)))?;
-    let mut features = Vec::new();
+    let mut features = Features::new(fields.iter().map(|f| f.name.clone()).collect());
     for row in rows {
         let here = format!("{name}: feature {}", features.len());
         let row = row.map_err(|e| anyhow!("{here}: {}", one_line(&e)))?;
@@ -331,10 +332,10 @@ fn read_with(name: &str, reader: &dyn FileReader, stem: &str, size: u64) -> Resu
             let v = value(cell, f).map_err(|e| anyhow!("{here}, field {col:?}: {e}"))?;
             properties.insert(col.clone(), v);
         }
-        features.push(json!({"type": "Feature", "properties": properties, "geometry": geometry}));
+        features.push(properties, geometry);
     }
     Ok(Layer {
-        features: json!({"type": "FeatureCollection", "features": features}),
+        features,
         schema: Schema::new(stem, fields, column.crs),
     })
 }
@@ -491,14 +492,15 @@ fn finite(x: f64) -> Value {
 ///
 /// A property its field cannot hold (naming the feature and field), a field
 /// named like the geometry column, I/O errors.
-pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
+pub fn write(path: &Path, features: &dyn Source, schema: Option<&Schema>) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
     let mut tmp = layer::staging_file(dir, "")
         .with_context(|| format!("creating a file in {}", dir.display()))?;
-    write_to(tmp.as_file_mut(), fc, schema).map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    write_to(tmp.as_file_mut(), features, schema)
+        .map_err(|e| anyhow!("{}: {e}", path.display()))?;
     tmp.persist(path)
         .map_err(|e| e.error)
         .with_context(|| format!("writing {}", path.display()))?;
@@ -510,9 +512,9 @@ pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
 /// # Errors
 ///
 /// As [`write()`].
-pub fn to_bytes(fc: &Value, schema: Option<&Schema>) -> Result<Vec<u8>> {
+pub fn to_bytes(features: &dyn Source, schema: Option<&Schema>) -> Result<Vec<u8>> {
     let mut out = Vec::new();
-    write_to(&mut out, fc, schema)?;
+    write_to(&mut out, features, schema)?;
     Ok(out)
 }
 
@@ -633,7 +635,7 @@ fn instant(s: &str) -> Option<i64> {
 /// Whether a layer's fields can be written with their kinds: Date and
 /// DateTime fields become text when a value is not a date or time (a
 /// Shapefile's or GeoPackage's text in a date column).
-fn stores(features: &[Value], fields: &[Field]) -> Vec<Store> {
+fn stores(features: &dyn Source, fields: &[Field]) -> Vec<Store> {
     fields
         .iter()
         .map(|f| {
@@ -645,9 +647,8 @@ fn stores(features: &[Value], fields: &[Field]) -> Vec<Store> {
                 (Store::Date | Store::Instant, _) => false,
                 _ => true,
             };
-            let all = features
-                .iter()
-                .all(|feat| fits(feat["properties"].get(&f.name).unwrap_or(&Value::Null)));
+            let all = (0..features.count())
+                .all(|i| fits(features.property(i, &f.name).unwrap_or(&Value::Null)));
             if all {
                 store
             } else {
@@ -658,13 +659,13 @@ fn stores(features: &[Value], fields: &[Field]) -> Vec<Store> {
 }
 
 /// The `geo` metadata of a layer's geometry column.
-fn geo_metadata(features: &[Value], crs: Option<&Crs>) -> Value {
+fn geo_metadata(features: &dyn Source, crs: Option<&Crs>) -> Value {
     let mut types = BTreeSet::new();
     let mut bbox: Option<[f64; 4]> = None;
-    for f in features {
-        let g = &f["geometry"];
+    for i in 0..features.count() {
+        let g = &*features.geometry(i);
         if let Some(t) = g["type"].as_str() {
-            let z = if geom::has_z(g) { " Z" } else { "" };
+            let z = if has_z(g) { " Z" } else { "" };
             types.insert(format!("{t}{z}"));
         }
         if let Some([x0, x1, y0, y1]) = geom::envelope(g) {
@@ -698,11 +699,11 @@ fn geo_metadata(features: &[Value], crs: Option<&Crs>) -> Value {
     })
 }
 
-fn write_to<W: std::io::Write + Send>(out: W, fc: &Value, schema: Option<&Schema>) -> Result<()> {
-    let features = fc
-        .get("features")
-        .and_then(Value::as_array)
-        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as GeoParquet"))?;
+fn write_to<W: std::io::Write + Send>(
+    out: W,
+    features: &dyn Source,
+    schema: Option<&Schema>,
+) -> Result<()> {
     let fields = match schema {
         Some(s) => s.fields.clone(),
         None => layer::infer_fields(features),
@@ -741,8 +742,8 @@ fn write_to<W: std::io::Write + Send>(out: W, fc: &Value, schema: Option<&Schema
     let mut writer = SerializedFileWriter::new(out, root, Arc::new(props))
         .map_err(|e| anyhow!("{}", one_line(&e)))?;
     let pq = |e: parquet::errors::ParquetError| anyhow!("{}", one_line(&e));
-    for (g, group) in features.chunks(ROW_GROUP).enumerate() {
-        let first = g * ROW_GROUP;
+    for first in (0..features.count()).step_by(ROW_GROUP) {
+        let group = first..features.count().min(first + ROW_GROUP);
         let mut rg = writer.next_row_group().map_err(pq)?;
         // The geometry column, then each field's.
         let mut col = rg
@@ -751,14 +752,14 @@ fn write_to<W: std::io::Write + Send>(out: W, fc: &Value, schema: Option<&Schema
             .ok_or_else(|| anyhow!("no geometry column"))?;
         let mut values = Vec::with_capacity(group.len());
         let mut defs = Vec::with_capacity(group.len());
-        for (i, f) in group.iter().enumerate() {
-            let g = &f["geometry"];
+        for i in group.clone() {
+            let g = features.geometry(i);
             if g.is_null() {
                 defs.push(0);
                 continue;
             }
-            let bytes = geom::to_wkb(g, geozero::wkb::WkbDialect::Wkb, None, Vec::new())
-                .map_err(|e| anyhow!("feature {}: {}", first + i, one_line(&e)))?;
+            let bytes = geom::to_wkb(&g, geozero::wkb::WkbDialect::Wkb, None, Vec::new())
+                .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
             values.push(ByteArray::from(bytes));
             defs.push(1);
         }
@@ -768,11 +769,10 @@ fn write_to<W: std::io::Write + Send>(out: W, fc: &Value, schema: Option<&Schema
         col.close().map_err(pq)?;
         for (f, store) in fields.iter().zip(&stores) {
             let mut cells = Vec::with_capacity(group.len());
-            for (i, feat) in group.iter().enumerate() {
-                let v = feat["properties"].get(&f.name).unwrap_or(&Value::Null);
+            for i in group.clone() {
+                let v = features.property(i, &f.name).unwrap_or(&Value::Null);
                 cells.push(
-                    stored(v, f, *store)
-                        .map_err(|e| anyhow!("feature {}: {}", first + i, one_line(&e)))?,
+                    stored(v, f, *store).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?,
                 );
             }
             let defs: Vec<i16> = cells.iter().map(|c| i16::from(c.is_some())).collect();
@@ -859,7 +859,7 @@ mod tests {
         let bytes = std::fs::read(&path).unwrap();
         assert!(sniff(&bytes));
         let layer = read(&path, u64::MAX).unwrap();
-        assert_eq!(layer.features, input);
+        assert_eq!(layer.features.to_value(), input);
         assert_eq!(layer.schema.name, "t");
         assert_eq!(layer.schema.crs.as_ref().and_then(Crs::epsg), Some(4326));
         let kinds: Vec<FieldKind> = layer.schema.fields.iter().map(|f| f.kind).collect();
@@ -929,7 +929,7 @@ mod tests {
         ]));
         let bytes = to_bytes(&input, Some(&schema)).unwrap();
         let layer = read_bytes("s.parquet", bytes).unwrap();
-        assert_eq!(layer.features, input);
+        assert_eq!(layer.features.to_value(), input);
         let kinds: Vec<FieldKind> = layer.schema.fields.iter().map(|f| f.kind).collect();
         assert_eq!(
             kinds,
@@ -948,7 +948,7 @@ mod tests {
         );
         let layer = read_bytes("s", to_bytes(&odd, Some(&schema)).unwrap()).unwrap();
         assert_eq!(layer.schema.fields[0].kind, FieldKind::Text);
-        assert_eq!(layer.features, odd);
+        assert_eq!(layer.features.to_value(), odd);
     }
 
     #[test]

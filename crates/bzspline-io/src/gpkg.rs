@@ -13,6 +13,7 @@ use rusqlite::types::{Value as Sql, ValueRef};
 use rusqlite::{params, Connection, OpenFlags};
 use serde_json::{json, Map, Value};
 
+use crate::features::{Features, Source};
 use crate::geom;
 use crate::layer::{self, one_line, Crs, Field, FieldKind, Layer, Schema};
 
@@ -247,7 +248,7 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
     let mut rows = st
         .query([])
         .map_err(|e| anyhow!("{at}: {}", one_line(&e)))?;
-    let mut features = Vec::new();
+    let mut features = Features::new(fields.iter().map(|f| f.name.clone()).collect());
     while let Some(row) = rows.next().map_err(|e| anyhow!("{at}: {}", one_line(&e)))? {
         let id = match row.get_ref(0) {
             Ok(ValueRef::Integer(i)) => i,
@@ -295,10 +296,10 @@ pub fn read_layer(name: &str, conn: &Connection, layer: Option<&str>) -> Result<
             };
             properties.insert(f.name.clone(), v);
         }
-        features.push(json!({"type": "Feature", "properties": properties, "geometry": geometry}));
+        features.push(properties, geometry);
     }
     Ok(Layer {
-        features: json!({"type": "FeatureCollection", "features": features}),
+        features,
         schema: Schema {
             name: table,
             fields,
@@ -366,7 +367,7 @@ pub fn geometry(blob: &[u8], srs_id: i32) -> Result<Value> {
 
 /// The GeoPackage type name of a layer's geometries: their one type, else
 /// `GEOMETRY`.
-fn type_name(features: &[Value]) -> &'static str {
+fn type_name(features: &dyn Source) -> &'static str {
     match geom::one_type(features, false) {
         Some("Point") => "POINT",
         Some("MultiPoint") => "MULTIPOINT",
@@ -462,11 +463,7 @@ fn srs_row(crs: Option<&Crs>) -> (i32, Option<(String, String, i32, String)>) {
 ///
 /// A property its field cannot hold (naming the feature and field), a
 /// geometry that is not GeoJSON, I/O and SQLite errors.
-pub fn write(path: &Path, fc: &Value, schema: Option<&Schema>) -> Result<()> {
-    let features = fc
-        .get("features")
-        .and_then(Value::as_array)
-        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as a GeoPackage"))?;
+pub fn write(path: &Path, features: &dyn Source, schema: Option<&Schema>) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -506,7 +503,7 @@ fn fill(
     name: &str,
     fields: &[Field],
     crs: Option<&Crs>,
-    features: &[Value],
+    features: &dyn Source,
 ) -> Result<()> {
     let sql = |e: rusqlite::Error| anyhow!("SQLite: {}", one_line(&e));
     conn.execute_batch(&format!(
@@ -545,10 +542,9 @@ fn fill(
         .find(|n| !taken(n))
         .unwrap_or("bzspline_geom");
     // z: 1 when every geometry has it, 2 (optional) when some do.
-    let with_z = features
-        .iter()
-        .filter(|f| !f["geometry"].is_null())
-        .map(|f| geom::has_z(&f["geometry"]));
+    let with_z = (0..features.count())
+        .filter(|&i| features.geometry_type(i).is_some())
+        .map(|i| features.has_z(i));
     let (all, any) = with_z.fold((true, false), |(a, o), z| (a && z, o || z));
     let z = match (any, all) {
         (false, _) => 0,
@@ -580,11 +576,11 @@ fn fill(
     insert += ")";
     let mut extent: Option<[f64; 4]> = None;
     // Each feature's id and envelope, for the spatial index.
-    let mut boxes: Vec<(i64, [f64; 4])> = Vec::with_capacity(features.len());
+    let mut boxes: Vec<(i64, [f64; 4])> = Vec::with_capacity(features.count());
     {
         let mut st = tx.prepare(&insert).map_err(sql)?;
-        for (i, f) in features.iter().enumerate() {
-            let g = &f["geometry"];
+        for i in 0..features.count() {
+            let g = &*features.geometry(i);
             let blob = if g.is_null() {
                 Sql::Null
             } else {
@@ -606,9 +602,8 @@ fn fill(
             };
             let mut values = Vec::with_capacity(fields.len() + 1);
             values.push(blob);
-            let props = &f["properties"];
             for field in fields {
-                let v = props.get(&field.name).unwrap_or(&Value::Null);
+                let v = features.property(i, &field.name).unwrap_or(&Value::Null);
                 values.push(
                     sql_value(v, field).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?,
                 );
@@ -712,7 +707,7 @@ mod tests {
         write(&path, &input, None).unwrap();
         assert!(sniff(&std::fs::read(&path).unwrap()));
         let layer = read(&path, None, u64::MAX).unwrap();
-        assert_eq!(layer.features, input);
+        assert_eq!(layer.features.to_value(), input);
         assert_eq!(layer.schema.name, "t");
         assert_eq!(layer.schema.crs.as_ref().and_then(Crs::epsg), Some(4326));
         let kinds: Vec<FieldKind> = layer.schema.fields.iter().map(|f| f.kind).collect();
@@ -722,7 +717,7 @@ mod tests {
         let again = dir.path().join("u.gpkg");
         write(&again, &layer.features, Some(&layer.schema)).unwrap();
         let back = read(&again, Some("t"), u64::MAX).unwrap();
-        assert_eq!(back.features, input);
+        assert_eq!(back.features.to_value(), input);
         let e = read(&again, Some("lakes"), u64::MAX)
             .unwrap_err()
             .to_string();
@@ -792,7 +787,7 @@ mod tests {
         drop(conn);
         let layer = read(&path, None, u64::MAX).unwrap();
         assert_eq!(
-            layer.features["features"][0]["properties"],
+            layer.features.to_value()["features"][0]["properties"],
             json!({"name": "7", "x": 2.0})
         );
     }

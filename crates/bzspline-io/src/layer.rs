@@ -7,6 +7,8 @@
 
 use serde_json::Value;
 
+use crate::features::{Features, Source};
+
 /// A coordinate reference system as a file states it.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Crs {
@@ -291,9 +293,9 @@ pub(crate) fn staging_file(
 /// A layer read: its features and its schema.
 #[derive(Clone, Debug)]
 pub struct Layer {
-    /// A GeoJSON FeatureCollection: one feature per record, in order, its
-    /// properties the record's fields.
-    pub features: Value,
+    /// One feature per record, in order, with a value for each of the
+    /// schema's fields.
+    pub features: Features,
     /// The name, fields and CRS.
     pub schema: Schema,
 }
@@ -303,7 +305,7 @@ pub struct Layer {
 /// (text when kinds mix or a value is an array or object), text as wide as
 /// its longest value.
 #[must_use]
-pub fn infer_fields(features: &[Value]) -> Vec<Field> {
+pub fn infer_fields(features: &dyn Source) -> Vec<Field> {
     #[derive(Default)]
     struct Seen {
         text: usize,
@@ -313,11 +315,9 @@ pub fn infer_fields(features: &[Value]) -> Vec<Field> {
         other: bool,
     }
     let mut order: Vec<(String, Seen)> = Vec::new();
-    for f in features {
-        let Some(props) = f["properties"].as_object() else {
-            continue;
-        };
-        for (k, v) in props {
+    for i in 0..features.count() {
+        let props = features.properties(i);
+        for (k, v) in props.iter() {
             let at = match order.iter().position(|(n, _)| n == k) {
                 Some(at) => at,
                 None => {

@@ -16,6 +16,8 @@
 //! - [`layer`]: a GIS layer's features and schema (fields, CRS), shared by
 //!   the file formats below so that a layer read from one is written to
 //!   another.
+//! - [`features`]: a layer's features held compactly (geo-types, values
+//!   in the fields' order), and the features a layer writer takes.
 //! - [`files`]: which reader and writer a layer file's format selects.
 //! - `shp` (feature `shapefile`): ESRI Shapefiles in and out.
 //! - `gpkg` (feature `geopackage`): GeoPackage feature layers in and out.
@@ -29,6 +31,7 @@
 
 pub mod api;
 pub mod distance;
+pub mod features;
 #[cfg(feature = "flatgeobuf")]
 pub mod fgb;
 pub mod files;

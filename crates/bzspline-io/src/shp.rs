@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail, Context, Result};
 use serde_json::{json, Map, Value};
 
+use crate::features::{Features, Source};
 use crate::layer::{self, one_line, Crs, FieldKind, Layer, Schema};
 use shapefile::dbase::{self, FieldName, FieldType, FieldValue, TableInfo, TableWriterBuilder};
 use shapefile::{
@@ -189,7 +190,7 @@ pub fn read_parts(
     if count != records {
         bail!("{name}: {count} shapes but {records} records in {dbf_name}: the files do not belong together");
     }
-    let mut features = Vec::with_capacity(count);
+    let mut features = Features::new(fields.iter().map(|f| f.name.clone()).collect());
     let mut rows = table.iter_records();
     for (i, &(start, end)) in bounds.iter().enumerate() {
         // Each record on its own: the reader cannot run past it.
@@ -210,10 +211,10 @@ pub fn read_parts(
             let v = record.get(&f.name).map_or(Value::Null, field_json);
             properties.insert(f.name.clone(), v);
         }
-        features.push(json!({"type": "Feature", "properties": properties, "geometry": geometry}));
+        features.push(properties, geometry);
     }
     Ok(Layer {
-        features: json!({"type": "FeatureCollection", "features": features}),
+        features,
         schema: Schema {
             name: Path::new(name)
                 .file_stem()
@@ -475,16 +476,11 @@ pub type Files = Vec<(&'static str, Vec<u8>)>;
 /// A feature of another kind, a property that its field cannot hold
 /// (naming the feature and field), no feature at all or none with a
 /// geometry.
-pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
-    let features = fc
-        .get("features")
-        .and_then(Value::as_array)
-        .ok_or_else(|| anyhow!("only a FeatureCollection can be written as a Shapefile"))?;
+pub fn write(features: &dyn Source, schema: Option<&Schema>) -> Result<Files> {
     if features.is_empty() {
         bail!("no features to write as a Shapefile");
     }
-    let geoms: Vec<&Value> = features.iter().map(|f| &f["geometry"]).collect();
-    let kind = layer_kind(&geoms)?;
+    let kind = layer_kind(features)?;
     let (fields, builder) = match schema {
         Some(Schema { dbf: Some(dbf), .. }) => {
             if let Some(f) = dbf.fields.iter().find(|f| f.name.len() > 11) {
@@ -517,13 +513,12 @@ pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
     {
         let mut table = builder.build_with_dest(&mut dbf);
         let mut shapes = shapefile::ShapeWriter::with_shx(&mut shp, &mut shx);
-        for (i, f) in features.iter().enumerate() {
-            let record =
-                record(&f["properties"], &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
+        for i in 0..features.count() {
+            let record = record(features, i, &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
             table
                 .write_record(&record)
                 .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
-            let g = &f["geometry"];
+            let g = &*features.geometry(i);
             if g.is_null() {
                 continue; // its null shape is spliced in below
             }
@@ -541,13 +536,10 @@ pub fn write(fc: &Value, schema: Option<&Schema>) -> Result<Files> {
             .map_err(|e| anyhow!("feature {i}: {e}"))?;
         }
     }
-    let nulls: Vec<usize> = features
-        .iter()
-        .enumerate()
-        .filter(|(_, f)| f["geometry"].is_null())
-        .map(|(i, _)| i)
+    let nulls: Vec<usize> = (0..features.count())
+        .filter(|&i| features.geometry(i).is_null())
         .collect();
-    let (shp, shx) = with_null_shapes(&shp.into_inner(), &nulls, features.len())?;
+    let (shp, shx) = with_null_shapes(&shp.into_inner(), &nulls, features.count())?;
     let mut files: Files = vec![("shp", shp), ("shx", shx), ("dbf", dbf.into_inner())];
     if let Some(p) = prj {
         files.push(("prj", p.into_bytes()));
@@ -655,10 +647,11 @@ enum Kind {
     Polygons(bool),
 }
 
-fn layer_kind(geoms: &[&Value]) -> Result<Kind> {
+fn layer_kind(features: &dyn Source) -> Result<Kind> {
     let mut kind: Option<(usize, &str)> = None;
     let mut z = false;
-    for (i, g) in geoms.iter().enumerate() {
+    for i in 0..features.count() {
+        let g = features.geometry(i);
         if g.is_null() {
             continue; // a null shape record
         }
@@ -806,7 +799,7 @@ fn rings<P>(g: &Value, f: fn(&Value) -> Result<P>) -> Result<Vec<PolygonRing<P>>
 /// bytes) when no width is given.
 fn table_for(
     fields: &[layer::Field],
-    features: &[Value],
+    features: &dyn Source,
 ) -> Result<(Vec<Field>, TableWriterBuilder)> {
     let mut builder = TableWriterBuilder::new().set_encoding(dbase::encoding::UnicodeLossy);
     let mut out: Vec<Field> = Vec::new();
@@ -828,9 +821,8 @@ fn table_for(
         let field_name =
             FieldName::try_from(name.as_str()).map_err(|e| anyhow!("field {:?}: {e}", f.name))?;
         let widest = || {
-            features
-                .iter()
-                .filter_map(|x| x["properties"].get(&f.name))
+            (0..features.count())
+                .filter_map(|i| features.property(i, &f.name))
                 .filter_map(layer::as_text)
                 .map(|t| t.len())
                 .max()
@@ -891,7 +883,7 @@ fn table_for(
 }
 
 /// A feature's properties as the table's record.
-fn record(props: &Value, fields: &[Field]) -> Result<dbase::Record> {
+fn record(features: &dyn Source, i: usize, fields: &[Field]) -> Result<dbase::Record> {
     let mut r = dbase::Record::default();
     for Field {
         key,
@@ -900,7 +892,7 @@ fn record(props: &Value, fields: &[Field]) -> Result<dbase::Record> {
         width,
     } in fields
     {
-        let v = props.get(key).unwrap_or(&Value::Null);
+        let v = features.property(i, key).unwrap_or(&Value::Null);
         let bad = || anyhow!("field {name:?}: {v} does not fit a {kind:?} field");
         let text = |t: String| -> Result<FieldValue> {
             if t.len() > *width {
@@ -989,7 +981,11 @@ mod tests {
                 .collect();
             let input = fc(Value::Array(features));
             let files = write(&input, None).unwrap();
-            assert_eq!(back(&files).features, input, "nulls at {nulls:?}");
+            assert_eq!(
+                back(&files).features.to_value(),
+                input,
+                "nulls at {nulls:?}"
+            );
             // The .shx indexes every record; file lengths in 16-bit words.
             let (shp, shx) = (&files[0].1, &files[1].1);
             assert_eq!(shx.len(), 100 + 8 * 3);
@@ -1018,7 +1014,7 @@ mod tests {
         ]));
         let files = write(&input, None).unwrap();
         let layer = back(&files);
-        assert_eq!(layer.features, input, "read back differs");
+        assert_eq!(layer.features.to_value(), input, "read back differs");
         assert_eq!(
             layer.schema.field_names().collect::<Vec<_>>(),
             ["name", "depth", "area", "wet"]
@@ -1037,7 +1033,10 @@ mod tests {
             {"type": "Feature", "properties": {"id": 2},
              "geometry": {"type": "MultiLineString", "coordinates": [[[3.0, 3.0, 1.0], [4.0, 3.0, 2.0]], [[5.0, 5.0, 0.0], [6.0, 6.0, 0.0]]]}},
         ]));
-        assert_eq!(back(&write(&input, None).unwrap()).features, input);
+        assert_eq!(
+            back(&write(&input, None).unwrap()).features.to_value(),
+            input
+        );
         let mixed = fc(json!([
             {"type": "Feature", "properties": {}, "geometry": {"type": "LineString", "coordinates": [[0.0, 0.0], [1.0, 1.0]]}},
             {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [0.0, 0.0]}},

@@ -117,7 +117,9 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
         sink.finish()?;
     } else {
         let (out, schema) = match format {
-            InputFormat::Csv | InputFormat::Tsv => (job.table(&a.input.load(None)?)?, None),
+            InputFormat::Csv | InputFormat::Tsv => {
+                (Smoothed::Document(job.table(&a.input.load(None)?)?), None)
+            }
             f if files::is_layer(f) => {
                 let Some(path) = file.filter(|f| *f != Path::new("-")) else {
                     return Err(UsageError::new(&format!(
@@ -127,13 +129,14 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                     .into());
                 };
                 let max_bytes = job.settings().limits.max_bytes;
-                let layer = files::read(path, f, a.input.layer.as_deref(), max_bytes)?;
+                let mut layer = files::read(path, f, a.input.layer.as_deref(), max_bytes)?;
                 let name = path.display().to_string();
                 let crs = layer.schema.crs.clone();
-                (
-                    job.layer(&name, layer.features, crs.as_ref())?,
-                    Some(layer.schema),
-                )
+                let out = match job.layer(&name, &mut layer.features, crs.as_ref())? {
+                    Some(doc) => Smoothed::Document(doc),
+                    None => Smoothed::Layer(layer.features),
+                };
+                (out, Some(layer.schema))
             }
             _ => {
                 let max_bytes = job.settings().limits.max_bytes;
@@ -142,14 +145,27 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                 let value: Value = serde_json::from_str(text)
                     .map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))?;
                 drop(bytes);
-                (job.document(&name, value)?, None)
+                (Smoothed::Document(job.document(&name, value)?), None)
             }
         };
-        match layer_out {
-            Some(path) => files::write(path, output, &out, schema.as_ref())?,
-            None => {
+        match (layer_out, &out) {
+            (Some(path), Smoothed::Document(doc)) => {
+                files::write_document(path, output, doc, schema.as_ref())?;
+            }
+            (Some(path), Smoothed::Layer(features)) => {
+                files::write(path, output, features, schema.as_ref())?;
+            }
+            (None, Smoothed::Document(doc)) => {
                 let mut sink = Sink::create(out_path)?;
-                write_line(&mut sink, &out)?;
+                write_line(&mut sink, doc)?;
+                sink.finish()?;
+            }
+            (None, Smoothed::Layer(features)) => {
+                let mut sink = Sink::create(out_path)?;
+                features
+                    .write_geojson(&mut sink)
+                    .and_then(|()| sink.write_all(b"\n"))
+                    .context("writing output")?;
                 sink.finish()?;
             }
         }
@@ -172,6 +188,13 @@ fn has_table_extension(f: &Path) -> bool {
     f.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| ["csv", "tsv", "tab", "txt"].contains(&e.to_ascii_lowercase().as_str()))
+}
+
+/// What smoothing gave: a document, or a layer's features smoothed where
+/// they are.
+enum Smoothed {
+    Document(Value),
+    Layer(bzspline_io::features::Features),
 }
 
 /// Smooths newline-delimited GeoJSON one line at a time (RFC 8142 record

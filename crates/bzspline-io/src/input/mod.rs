@@ -463,7 +463,7 @@ fn layer_points(
     };
     let name = path.display().to_string();
     let read = crate::files::read(path, format, layer, limits.max_bytes)?;
-    let bytes = serde_json::to_vec(&read.features).context("formatting GeoJSON")?;
+    let bytes = serde_json::to_vec(&read.features.to_value()).context("formatting GeoJSON")?;
     parse_geojson_points(&name, &bytes, limits.max_points)
 }
 

@@ -96,6 +96,37 @@ pub fn smooth_document(
 ) -> Result<Smoothed> {
     let place = placer(&doc, where_, number_single);
     let geoms = geometries(&mut doc, max_points, &place)?;
+    let t = smooth_together(geoms, opts, snap, where_, &place)?;
+    put_back(&mut doc, &t.geometries);
+    Ok(Smoothed {
+        doc,
+        stats: t.stats,
+        coverage: t.coverage,
+        arcs: t.arcs,
+    })
+}
+
+/// Geometries smoothed as one coverage.
+pub struct Together {
+    /// The smoothed geometries, in order.
+    pub geometries: Vec<geo_types::Geometry<f64>>,
+    /// What smoothing did.
+    pub stats: Stats,
+    /// The coverage (its topology numbers the chains).
+    pub coverage: Coverage,
+    /// The smoothed arcs.
+    pub arcs: Vec<Vec<Coord>>,
+}
+
+/// Smooths geometries as one coverage (positions within `snap` joined
+/// first). Errors name `where_`, or the geometry at fault by `place`.
+pub fn smooth_together(
+    geoms: Vec<geo_types::Geometry<f64>>,
+    opts: &SmoothOptions,
+    snap: Option<f64>,
+    where_: &str,
+    place: &dyn Fn(usize) -> String,
+) -> Result<Together> {
     let coverage = Coverage::builder(geoms)
         .snap(snap)
         .frame(opts.frame)
@@ -104,11 +135,9 @@ pub fn smooth_document(
     let s = coverage
         .topology()
         .smooth(opts)
-        .map_err(|e| located(&coverage, &e, &|i| place(i), where_))?;
-    let out = coverage.assemble(&s.arcs);
-    put_back(&mut doc, &out);
-    Ok(Smoothed {
-        doc,
+        .map_err(|e| located(&coverage, &e, place, where_))?;
+    Ok(Together {
+        geometries: coverage.assemble(&s.arcs),
         stats: s.stats,
         coverage,
         arcs: s.arcs,
@@ -130,6 +159,19 @@ pub fn smooth_each(
 ) -> Result<(GeoJson, Stats)> {
     let place = placer(&doc, where_, number_single);
     let geoms = geometries(&mut doc, max_points, &place)?;
+    let (out, total) = smooth_apart(geoms, opts, where_, &place)?;
+    put_back(&mut doc, &out);
+    Ok((doc, total))
+}
+
+/// Smooths every geometry on its own, as [`smooth_each`] does; errors name
+/// the geometry by `place`.
+pub fn smooth_apart(
+    geoms: Vec<geo_types::Geometry<f64>>,
+    opts: &SmoothOptions,
+    where_: &str,
+    place: &dyn Fn(usize) -> String,
+) -> Result<(Vec<geo_types::Geometry<f64>>, Stats)> {
     let mut total = Stats::default();
     let mut out = Vec::with_capacity(geoms.len());
     for (i, g) in geoms.into_iter().enumerate() {
@@ -141,8 +183,46 @@ pub fn smooth_each(
         total += &s.stats;
         out.extend(coverage.assemble(&s.arcs));
     }
-    put_back(&mut doc, &out);
-    Ok((doc, total))
+    Ok((out, total))
+}
+
+/// Refuses a geometry with a line or ring of more than `max_points`
+/// positions, naming it by `place`.
+pub fn check_longest(
+    geoms: &[geo_types::Geometry<f64>],
+    max_points: usize,
+    place: &dyn Fn(usize) -> String,
+) -> Result<()> {
+    fn longest(g: &geo_types::Geometry<f64>) -> usize {
+        use geo_types::Geometry as G;
+        match g {
+            G::LineString(l) => l.0.len(),
+            G::MultiLineString(m) => m.0.iter().map(|l| l.0.len()).max().unwrap_or(0),
+            G::Polygon(p) => std::iter::once(p.exterior())
+                .chain(p.interiors())
+                .map(|l| l.0.len())
+                .max()
+                .unwrap_or(0),
+            G::MultiPolygon(m) => {
+                m.0.iter()
+                    .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+                    .map(|l| l.0.len())
+                    .max()
+                    .unwrap_or(0)
+            }
+            G::GeometryCollection(c) => c.0.iter().map(longest).max().unwrap_or(0),
+            _ => 0,
+        }
+    }
+    for (i, g) in geoms.iter().enumerate() {
+        if longest(g) > max_points {
+            return Err(anyhow!(
+                "{}: more than {max_points} positions (--max-points)",
+                place(i)
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Where geometry i of `doc` is, for messages.

@@ -12,6 +12,7 @@ use serde_json::Value;
 
 use super::{chains, coverage, default_tolerance, each_position, independent, positions};
 use crate::distance::{Distance, Space, Unit};
+use crate::features::{Features, Shape};
 use crate::input::{self, Limits, Points};
 use crate::layer::Crs;
 use crate::topojson;
@@ -192,22 +193,70 @@ impl Job {
         }
     }
 
-    /// Smooths the features of a layer file read from `name` (a
-    /// FeatureCollection) whose coordinate system is `crs` (none stated:
-    /// `None`), which says what a distance in metres or degrees is.
+    /// Smooths the features of a layer file read from `name` whose
+    /// coordinate system is `crs` (none stated: `None`), which says what a
+    /// distance in metres or degrees is. Features in the plane are smoothed
+    /// where they are (`Ok(None)`: every geometry replaced, unless the
+    /// output is TopoJSON); others (positions with z) become the GeoJSON
+    /// document given back.
     ///
     /// # Errors
     ///
     /// As [`Job::document`], and a distance that cannot be measured in the
     /// layer's coordinates.
-    pub fn layer(&mut self, name: &str, features: Value, crs: Option<&Crs>) -> Result<Value> {
-        self.space = Some(match crs {
+    pub fn layer(
+        &mut self,
+        name: &str,
+        features: &mut Features,
+        crs: Option<&Crs>,
+    ) -> Result<Option<Value>> {
+        let space = match crs {
             None => Space::Unknown("the file states no coordinate system".into()),
             Some(c) => Space::of_crs(Some(c)),
-        });
-        let out = self.document(name, features);
+        };
+        if self.settings.output != Output::Topojson && features.is_plane() {
+            return self.plane(name, features, space).map(|()| None);
+        }
+        self.space = Some(space);
+        let out = self.document(name, features.to_value());
         self.space = None;
-        out
+        out.map(Some)
+    }
+
+    /// Smooths features in the plane where they are, as one coverage or
+    /// each geometry on its own.
+    fn plane(&mut self, name: &str, features: &mut Features, space: Space) -> Result<()> {
+        self.features += features.len();
+        let (lib, snap) = self.resolved(name, || space)?;
+        let records = features.records_mut();
+        let empty =
+            || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
+        let had: Vec<bool> = records
+            .iter()
+            .map(|r| !matches!(r.shape, Shape::Null))
+            .collect();
+        let geoms: Vec<geo_types::Geometry<f64>> = records
+            .iter_mut()
+            .map(|r| match std::mem::replace(&mut r.shape, Shape::Null) {
+                Shape::Plane(g) => g,
+                _ => empty(),
+            })
+            .collect();
+        let place = |i: usize| format!("{name}: feature {i}");
+        coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
+        let (out, stats) = if self.settings.independent {
+            coverage::smooth_apart(geoms, &lib, name, &place)?
+        } else {
+            let t = coverage::smooth_together(geoms, &lib, snap, name, &place)?;
+            (t.geometries, t.stats)
+        };
+        self.total += &stats;
+        for ((r, g), had) in records.iter_mut().zip(out).zip(had) {
+            if had {
+                r.shape = Shape::Plane(g);
+            }
+        }
+        Ok(())
     }
 
     /// The options and snap distance for data in `space` (found by `space`

@@ -1,0 +1,533 @@
+//! A layer's features held compactly, as its reader reads them one at a
+//! time: each feature's field values in the schema's order and its geometry
+//! as geo-types (16 bytes a position), not as a GeoJSON document tree (about
+//! 100 bytes a position as JSON values); and [`Source`], the features a
+//! layer writer takes, from either form.
+
+use std::borrow::Cow;
+
+use geo_types::{
+    Coord, Geometry, GeometryCollection, LineString, MultiLineString, MultiPoint, MultiPolygon,
+    Point, Polygon,
+};
+use serde_json::{json, Map, Value};
+
+/// A feature's geometry.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// No geometry (GeoJSON's `null`).
+    Null,
+    /// A geometry in the plane (positions of x and y).
+    Plane(Geometry<f64>),
+    /// Any other geometry (positions with z; rings that are not closed), as
+    /// GeoJSON.
+    Json(Value),
+}
+
+impl Shape {
+    /// The shape of a GeoJSON geometry (or `null`): in the plane when every
+    /// position is x and y and every ring is closed, so that
+    /// [`Shape::to_value`] gives back the same value, else as it is.
+    #[must_use]
+    pub fn from_value(v: Value) -> Shape {
+        if v.is_null() {
+            return Shape::Null;
+        }
+        match plane(&v, 0) {
+            Some(g) => Shape::Plane(g),
+            None => Shape::Json(v),
+        }
+    }
+
+    /// The geometry as GeoJSON (`null` for none).
+    #[must_use]
+    pub fn to_value(&self) -> Value {
+        match self {
+            Shape::Null => Value::Null,
+            Shape::Plane(g) => geometry_value(g),
+            Shape::Json(v) => v.clone(),
+        }
+    }
+}
+
+/// Collections in collections deeper than this are left as GeoJSON.
+const MAX_DEPTH: usize = 32;
+
+fn coord(v: &Value) -> Option<Coord> {
+    match v.as_array()?.as_slice() {
+        [x, y] => Some(Coord {
+            x: x.as_f64()?,
+            y: y.as_f64()?,
+        }),
+        _ => None,
+    }
+}
+
+fn line(v: &Value) -> Option<LineString> {
+    v.as_array()?
+        .iter()
+        .map(coord)
+        .collect::<Option<Vec<_>>>()
+        .map(LineString)
+}
+
+/// A polygon's rings, every one closed (or empty), at least one.
+fn polygon(v: &Value) -> Option<Polygon> {
+    let mut rings = v.as_array()?.iter().map(line).collect::<Option<Vec<_>>>()?;
+    if rings.is_empty() || rings.iter().any(|r| !r.0.is_empty() && !r.is_closed()) {
+        return None;
+    }
+    let exterior = rings.remove(0);
+    Some(Polygon::new(exterior, rings))
+}
+
+fn plane(v: &Value, depth: usize) -> Option<Geometry> {
+    let c = &v["coordinates"];
+    Some(match v["type"].as_str()? {
+        "Point" => Geometry::Point(Point(coord(c)?)),
+        "MultiPoint" => Geometry::MultiPoint(MultiPoint(
+            c.as_array()?
+                .iter()
+                .map(|p| coord(p).map(Point))
+                .collect::<Option<_>>()?,
+        )),
+        "LineString" => Geometry::LineString(line(c)?),
+        "MultiLineString" => Geometry::MultiLineString(MultiLineString(
+            c.as_array()?.iter().map(line).collect::<Option<_>>()?,
+        )),
+        "Polygon" => Geometry::Polygon(polygon(c)?),
+        "MultiPolygon" => Geometry::MultiPolygon(MultiPolygon(
+            c.as_array()?.iter().map(polygon).collect::<Option<_>>()?,
+        )),
+        "GeometryCollection" if depth < MAX_DEPTH => {
+            Geometry::GeometryCollection(GeometryCollection(
+                v["geometries"]
+                    .as_array()?
+                    .iter()
+                    .map(|m| plane(m, depth + 1))
+                    .collect::<Option<_>>()?,
+            ))
+        }
+        _ => return None,
+    })
+}
+
+fn coord_value(c: &Coord) -> Value {
+    json!([c.x, c.y])
+}
+
+fn line_value(l: &LineString) -> Value {
+    Value::Array(l.0.iter().map(coord_value).collect())
+}
+
+fn polygon_value(p: &Polygon) -> Value {
+    Value::Array(
+        std::iter::once(p.exterior())
+            .chain(p.interiors())
+            .map(line_value)
+            .collect(),
+    )
+}
+
+/// A geometry in the plane as GeoJSON.
+#[must_use]
+pub fn geometry_value(g: &Geometry) -> Value {
+    let (kind, coordinates) = match g {
+        Geometry::Point(p) => ("Point", coord_value(&p.0)),
+        Geometry::MultiPoint(m) => (
+            "MultiPoint",
+            Value::Array(m.0.iter().map(|p| coord_value(&p.0)).collect()),
+        ),
+        Geometry::LineString(l) => ("LineString", line_value(l)),
+        Geometry::MultiLineString(m) => (
+            "MultiLineString",
+            Value::Array(m.0.iter().map(line_value).collect()),
+        ),
+        Geometry::Polygon(p) => ("Polygon", polygon_value(p)),
+        Geometry::MultiPolygon(m) => (
+            "MultiPolygon",
+            Value::Array(m.0.iter().map(polygon_value).collect()),
+        ),
+        Geometry::GeometryCollection(c) => {
+            return json!({
+                "type": "GeometryCollection",
+                "geometries": c.0.iter().map(geometry_value).collect::<Vec<_>>(),
+            })
+        }
+        Geometry::Line(l) => (
+            "LineString",
+            Value::Array(vec![coord_value(&l.start), coord_value(&l.end)]),
+        ),
+        Geometry::Rect(r) => ("Polygon", polygon_value(&r.to_polygon())),
+        Geometry::Triangle(t) => ("Polygon", polygon_value(&t.to_polygon())),
+    };
+    json!({"type": kind, "coordinates": coordinates})
+}
+
+/// One feature: its field values in the schema's order and its geometry.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    /// The values, one for each of the schema's fields (`null` for none).
+    pub values: Box<[Value]>,
+    /// The geometry.
+    pub shape: Shape,
+}
+
+/// A layer's features, in order, with the names of their fields.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Features {
+    names: Vec<String>,
+    records: Vec<Record>,
+}
+
+impl Features {
+    /// No features yet, of the fields named `names` (in order).
+    #[must_use]
+    pub fn new(names: Vec<String>) -> Features {
+        Features {
+            names,
+            records: Vec::new(),
+        }
+    }
+
+    /// Adds a feature: its properties (each field's value taken by name,
+    /// `null` for a field it lacks; others dropped) and its GeoJSON
+    /// geometry (or `null`).
+    pub fn push(&mut self, mut properties: Map<String, Value>, geometry: Value) {
+        let values = self
+            .names
+            .iter()
+            .map(|n| properties.remove(n).unwrap_or(Value::Null))
+            .collect();
+        self.records.push(Record {
+            values,
+            shape: Shape::from_value(geometry),
+        });
+    }
+
+    /// The features of a GeoJSON FeatureCollection (a Feature or geometry
+    /// as the collection of it), with fields `names`.
+    #[must_use]
+    pub fn from_value(doc: &Value, names: Vec<String>) -> Features {
+        let fc = crate::files::as_collection(doc);
+        let mut out = Features::new(names);
+        for f in fc["features"].as_array().into_iter().flatten() {
+            let props = f["properties"].as_object().cloned().unwrap_or_default();
+            out.push(props, f["geometry"].clone());
+        }
+        out
+    }
+
+    /// The number of features.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.records.len()
+    }
+
+    /// Whether there are none.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.records.is_empty()
+    }
+
+    /// The fields' names.
+    #[must_use]
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The features.
+    #[must_use]
+    pub fn records(&self) -> &[Record] {
+        &self.records
+    }
+
+    /// The features, to change.
+    pub fn records_mut(&mut self) -> &mut [Record] {
+        &mut self.records
+    }
+
+    /// Whether every geometry lies in the plane (or there is none).
+    #[must_use]
+    pub fn is_plane(&self) -> bool {
+        self.records
+            .iter()
+            .all(|r| !matches!(r.shape, Shape::Json(_)))
+    }
+
+    /// Feature `i`'s properties.
+    #[must_use]
+    pub fn properties(&self, i: usize) -> Map<String, Value> {
+        self.names
+            .iter()
+            .cloned()
+            .zip(self.records[i].values.iter().cloned())
+            .collect()
+    }
+
+    /// The features as a GeoJSON FeatureCollection.
+    #[must_use]
+    pub fn to_value(&self) -> Value {
+        let me: &dyn Source = self;
+        let features: Vec<Value> = (0..self.len()).map(|i| me.feature(i)).collect();
+        json!({"type": "FeatureCollection", "features": features})
+    }
+}
+
+impl Features {
+    /// Writes the features as a GeoJSON FeatureCollection, compact, one
+    /// feature at a time (numbers in their shortest form).
+    ///
+    /// # Errors
+    ///
+    /// The writer's.
+    pub fn write_geojson(&self, mut w: impl std::io::Write) -> std::io::Result<()> {
+        w.write_all(br#"{"type":"FeatureCollection","features":["#)?;
+        for i in 0..self.len() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            let f = json!({
+                "type": "Feature",
+                "geometry": self.records[i].shape.to_value(),
+                "properties": self.properties(i),
+            });
+            crate::model::write_json_compact(&mut w, &f)?;
+        }
+        w.write_all(b"]}")
+    }
+}
+
+/// The features a layer writer takes, one at a time: a GeoJSON
+/// FeatureCollection's (its `features` array), or a compact layer's, whose
+/// geometries are made as GeoJSON on the way.
+pub trait Source {
+    /// The number of features.
+    fn count(&self) -> usize;
+    /// Feature `i`'s geometry as GeoJSON (`null` for none).
+    fn geometry(&self, i: usize) -> Cow<'_, Value>;
+    /// Feature `i`'s value of the property `name`, when it has one.
+    fn property(&self, i: usize, name: &str) -> Option<&Value>;
+    /// Feature `i`'s properties.
+    fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>>;
+    /// Feature `i`'s geometry type (`"Polygon"`), `None` for no geometry
+    /// (or one of no type GeoJSON knows).
+    fn geometry_type(&self, i: usize) -> Option<&'static str> {
+        let g = self.geometry(i);
+        let t = g["type"].as_str()?;
+        GEOMETRY_TYPES.iter().copied().find(|k| *k == t)
+    }
+    /// Whether some position of feature `i`'s geometry has z.
+    fn has_z(&self, i: usize) -> bool {
+        has_z(&self.geometry(i))
+    }
+}
+
+/// The geometry types of GeoJSON.
+const GEOMETRY_TYPES: [&str; 7] = [
+    "Point",
+    "MultiPoint",
+    "LineString",
+    "MultiLineString",
+    "Polygon",
+    "MultiPolygon",
+    "GeometryCollection",
+];
+
+/// Whether any position of a GeoJSON geometry has z.
+#[must_use]
+pub fn has_z(g: &Value) -> bool {
+    fn coords(c: &Value) -> bool {
+        match c.as_array() {
+            Some(a) if a.first().is_some_and(Value::is_number) => a.len() >= 3,
+            Some(a) => a.iter().any(coords),
+            None => false,
+        }
+    }
+    match g.get("geometries").and_then(Value::as_array) {
+        Some(members) => members.iter().any(has_z),
+        None => coords(&g["coordinates"]),
+    }
+}
+
+/// The GeoJSON type of a geometry in the plane.
+fn plane_type(g: &Geometry) -> &'static str {
+    match g {
+        Geometry::Point(_) => "Point",
+        Geometry::MultiPoint(_) => "MultiPoint",
+        Geometry::LineString(_) | Geometry::Line(_) => "LineString",
+        Geometry::MultiLineString(_) => "MultiLineString",
+        Geometry::Polygon(_) | Geometry::Rect(_) | Geometry::Triangle(_) => "Polygon",
+        Geometry::MultiPolygon(_) => "MultiPolygon",
+        Geometry::GeometryCollection(_) => "GeometryCollection",
+    }
+}
+
+impl Source for Vec<Value> {
+    fn count(&self) -> usize {
+        self.len()
+    }
+    fn geometry(&self, i: usize) -> Cow<'_, Value> {
+        Cow::Borrowed(&self[i]["geometry"])
+    }
+    fn property(&self, i: usize, name: &str) -> Option<&Value> {
+        self[i]["properties"].get(name)
+    }
+    fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
+        match self[i]["properties"].as_object() {
+            Some(m) => Cow::Borrowed(m),
+            None => Cow::Owned(Map::new()),
+        }
+    }
+}
+
+/// A FeatureCollection's features (none for any other value).
+impl Source for Value {
+    fn count(&self) -> usize {
+        self["features"].as_array().map_or(0, Vec::len)
+    }
+    fn geometry(&self, i: usize) -> Cow<'_, Value> {
+        Cow::Borrowed(&self["features"][i]["geometry"])
+    }
+    fn property(&self, i: usize, name: &str) -> Option<&Value> {
+        self["features"][i]["properties"].get(name)
+    }
+    fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
+        match self["features"][i]["properties"].as_object() {
+            Some(m) => Cow::Borrowed(m),
+            None => Cow::Owned(Map::new()),
+        }
+    }
+}
+
+impl Source for Features {
+    fn count(&self) -> usize {
+        self.len()
+    }
+    fn geometry(&self, i: usize) -> Cow<'_, Value> {
+        match &self.records[i].shape {
+            Shape::Json(v) => Cow::Borrowed(v),
+            s => Cow::Owned(s.to_value()),
+        }
+    }
+    fn property(&self, i: usize, name: &str) -> Option<&Value> {
+        let k = self.names.iter().position(|n| n == name)?;
+        self.records[i].values.get(k)
+    }
+    fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
+        Cow::Owned(Features::properties(self, i))
+    }
+    fn geometry_type(&self, i: usize) -> Option<&'static str> {
+        match &self.records[i].shape {
+            Shape::Null => None,
+            Shape::Plane(g) => Some(plane_type(g)),
+            Shape::Json(v) => {
+                let t = v["type"].as_str()?;
+                GEOMETRY_TYPES.iter().copied().find(|k| *k == t)
+            }
+        }
+    }
+    fn has_z(&self, i: usize) -> bool {
+        match &self.records[i].shape {
+            Shape::Json(v) => has_z(v),
+            _ => false,
+        }
+    }
+}
+
+impl dyn Source + '_ {
+    /// Whether there are none.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.count() == 0
+    }
+
+    /// Feature `i` as a GeoJSON Feature.
+    #[must_use]
+    pub fn feature(&self, i: usize) -> Value {
+        json!({
+            "type": "Feature",
+            "properties": self.properties(i).into_owned(),
+            "geometry": self.geometry(i).into_owned(),
+        })
+    }
+}
+
+/// The features of a GeoJSON FeatureCollection, `None` for anything else.
+#[must_use]
+pub fn of_collection(fc: &Value) -> Option<&dyn Source> {
+    fc.get("features")
+        .and_then(Value::as_array)
+        .map(|a| a as &dyn Source)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plane_geometries_give_back_their_geojson() {
+        let cases = [
+            json!({"type": "Point", "coordinates": [1.5, -2.0]}),
+            json!({"type": "MultiPoint", "coordinates": [[0.0, 0.0], [1.0, 2.0]]}),
+            json!({"type": "MultiPoint", "coordinates": []}),
+            json!({"type": "LineString", "coordinates": [[0.0, 0.0], [1.0, 0.1]]}),
+            json!({"type": "LineString", "coordinates": []}),
+            json!({"type": "MultiLineString", "coordinates": [[[0.0, 0.0], [1.0, 0.1]], []]}),
+            json!({"type": "Polygon", "coordinates": [[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]], []]}),
+            json!({"type": "MultiPolygon", "coordinates": [[[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]]]}),
+            json!({"type": "GeometryCollection", "geometries": [
+                {"type": "Point", "coordinates": [0.1, 0.2]},
+                {"type": "GeometryCollection", "geometries": []}]}),
+        ];
+        for v in cases {
+            let s = Shape::from_value(v.clone());
+            assert!(matches!(s, Shape::Plane(_)), "{v}");
+            assert_eq!(s.to_value(), v);
+        }
+    }
+
+    #[test]
+    fn other_geometries_stay_geojson() {
+        let cases = [
+            json!({"type": "Point", "coordinates": [1.0, 2.0, 3.0]}),
+            json!({"type": "LineString", "coordinates": [[0.0, 0.0], [1.0, 0.1, 2.0]]}),
+            // Not closed: geo-types would close it.
+            json!({"type": "Polygon", "coordinates": [[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]]}),
+            json!({"type": "Polygon", "coordinates": []}),
+            json!({"type": "Curve", "coordinates": []}),
+        ];
+        for v in cases {
+            assert_eq!(Shape::from_value(v.clone()), Shape::Json(v.clone()), "{v}");
+            assert_eq!(Shape::from_value(v.clone()).to_value(), v);
+        }
+        assert_eq!(Shape::from_value(Value::Null), Shape::Null);
+    }
+
+    #[test]
+    fn features_are_made_back_in_the_fields_order() {
+        let fc = json!({"type": "FeatureCollection", "features": [
+            {"type": "Feature", "properties": {"b": 1, "a": "x", "extra": true},
+             "geometry": {"type": "Point", "coordinates": [0.0, 1.0]}},
+            {"type": "Feature", "properties": {"a": null}, "geometry": null},
+        ]});
+        let f = Features::from_value(&fc, vec!["a".into(), "b".into()]);
+        assert!(f.is_plane());
+        let back = f.to_value();
+        assert_eq!(back["features"][0]["properties"], json!({"a": "x", "b": 1}));
+        assert_eq!(
+            back["features"][0]["geometry"],
+            fc["features"][0]["geometry"]
+        );
+        assert_eq!(
+            back["features"][1],
+            json!({"type": "Feature", "properties": {"a": null, "b": null}, "geometry": null})
+        );
+        let keys: Vec<&String> = back["features"][0]["properties"]
+            .as_object()
+            .unwrap()
+            .keys()
+            .collect();
+        assert_eq!(keys, ["a", "b"]);
+    }
+}
