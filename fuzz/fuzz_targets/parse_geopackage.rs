@@ -37,7 +37,7 @@ fuzz_target!(|bytes: &[u8]| {
             return;
         }
     };
-    for f in layer.features["features"]
+    for f in layer.features.to_value()["features"]
         .as_array()
         .expect("a FeatureCollection")
     {
@@ -48,7 +48,7 @@ fuzz_target!(|bytes: &[u8]| {
         let again = gpkg::read(&out, None, u64::MAX).expect("what was written reads back");
         assert!(
             again.features == layer.features,
-            "read back otherwise:\n{}\n{}",
+            "read back otherwise:\n{:?}\n{:?}",
             layer.features,
             again.features
         );

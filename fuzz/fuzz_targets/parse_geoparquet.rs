@@ -17,7 +17,7 @@ fuzz_target!(|bytes: &[u8]| {
             return;
         }
     };
-    for f in layer.features["features"]
+    for f in layer.features.to_value()["features"]
         .as_array()
         .expect("a FeatureCollection")
     {
@@ -34,7 +34,7 @@ fuzz_target!(|bytes: &[u8]| {
         let thrice = geoparquet::read_bytes("t.parquet", twice).expect("reads");
         assert!(
             thrice.features == again.features,
-            "read back otherwise:\n{}\n{}",
+            "read back otherwise:\n{:?}\n{:?}",
             again.features,
             thrice.features
         );

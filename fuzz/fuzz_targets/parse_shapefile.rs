@@ -28,7 +28,7 @@ fuzz_target!(|bytes: &[u8]| {
             return;
         }
     };
-    for f in layer.features["features"]
+    for f in layer.features.to_value()["features"]
         .as_array()
         .expect("a FeatureCollection")
     {
