@@ -51,7 +51,12 @@ fuzz_target!(|bytes: &[u8]| {
         let twice = fgb::to_bytes(&again.features, Some(&again.schema), "t").expect("writes again");
         assert!(
             sorted(&again.features.to_value())
-                == sorted(&fgb::read_from("t.fgb", twice.as_slice()).expect("reads").features.to_value())
+                == sorted(
+                    &fgb::read_from("t.fgb", twice.as_slice())
+                        .expect("reads")
+                        .features
+                        .to_value()
+                )
         );
     }
 });

@@ -30,7 +30,8 @@ fuzz_target!(|bytes: &[u8]| {
     if let Ok(written) = geoparquet::to_bytes(&layer.features, Some(&layer.schema)) {
         let again =
             geoparquet::read_bytes("t.parquet", written).expect("what was written reads back");
-        let twice = geoparquet::to_bytes(&again.features, Some(&again.schema)).expect("writes again");
+        let twice =
+            geoparquet::to_bytes(&again.features, Some(&again.schema)).expect("writes again");
         let thrice = geoparquet::read_bytes("t.parquet", twice).expect("reads");
         assert!(
             thrice.features == again.features,

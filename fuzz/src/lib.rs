@@ -12,9 +12,7 @@
 use bzspline::{ALPHA_MAX, ALPHA_MIN};
 
 // The formats, as the command uses them.
-pub use bzspline_io::{
-    api as serve_api, fgb, geoparquet, gpkg, input, model, shp, time, topojson,
-};
+pub use bzspline_io::{api as serve_api, fgb, geoparquet, gpkg, input, model, shp, time, topojson};
 
 /// The checks of smoothed coverages that do not use the code under test
 /// (validity from `geo`, crossings by brute force, shared borders), as the
