@@ -63,51 +63,48 @@ fn coord(v: &Value) -> Option<Coord> {
     }
 }
 
+/// Each member of a JSON array made by `f`, in a vector of exactly their
+/// number (collecting into `Option<Vec<_>>` would grow by doubling).
+fn each<T>(v: &Value, f: impl Fn(&Value) -> Option<T>) -> Option<Vec<T>> {
+    let a = v.as_array()?;
+    let mut out = Vec::with_capacity(a.len());
+    for m in a {
+        out.push(f(m)?);
+    }
+    Some(out)
+}
+
 fn line(v: &Value) -> Option<LineString> {
-    v.as_array()?
-        .iter()
-        .map(coord)
-        .collect::<Option<Vec<_>>>()
-        .map(LineString)
+    each(v, coord).map(LineString)
 }
 
 /// A polygon's rings, every one closed (or empty), at least one.
 fn polygon(v: &Value) -> Option<Polygon> {
-    let mut rings = v.as_array()?.iter().map(line).collect::<Option<Vec<_>>>()?;
-    if rings.is_empty() || rings.iter().any(|r| !r.0.is_empty() && !r.is_closed()) {
+    let a = v.as_array()?;
+    let exterior = line(a.first()?)?;
+    let mut interiors: Vec<LineString> = Vec::with_capacity(a.len() - 1);
+    for r in &a[1..] {
+        interiors.push(line(r)?);
+    }
+    let open = |r: &LineString| !r.0.is_empty() && !r.is_closed();
+    if open(&exterior) || interiors.iter().any(open) {
         return None;
     }
-    let exterior = rings.remove(0);
-    Some(Polygon::new(exterior, rings))
+    Some(Polygon::new(exterior, interiors))
 }
 
 fn plane(v: &Value, depth: usize) -> Option<Geometry> {
     let c = &v["coordinates"];
     Some(match v["type"].as_str()? {
         "Point" => Geometry::Point(Point(coord(c)?)),
-        "MultiPoint" => Geometry::MultiPoint(MultiPoint(
-            c.as_array()?
-                .iter()
-                .map(|p| coord(p).map(Point))
-                .collect::<Option<_>>()?,
-        )),
+        "MultiPoint" => Geometry::MultiPoint(MultiPoint(each(c, |p| coord(p).map(Point))?)),
         "LineString" => Geometry::LineString(line(c)?),
-        "MultiLineString" => Geometry::MultiLineString(MultiLineString(
-            c.as_array()?.iter().map(line).collect::<Option<_>>()?,
-        )),
+        "MultiLineString" => Geometry::MultiLineString(MultiLineString(each(c, line)?)),
         "Polygon" => Geometry::Polygon(polygon(c)?),
-        "MultiPolygon" => Geometry::MultiPolygon(MultiPolygon(
-            c.as_array()?.iter().map(polygon).collect::<Option<_>>()?,
-        )),
-        "GeometryCollection" if depth < MAX_DEPTH => {
-            Geometry::GeometryCollection(GeometryCollection(
-                v["geometries"]
-                    .as_array()?
-                    .iter()
-                    .map(|m| plane(m, depth + 1))
-                    .collect::<Option<_>>()?,
-            ))
-        }
+        "MultiPolygon" => Geometry::MultiPolygon(MultiPolygon(each(c, polygon)?)),
+        "GeometryCollection" if depth < MAX_DEPTH => Geometry::GeometryCollection(
+            GeometryCollection(each(&v["geometries"], |m| plane(m, depth + 1))?),
+        ),
         _ => return None,
     })
 }
