@@ -6,12 +6,15 @@ pyogrio's GDAL) and GeoParquet (by geopandas and pyarrow), each smoothed as
 one coverage into a file of its own format.
 
     cargo build --release -p bzspline-cli
+    cargo build --release -p bzspline-io --all-features --example layer_memory
     python3 bench/maps/memory.py [--nx 1000] [--ny 1000] [--k 2] [--bin target/release/bzspline]
 
 Needs geopandas, pyogrio and pyarrow. Prints, per format, the input's size
 S, the peak resident memory of the command (GNU time's maximum resident set
-size), that peak over S, the seconds, and the reference the issue set: 2 S
-plus the coverage's positions (16 bytes each).
+size), that peak over S, the seconds, the reference of 2 S plus the
+coverage's positions (16 bytes each), and, from the layer_memory example
+(for the layer formats), the peak once the layer is read, before its
+coverage is built.
 """
 
 import argparse
@@ -33,6 +36,8 @@ def main():
     ap.add_argument("--ny", type=int, default=1000)
     ap.add_argument("--k", type=int, default=2, help="vertices per cell side")
     ap.add_argument("--bin", default=os.path.join(ROOT, "target/release/bzspline"))
+    ap.add_argument("--phases", default=os.path.join(ROOT, "target/release/examples/layer_memory"),
+                    help="the layer_memory example")
     ap.add_argument("--dir", default=None, help="where the files go (default: a temporary folder)")
     args = ap.parse_args()
 
@@ -57,8 +62,8 @@ def main():
         gdf.to_parquet(files["GeoParquet"])
         for name, driver in [("GeoJSON", "GeoJSON"), ("GeoPackage", "GPKG"), ("FlatGeobuf", "FlatGeobuf")]:
             gdf.to_file(files[name], driver=driver, engine="pyogrio")
-        print("| input | S, MB | peak, MB | peak / S | 2 S + positions, MB | s |")
-        print("|---|---:|---:|---:|---:|---:|")
+        print("| input | S, MB | peak, MB | peak / S | 2 S + positions, MB | s | peak once read, MB |")
+        print("|---|---:|---:|---:|---:|---:|---:|")
         for name, path in files.items():
             out = os.path.join(d, "out" + os.path.splitext(path)[1])
             r = subprocess.run(["/usr/bin/time", "-f", "%M %e", args.bin, "smooth", path, "-o", out],
@@ -69,7 +74,14 @@ def main():
             size = os.path.getsize(path) / 1e6
             peak = int(kb) / 1e3
             ref = 2 * size + positions * 16 / 1e6
-            print(f"| {name} | {size:,.0f} | {peak:,.0f} | {peak / size:.1f} | {ref:,.0f} | {float(secs):.1f} |")
+            read = "-"
+            if name != "GeoJSON" and os.path.exists(args.phases):
+                r = subprocess.run([args.phases, path], capture_output=True, text=True)
+                if r.returncode != 0:
+                    sys.exit(f"{name}: layer_memory: {r.stderr}")
+                read = next(f"{int(l.split()[2]):,}" for l in r.stdout.splitlines()
+                            if l.startswith("reading"))
+            print(f"| {name} | {size:,.0f} | {peak:,.0f} | {peak / size:.1f} | {ref:,.0f} | {float(secs):.1f} | {read} |")
             os.remove(out)
 
 
