@@ -102,9 +102,11 @@ fn plane(v: &Value, depth: usize) -> Option<Geometry> {
         "MultiLineString" => Geometry::MultiLineString(MultiLineString(each(c, line)?)),
         "Polygon" => Geometry::Polygon(polygon(c)?),
         "MultiPolygon" => Geometry::MultiPolygon(MultiPolygon(each(c, polygon)?)),
-        "GeometryCollection" if depth < MAX_DEPTH => Geometry::GeometryCollection(
-            GeometryCollection(each(&v["geometries"], |m| plane(m, depth + 1))?),
-        ),
+        "GeometryCollection" if depth < MAX_DEPTH => {
+            Geometry::GeometryCollection(GeometryCollection(each(&v["geometries"], |m| {
+                plane(m, depth + 1)
+            })?))
+        }
         _ => return None,
     })
 }

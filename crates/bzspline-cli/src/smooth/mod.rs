@@ -142,10 +142,16 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                 let max_bytes = job.settings().limits.max_bytes;
                 let (name, bytes) = input::read_source(file, max_bytes)?;
                 let text = input::utf8(&name, &bytes)?;
-                let value: Value = serde_json::from_str(text)
-                    .map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))?;
-                drop(bytes);
-                (Smoothed::Document(job.document(&name, value)?), None)
+                if let Some(mut c) = job.read_collection(text) {
+                    drop(bytes);
+                    job.collection(&name, &mut c)?;
+                    (Smoothed::Collection(c), None)
+                } else {
+                    let value: Value = serde_json::from_str(text)
+                        .map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))?;
+                    drop(bytes);
+                    (Smoothed::Document(job.document(&name, value)?), None)
+                }
             }
         };
         match (layer_out, &out) {
@@ -154,6 +160,9 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             }
             (Some(path), Smoothed::Layer(features)) => {
                 files::write(path, output, features, schema.as_ref())?;
+            }
+            (Some(path), Smoothed::Collection(c)) => {
+                files::write(path, output, c, None)?;
             }
             (None, Smoothed::Document(doc)) => {
                 let mut sink = Sink::create(out_path)?;
@@ -164,6 +173,13 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                 let mut sink = Sink::create(out_path)?;
                 features
                     .write_geojson(&mut sink)
+                    .and_then(|()| sink.write_all(b"\n"))
+                    .context("writing output")?;
+                sink.finish()?;
+            }
+            (None, Smoothed::Collection(c)) => {
+                let mut sink = Sink::create(out_path)?;
+                c.write_geojson(&mut sink)
                     .and_then(|()| sink.write_all(b"\n"))
                     .context("writing output")?;
                 sink.finish()?;
@@ -190,11 +206,12 @@ fn has_table_extension(f: &Path) -> bool {
         .is_some_and(|e| ["csv", "tsv", "tab", "txt"].contains(&e.to_ascii_lowercase().as_str()))
 }
 
-/// What smoothing gave: a document, or a layer's features smoothed where
-/// they are.
+/// What smoothing gave: a document, or a layer's or FeatureCollection's
+/// features smoothed where they are.
 enum Smoothed {
     Document(Value),
     Layer(bzspline_io::features::Features),
+    Collection(bzspline_io::smooth::collection::Collection),
 }
 
 /// Smooths newline-delimited GeoJSON one line at a time (RFC 8142 record

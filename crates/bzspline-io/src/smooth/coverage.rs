@@ -186,6 +186,44 @@ pub fn smooth_apart(
     Ok((out, total))
 }
 
+/// The bounds `[min x, min y, max x, max y]` of the geometries' positions
+/// (infinite, lower above upper, for none).
+#[must_use]
+pub fn bounds(geoms: &[geo_types::Geometry<f64>]) -> [f64; 4] {
+    fn line(l: &geo_types::LineString<f64>, b: &mut [f64; 4]) {
+        for c in &l.0 {
+            *b = [b[0].min(c.x), b[1].min(c.y), b[2].max(c.x), b[3].max(c.y)];
+        }
+    }
+    fn polygon(p: &geo_types::Polygon<f64>, b: &mut [f64; 4]) {
+        line(p.exterior(), b);
+        p.interiors().iter().for_each(|r| line(r, b));
+    }
+    fn walk(g: &geo_types::Geometry<f64>, b: &mut [f64; 4]) {
+        use geo_types::Geometry as G;
+        match g {
+            G::Point(p) => line(&geo_types::LineString(vec![p.0]), b),
+            G::MultiPoint(m) => m.0.iter().for_each(|p| walk(&G::Point(*p), b)),
+            G::LineString(l) => line(l, b),
+            G::MultiLineString(m) => m.0.iter().for_each(|l| line(l, b)),
+            G::Polygon(p) => polygon(p, b),
+            G::MultiPolygon(m) => m.0.iter().for_each(|p| polygon(p, b)),
+            G::GeometryCollection(c) => c.0.iter().for_each(|m| walk(m, b)),
+            G::Line(l) => line(&geo_types::LineString(vec![l.start, l.end]), b),
+            G::Rect(r) => polygon(&r.to_polygon(), b),
+            G::Triangle(t) => polygon(&t.to_polygon(), b),
+        }
+    }
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    geoms.iter().for_each(|g| walk(g, &mut b));
+    b
+}
+
 /// Refuses a geometry with a line or ring of more than `max_points`
 /// positions, naming it by `place`.
 pub fn check_longest(

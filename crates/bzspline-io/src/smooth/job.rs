@@ -10,6 +10,7 @@ use bzspline_geo::{SmoothOptions, Stats};
 use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 use serde_json::Value;
 
+use super::collection::Collection;
 use super::{chains, coverage, default_tolerance, each_position, independent, positions};
 use crate::distance::{Distance, Space, Unit};
 use crate::features::{Features, Shape};
@@ -242,21 +243,64 @@ impl Job {
                 _ => empty(),
             })
             .collect();
-        let place = |i: usize| format!("{name}: feature {i}");
-        coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
-        let (out, stats) = if self.settings.independent {
-            coverage::smooth_apart(geoms, &lib, name, &place)?
-        } else {
-            let t = coverage::smooth_together(geoms, &lib, snap, name, &place)?;
-            (t.geometries, t.stats)
-        };
-        self.total += &stats;
+        let out = self.smooth_geometries(name, geoms, &lib, snap)?;
         for ((r, g), had) in records.iter_mut().zip(out).zip(had) {
             if had {
                 r.shape = Shape::Plane(g);
             }
         }
         Ok(())
+    }
+
+    /// The document `text` read one feature at a time when it is a
+    /// FeatureCollection in the plane ([`Collection::read`]) and the output
+    /// is not TopoJSON, for [`Job::collection`]; `None` for a document
+    /// [`Job::document`] must take.
+    #[must_use]
+    pub fn read_collection(&self, text: &str) -> Option<Collection> {
+        if self.settings.output == Output::Topojson {
+            return None;
+        }
+        Collection::read(text)
+    }
+
+    /// Smooths a FeatureCollection read from `name` by
+    /// [`Job::read_collection`] where it is: what [`Job::document`] gives
+    /// for its text.
+    ///
+    /// # Errors
+    ///
+    /// As [`Job::document`] for a geometry that cannot be smoothed.
+    pub fn collection(&mut self, name: &str, c: &mut Collection) -> Result<()> {
+        self.features += c.len();
+        let geoms = c.take_geometries();
+        let (lib, snap) = self.resolved(name, || {
+            Space::of_lonlat_bounds(coverage::bounds(&geoms), "it")
+        })?;
+        let out = self.smooth_geometries(name, geoms, &lib, snap)?;
+        c.put_geometries(out);
+        Ok(())
+    }
+
+    /// Smooths geometries in the plane, geometry i feature i of `name`, as
+    /// one coverage or each on its own, adding to the totals.
+    fn smooth_geometries(
+        &mut self,
+        name: &str,
+        geoms: Vec<geo_types::Geometry<f64>>,
+        lib: &SmoothOptions,
+        snap: Option<f64>,
+    ) -> Result<Vec<geo_types::Geometry<f64>>> {
+        let place = |i: usize| format!("{name}: feature {i}");
+        coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
+        let (out, stats) = if self.settings.independent {
+            coverage::smooth_apart(geoms, lib, name, &place)?
+        } else {
+            let t = coverage::smooth_together(geoms, lib, snap, name, &place)?;
+            (t.geometries, t.stats)
+        };
+        self.total += &stats;
+        Ok(out)
     }
 
     /// The options and snap distance for data in `space` (found by `space`

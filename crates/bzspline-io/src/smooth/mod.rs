@@ -1,9 +1,12 @@
-//! A GeoJSON document smoothed: as one coverage ([`coverage`], the default:
+//! A GeoJSON document smoothed: a FeatureCollection in the plane read and
+//! written one feature at a time ([`collection`]); as one coverage
+//! ([`coverage`], the default:
 //! shared borders smoothed once, valid polygons kept valid), every feature's
 //! geometry as a coverage of its own ([`coverage::smooth_each`]), or, for
 //! positions with z, every line and ring on its own ([`independent`]); what a
 //! document holds ([`positions`], [`chains`]) and its default tolerance.
 
+pub mod collection;
 pub mod coverage;
 pub mod independent;
 pub mod job;
