@@ -190,13 +190,13 @@ impl Features {
     }
 
     /// Adds a feature: its properties (each field's value taken by name,
-    /// `null` for a field it lacks; others dropped) and its GeoJSON
-    /// geometry (or `null`).
-    pub fn push(&mut self, mut properties: Map<String, Value>, geometry: Value) {
+    /// `null` for a field it lacks, the one value for fields of one name;
+    /// others dropped) and its GeoJSON geometry (or `null`).
+    pub fn push(&mut self, properties: Map<String, Value>, geometry: Value) {
         let values = self
             .names
             .iter()
-            .map(|n| properties.remove(n).unwrap_or(Value::Null))
+            .map(|n| properties.get(n).cloned().unwrap_or(Value::Null))
             .collect();
         self.records.push(Record {
             values,
@@ -521,6 +521,17 @@ mod tests {
         assert_eq!(
             back["features"][1],
             json!({"type": "Feature", "properties": {"a": null, "b": null}, "geometry": null})
+        );
+        // A table may name two fields alike (a .dbf): the property holds
+        // one value, as in GeoJSON.
+        let mut twice = Features::new(vec!["a".into(), "a".into()]);
+        twice.push(
+            fc["features"][0]["properties"].as_object().unwrap().clone(),
+            Value::Null,
+        );
+        assert_eq!(
+            twice.to_value()["features"][0]["properties"],
+            json!({"a": "x"})
         );
         let keys: Vec<&String> = back["features"][0]["properties"]
             .as_object()
