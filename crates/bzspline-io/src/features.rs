@@ -322,16 +322,9 @@ pub trait Source {
     }
 }
 
-/// The geometry types of GeoJSON.
-const GEOMETRY_TYPES: [&str; 7] = [
-    "Point",
-    "MultiPoint",
-    "LineString",
-    "MultiLineString",
-    "Polygon",
-    "MultiPolygon",
-    "GeometryCollection",
-];
+/// The geometry types of GeoJSON (its `type` values after
+/// FeatureCollection and Feature).
+const GEOMETRY_TYPES: &[&str] = crate::input::GEOJSON_TYPES.split_at(2).1;
 
 /// Whether any position of a GeoJSON geometry has z.
 #[must_use]

@@ -467,8 +467,8 @@ fn layer_points(
     parse_geojson_points(&name, &bytes, limits.max_points)
 }
 
-/// The `type` values of GeoJSON objects.
-const GEOJSON_TYPES: [&str; 9] = [
+/// The `type` values of GeoJSON objects, the geometries' last.
+pub(crate) const GEOJSON_TYPES: [&str; 9] = [
     "FeatureCollection",
     "Feature",
     "Point",
