@@ -164,17 +164,25 @@ impl Collection {
     /// coordinates put back, the geometry's bbox (no longer tight) dropped.
     fn feature(&self, i: usize) -> Cow<'_, Feature> {
         let item = &self.items[i];
-        match (&item.feature.geometry, &item.shape) {
-            (Some(g), Some(shape)) => {
+        match self.geometry_of(i) {
+            Some(g) => {
                 let mut f = item.feature.clone();
-                let mut g = g.clone();
-                g.value = GeometryValue::from(shape);
-                g.bbox = None;
                 f.geometry = Some(g);
                 Cow::Owned(f)
             }
-            _ => Cow::Borrowed(&item.feature),
+            None => Cow::Borrowed(&item.feature),
         }
+    }
+
+    /// Feature `i`'s geometry with its coordinates put back, its bbox
+    /// dropped; `None` for none.
+    fn geometry_of(&self, i: usize) -> Option<geojson::Geometry> {
+        let item = &self.items[i];
+        let (g, shape) = (item.feature.geometry.as_ref()?, item.shape.as_ref()?);
+        let mut g = g.clone();
+        g.value = GeometryValue::from(shape);
+        g.bbox = None;
+        Some(g)
     }
 
     /// Writes the collection as compact GeoJSON, a feature at a time, to
@@ -209,10 +217,12 @@ impl Source for Collection {
         self.len()
     }
     fn geometry(&self, i: usize) -> Cow<'_, Value> {
-        match &self.feature(i).geometry {
-            Some(g) => Cow::Owned(serde_json::to_value(g).unwrap_or(Value::Null)),
-            None => Cow::Owned(Value::Null),
-        }
+        let g = self
+            .geometry_of(i)
+            .or_else(|| self.items[i].feature.geometry.clone());
+        Cow::Owned(g.map_or(Value::Null, |g| {
+            serde_json::to_value(g).unwrap_or(Value::Null)
+        }))
     }
     fn property(&self, i: usize, name: &str) -> Option<&Value> {
         self.items[i].feature.properties.as_ref()?.get(name)
