@@ -298,7 +298,7 @@ impl Features {
 }
 
 /// The features a layer writer takes, one at a time: a GeoJSON
-/// FeatureCollection's (its `features` array), or a compact layer's, whose
+/// FeatureCollection's, or a compact layer's, whose
 /// geometries are made as GeoJSON on the way.
 pub trait Source {
     /// The number of features.
@@ -352,24 +352,6 @@ fn plane_type(g: &Geometry) -> &'static str {
         Geometry::Polygon(_) | Geometry::Rect(_) | Geometry::Triangle(_) => "Polygon",
         Geometry::MultiPolygon(_) => "MultiPolygon",
         Geometry::GeometryCollection(_) => "GeometryCollection",
-    }
-}
-
-impl Source for Vec<Value> {
-    fn count(&self) -> usize {
-        self.len()
-    }
-    fn geometry(&self, i: usize) -> Cow<'_, Value> {
-        Cow::Borrowed(&self[i]["geometry"])
-    }
-    fn property(&self, i: usize, name: &str) -> Option<&Value> {
-        self[i]["properties"].get(name)
-    }
-    fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
-        match self[i]["properties"].as_object() {
-            Some(m) => Cow::Borrowed(m),
-            None => Cow::Owned(Map::new()),
-        }
     }
 }
 
@@ -450,7 +432,7 @@ impl dyn Source + '_ {
 pub fn of_collection(fc: &Value) -> Option<&dyn Source> {
     fc.get("features")
         .and_then(Value::as_array)
-        .map(|a| a as &dyn Source)
+        .map(|_| fc as &dyn Source)
 }
 
 #[cfg(test)]

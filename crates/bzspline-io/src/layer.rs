@@ -486,7 +486,7 @@ mod tests {
             {"properties": {"a": 1, "b": 1.5, "c": true, "d": "x", "e": 1, "f": null}},
             {"properties": {"a": 2, "b": 2, "c": null, "d": "longer", "e": "one", "g": [1]}},
         ]);
-        let fields = infer_fields(features.as_array().unwrap());
+        let fields = infer_fields(&json!({"features": features}));
         let kinds: Vec<(&str, FieldKind)> =
             fields.iter().map(|f| (f.name.as_str(), f.kind)).collect();
         assert_eq!(
