@@ -27,7 +27,8 @@ struct Origin {
 ///
 /// Points and MultiPoints pass through; Rects and Triangles are smoothed as
 /// the polygons they are and come out as Polygons; a Line is a two-position
-/// line and keeps its positions.
+/// line and keeps its positions. The coverage holds each position once, in
+/// its topology: the geometries given are not kept beside it.
 ///
 /// # Examples
 ///
@@ -52,6 +53,8 @@ struct Origin {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Coverage {
+    /// Each geometry's shape: its points as given, its lines and rings
+    /// without positions (the topology holds them once).
     geometries: Vec<Geometry<f64>>,
     topology: Topology,
     origins: Vec<Origin>,
@@ -106,13 +109,14 @@ impl CoverageBuilder {
     /// ([`Coverage::describe`] names the geometry); [`Error::InvalidOption`]
     /// for a snap distance that is not a finite non-negative number.
     pub fn build(self) -> Result<Coverage, Error> {
-        let (mut chains, origins, polygons) = gather(&self.geometries);
+        let mut geometries = self.geometries;
+        let (mut chains, origins, polygons) = gather(&mut geometries);
         if let Some(eps) = self.snap {
             snap_in(&mut chains, eps, self.frame)?;
         }
-        let topology = Topology::from_chains_with_nodes(&chains, polygons, self.nodes)?;
+        let topology = Topology::from_owned_chains(chains, polygons, self.nodes)?;
         Ok(Coverage {
-            geometries: self.geometries,
+            geometries,
             topology,
             origins,
         })
@@ -147,10 +151,16 @@ impl Coverage {
         &self.topology
     }
 
-    /// The geometries as given.
+    /// How many geometries the coverage holds.
     #[must_use]
-    pub fn geometries(&self) -> &[Geometry<f64>] {
-        &self.geometries
+    pub fn len(&self) -> usize {
+        self.geometries.len()
+    }
+
+    /// Whether the coverage holds no geometry.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.geometries.is_empty()
     }
 
     /// Smooths the coverage (see [`Topology::smooth`]) and returns the
@@ -276,19 +286,21 @@ impl std::fmt::Display for Location {
 /// them: for [`crate::parts::meetings`] and [`crate::nodes::Nodes::of`].
 #[must_use]
 pub fn coverage_chains(geometries: &[Geometry<f64>]) -> Vec<(ChainKind, Vec<Coord>)> {
-    gather(geometries).0
+    gather(&mut geometries.to_vec()).0
 }
 
 /// The chains of `geometries`, where each comes from, and which rings form
-/// each polygon.
+/// each polygon. The positions of every line and ring are moved into the
+/// chains, not copied: each geometry is left as its shape, its lines and
+/// rings without positions, for [`rebuild`].
 #[allow(clippy::type_complexity)] // three parallel results, used once
 fn gather(
-    geometries: &[Geometry<f64>],
+    geometries: &mut [Geometry<f64>],
 ) -> (Vec<(ChainKind, Vec<Coord>)>, Vec<Origin>, Vec<Vec<usize>>) {
     let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
     let mut origins: Vec<Origin> = Vec::new();
     let mut polygons: Vec<Vec<usize>> = Vec::new();
-    for (gi, g) in geometries.iter().enumerate() {
+    for (gi, g) in geometries.iter_mut().enumerate() {
         let mut member = 0;
         visit(g, &mut |part| {
             match part {
@@ -301,19 +313,16 @@ fn gather(
                     });
                     chains.push((ChainKind::Line, coords));
                 }
-                Part::Polygon(p) => {
+                Part::Polygon(rings) => {
                     let first = chains.len();
-                    for (ri, r) in std::iter::once(p.exterior())
-                        .chain(p.interiors())
-                        .enumerate()
-                    {
+                    for (ri, r) in rings.into_iter().enumerate() {
                         origins.push(Origin {
                             geometry: gi,
                             member,
                             ring: ri,
                             polygon: true,
                         });
-                        chains.push((ChainKind::Ring, r.0.clone()));
+                        chains.push((ChainKind::Ring, r));
                     }
                     polygons.push((first..chains.len()).collect());
                 }
@@ -324,24 +333,38 @@ fn gather(
     (chains, origins, polygons)
 }
 
-enum Part<'a> {
+/// A line's positions, or a polygon's rings' (the shell first).
+enum Part {
     Line(Vec<Coord>),
-    Polygon(&'a Polygon<f64>),
+    Polygon(Vec<Vec<Coord>>),
 }
 
-/// Calls `f` on every line and polygon of `g`, in order.
-fn visit(g: &Geometry<f64>, f: &mut dyn FnMut(Part<'_>)) {
+/// Calls `f` on every line and polygon of `g`, in order, with their
+/// positions taken out of `g` (a Line, Rect or Triangle keeps its own).
+fn visit(g: &mut Geometry<f64>, f: &mut dyn FnMut(Part)) {
+    let take = |l: &mut LineString<f64>| std::mem::take(&mut l.0);
     match g {
         Geometry::Point(_) | Geometry::MultiPoint(_) => {}
         Geometry::Line(l) => f(Part::Line(vec![l.start, l.end])),
-        Geometry::LineString(l) => f(Part::Line(l.0.clone())),
-        Geometry::MultiLineString(m) => m.0.iter().for_each(|l| f(Part::Line(l.0.clone()))),
-        Geometry::Polygon(p) => f(Part::Polygon(p)),
-        Geometry::MultiPolygon(m) => m.0.iter().for_each(|p| f(Part::Polygon(p))),
-        Geometry::Rect(r) => f(Part::Polygon(&r.to_polygon())),
-        Geometry::Triangle(t) => f(Part::Polygon(&t.to_polygon())),
-        Geometry::GeometryCollection(c) => c.0.iter().for_each(|g| visit(g, f)),
+        Geometry::LineString(l) => f(Part::Line(take(l))),
+        Geometry::MultiLineString(m) => m.0.iter_mut().for_each(|l| f(Part::Line(take(l)))),
+        Geometry::Polygon(p) => f(Part::Polygon(take_rings(p))),
+        Geometry::MultiPolygon(m) => m.0.iter_mut().for_each(|p| f(Part::Polygon(take_rings(p)))),
+        Geometry::Rect(r) => f(Part::Polygon(vec![r.to_polygon().into_inner().0 .0])),
+        Geometry::Triangle(t) => f(Part::Polygon(vec![t.to_polygon().into_inner().0 .0])),
+        Geometry::GeometryCollection(c) => c.0.iter_mut().for_each(|g| visit(g, f)),
     }
+}
+
+/// The rings of `p`, the shell first, leaving it as many rings without
+/// positions.
+fn take_rings(p: &mut Polygon<f64>) -> Vec<Vec<Coord>> {
+    let hollow = || LineString(Vec::new());
+    let (shell, holes) = std::mem::replace(p, Polygon::new(hollow(), Vec::new())).into_inner();
+    *p = Polygon::new(hollow(), holes.iter().map(|_| hollow()).collect());
+    std::iter::once(shell.0)
+        .chain(holes.into_iter().map(|h| h.0))
+        .collect()
 }
 
 /// `g` with each line and ring, in the order [`visit`] meets them, from `take`.

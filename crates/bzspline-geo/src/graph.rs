@@ -4,7 +4,10 @@
 //! ([`junctions`]). The topology cuts its arcs there; the nodes of a part
 //! are found the same way.
 
-use rustc_hash::FxHashMap;
+use std::hash::BuildHasher;
+
+use hashbrown::hash_table::{Entry, HashTable};
+use rustc_hash::FxBuildHasher;
 
 use geo_types::Coord;
 
@@ -34,12 +37,16 @@ pub(crate) struct Paths {
 }
 
 impl Paths {
-    pub(crate) fn of(chains: &[(ChainKind, Vec<Coord>)]) -> Result<Paths, Error> {
-        let mut ids: FxHashMap<(u64, u64), u32> = FxHashMap::default();
+    pub(crate) fn of<C: AsRef<[Coord]>>(chains: &[(ChainKind, C)]) -> Result<Paths, Error> {
+        // The ids by their positions' bits, the positions themselves held
+        // once, in `points`.
+        let mut ids: HashTable<u32> = HashTable::new();
+        let hash = |k: (u64, u64)| FxBuildHasher.hash_one(k);
         let mut points: Vec<Coord> = Vec::new();
         let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.len());
         for (ci, (kind, coords)) in chains.iter().enumerate() {
-            let mut path: Vec<u32> = Vec::with_capacity(coords.len() + 1);
+            let coords = coords.as_ref();
+            let mut path: Vec<u32> = Vec::with_capacity(coords.len());
             for (pi, &c) in coords.iter().enumerate() {
                 if !(c.x.is_finite() && c.y.is_finite()) {
                     return Err(Error::NonFinite {
@@ -47,10 +54,21 @@ impl Paths {
                         position: pi,
                     });
                 }
-                let id = *ids.entry(key(c)).or_insert_with(|| {
-                    points.push(c);
-                    (points.len() - 1) as u32
-                });
+                let k = key(c);
+                let found = ids.entry(
+                    hash(k),
+                    |&i| key(points[i as usize]) == k,
+                    |&i| hash(key(points[i as usize])),
+                );
+                let id = match found {
+                    Entry::Occupied(e) => *e.get(),
+                    Entry::Vacant(v) => {
+                        let id = points.len() as u32;
+                        v.insert(id);
+                        points.push(c);
+                        id
+                    }
+                };
                 if path.last() != Some(&id) {
                     path.push(id);
                 }

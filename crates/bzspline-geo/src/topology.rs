@@ -1,7 +1,10 @@
 //! The topology of a coverage: its lines and rings cut into arcs (the
 //! crate docs say how arcs are found).
 
-use rustc_hash::FxHashMap;
+use std::hash::BuildHasher;
+
+use hashbrown::HashTable;
+use rustc_hash::{FxBuildHasher, FxHashMap};
 
 use geo_types::Coord;
 use rstar::primitives::GeomWithData;
@@ -103,17 +106,32 @@ impl Topology {
         nodes: Nodes,
     ) -> Result<Topology, Error> {
         check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
-        let Paths { points, paths } = Paths::of(chains)?;
+        Ok(Topology::from_paths(Paths::of(chains)?, polygons, nodes))
+    }
+
+    /// As [`Topology::from_chains_with_nodes`], letting go of the chains'
+    /// positions as soon as each is held once.
+    pub(crate) fn from_owned_chains(
+        chains: Vec<(ChainKind, Vec<Coord>)>,
+        polygons: Vec<Vec<usize>>,
+        nodes: Nodes,
+    ) -> Result<Topology, Error> {
+        check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
+        let paths = Paths::of(&chains)?;
+        drop(chains);
+        Ok(Topology::from_paths(paths, polygons, nodes))
+    }
+
+    /// The arcs of chains given as paths of distinct positions.
+    fn from_paths(paths: Paths, polygons: Vec<Vec<usize>>, nodes: Nodes) -> Topology {
+        let Paths { points, paths } = paths;
         let mut junction = junctions(points.len(), &paths).0;
         if !nodes.is_empty() {
             for (j, p) in junction.iter_mut().zip(&points) {
                 *j |= nodes.contains(*p);
             }
         }
-        let mut b = Builder {
-            keys: points.iter().map(|&p| key(p)).collect(),
-            ..Builder::default()
-        };
+        let mut b = Builder::new(points.iter().map(|&p| key(p)).collect());
         let mut out_chains = Vec::with_capacity(paths.len());
         for (kind, path) in &paths {
             let arcs = match kind {
@@ -122,17 +140,14 @@ impl Topology {
             };
             out_chains.push(Chain { kind: *kind, arcs });
         }
-        let arcs = b
-            .arcs
-            .into_iter()
-            .map(|a| a.into_iter().map(|id| points[id as usize]).collect())
-            .collect();
-        Ok(Topology {
+        drop(paths);
+        let arcs = b.arcs(&points);
+        Topology {
             arcs,
             chains: out_chains,
             polygons,
             nodes,
-        })
+        }
     }
 
     /// A topology from arcs already found (TopoJSON's): each chain lists its
@@ -300,41 +315,98 @@ fn check_polygons(
 struct Builder {
     /// Each position's bits, by id.
     keys: Vec<(u64, u64)>,
-    arcs: Vec<Vec<u32>>,
-    /// Open arcs by their ids; closed ones by a canonical rotation behind a
-    /// marker.
-    index: FxHashMap<Vec<u32>, usize>,
+    /// Every arc's ids, one arc after another (a closed arc ends on its
+    /// first id again).
+    ids: Vec<u32>,
+    /// Where each arc's ids start in `ids`, and where the last one ends.
+    starts: Vec<usize>,
+    /// Whether each arc is a ring without junctions (a closed arc).
+    closed: Vec<bool>,
+    /// The arcs by what they hold: an open arc by its ids, a closed one by
+    /// its ids without the closing repeat.
+    index: HashTable<u32>,
+    /// The arc being looked up, in its canonical form.
+    scratch: Vec<u32>,
+}
+
+/// The hash of an arc: whether it is closed, its ids (without a closed
+/// arc's closing repeat).
+fn arc_hash(closed: bool, ids: &[u32]) -> u64 {
+    FxBuildHasher.hash_one((closed, ids))
 }
 
 impl Builder {
+    fn new(keys: Vec<(u64, u64)>) -> Builder {
+        Builder {
+            keys,
+            starts: vec![0],
+            ..Builder::default()
+        }
+    }
+
+    /// Arc `a`'s ids as it is found by: without a closed arc's repeat.
+    fn found_by(&self, a: usize) -> &[u32] {
+        let ids = &self.ids[self.starts[a]..self.starts[a + 1]];
+        if self.closed[a] {
+            &ids[..ids.len() - 1]
+        } else {
+            ids
+        }
+    }
+
+    /// The arc `scratch` (closed or not), stored when it is new.
+    fn find_or_add(&mut self, closed: bool) -> usize {
+        let hash = arc_hash(closed, &self.scratch);
+        let found = self.index.find(hash, |&a| {
+            self.closed[a as usize] == closed && self.found_by(a as usize) == &self.scratch[..]
+        });
+        if let Some(&a) = found {
+            return a as usize;
+        }
+        let a = self.closed.len();
+        self.ids.extend_from_slice(&self.scratch);
+        if closed {
+            self.ids.push(self.scratch[0]);
+        }
+        self.starts.push(self.ids.len());
+        self.closed.push(closed);
+        let Builder {
+            index,
+            ids,
+            starts,
+            closed: closed_arcs,
+            ..
+        } = self;
+        index.insert_unique(hash, a as u32, |&b| {
+            let b = b as usize;
+            let all = &ids[starts[b]..starts[b + 1]];
+            let by = if closed_arcs[b] {
+                &all[..all.len() - 1]
+            } else {
+                all
+            };
+            arc_hash(closed_arcs[b], by)
+        });
+        a
+    }
+
     fn open_arc(&mut self, run: &[u32]) -> ArcRef {
-        if let Some(&arc) = self.index.get(run) {
-            return ArcRef {
-                arc,
-                reversed: false,
-            };
-        }
-        let rev: Vec<u32> = run.iter().rev().copied().collect();
-        if let Some(&arc) = self.index.get(&rev) {
-            return ArcRef {
-                arc,
-                reversed: true,
-            };
-        }
         let k = &self.keys;
-        let reversed = rev
+        let reversed = run
             .iter()
+            .rev()
             .map(|&i| k[i as usize])
             .lt(run.iter().map(|&i| k[i as usize]));
-        let arc = self.arcs.len();
+        self.scratch.clear();
         if reversed {
-            self.index.insert(rev.clone(), arc);
-            self.arcs.push(rev);
+            self.scratch.extend(run.iter().rev());
         } else {
-            self.index.insert(run.to_vec(), arc);
-            self.arcs.push(run.to_vec());
+            self.scratch.extend_from_slice(run);
         }
-        ArcRef { arc, reversed }
+        ArcRef {
+            arc: self.find_or_add(false),
+            reversed,
+        }
     }
 
     fn cut_line(&mut self, path: &[u32], junction: &[bool]) -> Vec<ArcRef> {
@@ -377,23 +449,35 @@ impl Builder {
         let k = path.len();
         let keys = &self.keys;
         let m = (0..k).min_by_key(|&i| keys[path[i] as usize]).unwrap_or(0);
-        let fwd: Vec<u32> = (0..k).map(|j| path[(m + j) % k]).collect();
-        let bwd: Vec<u32> = (0..k).map(|j| path[(m + k - j) % k]).collect();
+        let fwd = (0..k).map(|j| path[(m + j) % k]);
+        let bwd = (0..k).map(|j| path[(m + k - j) % k]);
         let reversed = bwd
-            .iter()
-            .map(|&i| keys[i as usize])
-            .lt(fwd.iter().map(|&i| keys[i as usize]));
-        let mut canon = if reversed { bwd } else { fwd };
-        canon.insert(0, u32::MAX);
-        if let Some(&arc) = self.index.get(&canon) {
-            return ArcRef { arc, reversed };
+            .clone()
+            .map(|i| keys[i as usize])
+            .lt(fwd.clone().map(|i| keys[i as usize]));
+        self.scratch.clear();
+        if reversed {
+            self.scratch.extend(bwd);
+        } else {
+            self.scratch.extend(fwd);
         }
-        let mut closed = canon[1..].to_vec();
-        closed.push(closed[0]);
-        let arc = self.arcs.len();
-        self.arcs.push(closed);
-        self.index.insert(canon, arc);
-        ArcRef { arc, reversed }
+        ArcRef {
+            arc: self.find_or_add(true),
+            reversed,
+        }
+    }
+
+    /// The arcs' positions.
+    fn arcs(&self, points: &[Coord]) -> Vec<Vec<Coord>> {
+        self.starts
+            .windows(2)
+            .map(|w| {
+                self.ids[w[0]..w[1]]
+                    .iter()
+                    .map(|&id| points[id as usize])
+                    .collect()
+            })
+            .collect()
     }
 }
 
