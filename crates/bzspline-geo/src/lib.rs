@@ -85,6 +85,7 @@ mod nodes;
 mod options;
 pub mod parts;
 mod piece;
+mod ragged;
 mod smooth;
 mod smoothing;
 mod topology;

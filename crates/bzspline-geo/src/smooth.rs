@@ -15,8 +15,9 @@ use crate::topology::{ChainKind, Topology};
 mod arc;
 mod rings;
 
+use crate::ragged::Ragged;
 pub(crate) use arc::turning_degrees;
-use arc::{is_closed, smooth_arc, Plan, Seg};
+use arc::{is_closed, smooth_arc, Plans, Seg};
 use rings::{holes_inside, RingFacts, Shoelace};
 
 /// The most times a leg is halved to resolve a conflict (into `2^MAX_LEVEL`
@@ -182,7 +183,7 @@ impl Topology {
             .unwrap_or_else(|| opts.default_tolerance_from(default_tolerance(arcs, extent)));
         let mut stats = self.input_stats(tolerance);
         let (plans, nodes) = self.plans(opts.keep_angle, opts.frame);
-        stats.closed_arcs = plans.iter().filter(|p| p.closed_curve).count();
+        stats.closed_arcs = plans.closed_curve.iter().filter(|&&c| c).count();
         let closed: Vec<bool> = arcs.iter().map(|a| is_closed(a)).collect();
 
         let shoelace = Shoelace::about(arcs, extent);
@@ -201,7 +202,7 @@ impl Topology {
             stats.rounds += 1;
             for a in (0..arcs.len()).filter(|&a| dirty[a]) {
                 let (coords, s, kept) =
-                    smooth_arc(a, &arcs[a], &plans[a], &levels[a], opts, tolerance)?;
+                    smooth_arc(a, &arcs[a], plans.get(a), &levels[a], opts, tolerance)?;
                 stats.kept_pieces += kept;
                 cross_out[a] = shoelace.arc(&coords);
                 out[a] = coords;
@@ -244,17 +245,14 @@ impl Topology {
             }
         }
         stats.input_conflicts = input_conflicts.len();
-        stats.refined_legs = levels.iter().flatten().filter(|&&l| l > 0).count();
-        stats.straight_legs = levels
-            .iter()
-            .map(|l| l.iter().filter(|&&v| v == STRAIGHT).count())
-            .sum();
+        stats.refined_legs = levels.values().iter().filter(|&&l| l > 0).count();
+        stats.straight_legs = levels.values().iter().filter(|&&l| l == STRAIGHT).count();
         stats.positions_out = self.positions(&out);
         stats.area_out = shoelace.polygons(self, &cross_out);
         let mut ended = Levels::default();
-        for (a, l) in arcs.iter().zip(levels) {
+        for (a, l) in arcs.iter().zip(levels.rows()) {
             if l.iter().any(|&v| v > 0) {
-                ended.insert(arc_key(a), l);
+                ended.insert(arc_key(a), l.to_vec());
             }
         }
         Ok(Smoothed {
@@ -351,7 +349,7 @@ impl Topology {
     }
 
     /// Each arc's plan, and the nodes: positions where arcs may meet.
-    fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Vec<Plan>, FxHashSet<(u64, u64)>) {
+    fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Plans, FxHashSet<(u64, u64)>) {
         let arcs = self.arcs();
         // How often each position occurs over all arcs (a closed arc's end once).
         let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
@@ -390,7 +388,11 @@ impl Topology {
         let is_node = |c: Coord| {
             count.get(&key(c)).is_some_and(|&n| n >= 2) || (!given.is_empty() && given.contains(c))
         };
-        let mut plans = Vec::with_capacity(arcs.len());
+        let mut plans = Plans {
+            closed_curve: Vec::with_capacity(arcs.len()),
+            fixed: Ragged::with_capacity(arcs.len(), arcs.iter().map(Vec::len).sum()),
+            min_out,
+        };
         for (ai, a) in arcs.iter().enumerate() {
             let closed = is_closed(a);
             let first_node = is_node(a[0]) || in_line[ai];
@@ -400,7 +402,9 @@ impl Topology {
                 nodes.insert(key(a[a.len() - 1]));
             }
             let n = if closed { a.len() - 1 } else { a.len() };
-            let mut fixed: Vec<bool> = (0..n).map(|i| is_node(a[i])).collect();
+            plans.fixed.push_row((0..n).map(|i| is_node(a[i])));
+            plans.closed_curve.push(closed_curve);
+            let fixed = &mut plans.fixed[ai];
             if let Some(deg) = keep_angle {
                 for i in 0..n {
                     let (prev, next) = match (closed, i) {
@@ -415,11 +419,6 @@ impl Topology {
                     }
                 }
             }
-            plans.push(Plan {
-                closed_curve,
-                fixed,
-                min_out: min_out[ai],
-            });
         }
         (plans, nodes)
     }
@@ -438,10 +437,11 @@ fn bump_chain(t: &Topology, ci: usize, segs: &[Vec<Seg>], bump: &mut Vec<(usize,
 
 /// The refinement levels the rounds start from: `start`'s for the arcs it
 /// holds (of the right length), 0 for every leg of the others.
-fn start_levels(arcs: &[Vec<Coord>], start: &Levels) -> Vec<Vec<u8>> {
-    let mut levels: Vec<Vec<u8>> = arcs.iter().map(|a| vec![0; a.len() - 1]).collect();
+fn start_levels(arcs: &[Vec<Coord>], start: &Levels) -> Ragged<u8> {
+    let mut levels = Ragged::filled(arcs.iter().map(|a| a.len() - 1), 0);
     if !start.is_empty() {
-        for (a, l) in arcs.iter().zip(levels.iter_mut()) {
+        for (i, a) in arcs.iter().enumerate() {
+            let l = &mut levels[i];
             if let Some(given) = start.get(arc_key(a)).filter(|g| g.len() == l.len()) {
                 l.copy_from_slice(given);
             }
@@ -455,7 +455,7 @@ fn start_levels(arcs: &[Vec<Coord>], start: &Levels) -> Vec<Vec<u8>> {
 /// for smoothing again.
 fn raise(
     bump: Vec<(usize, Seg)>,
-    levels: &mut [Vec<u8>],
+    levels: &mut Ragged<u8>,
     dirty: &mut [bool],
     closed: &[bool],
     last_resort: bool,

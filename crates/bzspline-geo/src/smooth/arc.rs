@@ -10,6 +10,7 @@ use crate::geodesy::{self, Convention};
 use crate::graph::key;
 use crate::options::{Frame, SmoothOptions};
 use crate::piece::{self, Flat};
+use crate::ragged::Ragged;
 
 /// Which original legs one output segment lies along, and whether it is an
 /// original edge.
@@ -21,13 +22,33 @@ pub(super) struct Seg {
 }
 
 /// How one arc is smoothed, fixed for all rounds.
-pub(super) struct Plan {
+#[derive(Clone, Copy)]
+pub(super) struct Plan<'a> {
     /// Smoothed as a closed curve when nothing cuts it.
     pub(super) closed_curve: bool,
     /// Positions that stay (per distinct position).
-    pub(super) fixed: Vec<bool>,
+    pub(super) fixed: &'a [bool],
     /// The fewest positions the output may have.
     pub(super) min_out: usize,
+}
+
+/// Every arc's [`Plan`], in three vectors.
+#[derive(Default)]
+pub(super) struct Plans {
+    pub(super) closed_curve: Vec<bool>,
+    pub(super) fixed: Ragged<bool>,
+    pub(super) min_out: Vec<usize>,
+}
+
+impl Plans {
+    /// Arc `a`'s plan.
+    pub(super) fn get(&self, a: usize) -> Plan<'_> {
+        Plan {
+            closed_curve: self.closed_curve[a],
+            fixed: &self.fixed[a],
+            min_out: self.min_out[a],
+        }
+    }
 }
 
 /// One arc smoothed at the given leg levels: its positions, what each output
@@ -36,7 +57,7 @@ pub(super) struct Plan {
 pub(super) fn smooth_arc(
     ai: usize,
     arc: &[Coord],
-    plan: &Plan,
+    plan: Plan<'_>,
     levels: &[u8],
     opts: &SmoothOptions,
     tol: f64,

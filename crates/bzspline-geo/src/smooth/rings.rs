@@ -4,12 +4,13 @@
 use geo_types::{Coord, Rect};
 
 use super::bounds;
+use crate::ragged::Ragged;
 use crate::topology::{ChainKind, Topology};
 
 /// What the input says about its rings, for the checks after smoothing.
 pub(super) struct RingFacts {
     /// The chains that use each arc.
-    pub(super) chains_of: Vec<Vec<u32>>,
+    pub(super) chains_of: Ragged<u32>,
     /// The polygon each ring belongs to.
     pub(super) polygon_of: Vec<Option<u32>>,
     /// Each ring's winding in the input (0 for a line or a flat ring).
@@ -20,10 +21,13 @@ pub(super) struct RingFacts {
 
 impl RingFacts {
     pub(super) fn of(t: &Topology, shoelace: &Shoelace, cross_in: &[f64]) -> RingFacts {
-        let mut chains_of: Vec<Vec<u32>> = vec![Vec::new(); t.arcs().len()];
+        let uses = t.uses();
+        let mut chains_of = Ragged::filled(uses.iter().map(|&u| u as usize), 0u32);
+        let mut filled = vec![0usize; uses.len()];
         for (ci, c) in t.chains().iter().enumerate() {
             for r in &c.arcs {
-                chains_of[r.arc].push(ci as u32);
+                chains_of[r.arc][filled[r.arc]] = ci as u32;
+                filled[r.arc] += 1;
             }
         }
         let mut polygon_of: Vec<Option<u32>> = vec![None; t.chains().len()];
