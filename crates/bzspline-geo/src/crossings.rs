@@ -191,28 +191,38 @@ impl Lines<'_> {
         }
     }
 
-    /// The runs of segments of the lines `keep` selects.
-    fn runs(&self, keep: &dyn Fn(usize) -> bool) -> Vec<Item> {
-        let mut out = Vec::new();
-        for (li, l) in self.lines.iter().enumerate() {
-            if !keep(li) || l.len() < 2 {
-                continue;
-            }
-            let n = l.len() - 1;
-            for first in (0..n).step_by(RUN) {
-                let count = RUN.min(n - first);
-                let mut env = seg_env(l[first], l[first + 1]);
-                for c in &l[first + 2..=first + count] {
-                    env.merge(&AABB::from_point([c.x, c.y]));
-                }
-                out.push(Item {
-                    line: li as u32,
-                    first: first as u32,
-                    count: count as u32,
-                    env,
-                });
-            }
-        }
+    /// The runs of segments of the lines `keep` selects, one at a time.
+    fn runs<'s>(&'s self, keep: impl Fn(usize) -> bool + 's) -> impl Iterator<Item = Item> + 's {
+        self.lines
+            .iter()
+            .enumerate()
+            .filter(move |(li, l)| keep(*li) && l.len() >= 2)
+            .flat_map(|(li, l)| {
+                let n = l.len() - 1;
+                (0..n).step_by(RUN).map(move |first| {
+                    let count = RUN.min(n - first);
+                    let mut env = seg_env(l[first], l[first + 1]);
+                    for c in &l[first + 2..=first + count] {
+                        env.merge(&AABB::from_point([c.x, c.y]));
+                    }
+                    Item {
+                        line: li as u32,
+                        first: first as u32,
+                        count: count as u32,
+                        env,
+                    }
+                })
+            })
+    }
+
+    /// The runs of the lines `keep` selects, in a vector of their number.
+    fn collect_runs(&self, keep: impl Fn(usize) -> bool + Copy) -> Vec<Item> {
+        let count = (self.lines.iter().enumerate())
+            .filter(|(li, l)| keep(*li) && l.len() >= 2)
+            .map(|(_, l)| (l.len() - 1).div_ceil(RUN))
+            .sum();
+        let mut out = Vec::with_capacity(count);
+        out.extend(self.runs(keep));
         out
     }
 
@@ -234,13 +244,13 @@ impl Lines<'_> {
             .sum();
         let few = changed * 8 < total;
         let tree = RTree::bulk_load(if few {
-            self.runs(&|li| dirty[li])
+            self.collect_runs(|li| dirty[li])
         } else {
-            self.runs(&|_| true)
+            self.collect_runs(|_| true)
         });
-        let queries = self.runs(&|li| few || dirty[li]);
         let mut out = Vec::new();
-        for p in &queries {
+        for p in self.runs(|li| few || dirty[li]) {
+            let p = &p;
             for q in tree.locate_in_envelope_intersecting(&p.env) {
                 // Both on dirty lines: the pair of runs is met from both sides.
                 let key = |i: &Item| (i.line, i.first);
