@@ -17,7 +17,7 @@ mod rings;
 
 use crate::ragged::Ragged;
 pub(crate) use arc::turning_degrees;
-use arc::{is_closed, smooth_arc, Plans, Seg};
+use arc::{is_closed, smooth_arc, Along, Plans, Seg, Smoothing};
 use rings::{holes_inside, RingFacts, Shoelace};
 
 /// The most times a leg is halved to resolve a conflict (into `2^MAX_LEVEL`
@@ -194,19 +194,19 @@ impl Topology {
 
         let mut levels = start_levels(arcs, start);
         let mut out: Vec<Vec<Coord>> = vec![Vec::new(); arcs.len()];
-        let mut segs: Vec<Vec<Seg>> = vec![Vec::new(); arcs.len()];
+        let mut along = Along::new(arcs, &plans, opts, tolerance);
+        let mut work = Smoothing::default();
         let mut dirty = vec![true; arcs.len()];
         let judged = self.judged(exact);
         let mut input_conflicts: FxHashSet<(SegId, SegId)> = FxHashSet::default();
         loop {
             stats.rounds += 1;
             for a in (0..arcs.len()).filter(|&a| dirty[a]) {
-                let (coords, s, kept) =
-                    smooth_arc(a, &arcs[a], plans.get(a), &levels[a], opts, tolerance)?;
-                stats.kept_pieces += kept;
-                cross_out[a] = shoelace.arc(&coords);
-                out[a] = coords;
-                segs[a] = s;
+                let plan = plans.get(a);
+                stats.kept_pieces +=
+                    smooth_arc(a, &arcs[a], plan, &levels[a], opts, tolerance, &mut work)?;
+                cross_out[a] = shoelace.arc(&work.out);
+                out[a] = work.out.clone();
             }
             input_conflicts.retain(|(p, q)| !dirty[p.line as usize] && !dirty[q.line as usize]);
             let lines = Lines {
@@ -219,8 +219,8 @@ impl Topology {
                 if !(judged[p.line as usize] && judged[q.line as usize]) {
                     continue;
                 }
-                let sp = segs[p.line as usize][p.seg as usize];
-                let sq = segs[q.line as usize][q.seg as usize];
+                let sp = along.segs(p.line as usize, &levels)?[p.seg as usize];
+                let sq = along.segs(q.line as usize, &levels)?[q.seg as usize];
                 if sp.original && sq.original {
                     input_conflicts.insert((p, q));
                     continue;
@@ -231,15 +231,15 @@ impl Topology {
                     }
                 }
             }
-            self.ring_conflicts(
-                &dirty, exact, &rings, &shoelace, &cross_out, &out, &segs, &mut bump,
-            );
+            let facts = (&rings, &shoelace, &cross_out[..], &out[..]);
+            self.ring_conflicts(&dirty, exact, facts, &mut along, &levels, &mut bump)?;
             dirty.iter_mut().for_each(|d| *d = false);
             if bump.is_empty() {
                 break;
             }
             let last_resort = first - 1 + stats.rounds >= MAX_ROUNDS;
             raise(bump, &mut levels, &mut dirty, &closed, last_resort);
+            along.clear();
             if one {
                 break;
             }
@@ -296,18 +296,15 @@ impl Topology {
     /// Adds to `bump` every leg of the rings that turned over and of the
     /// holes (and their shells) that left their shell, among the rings that
     /// use a `dirty` arc (and that `exact` marks, unless it is empty).
-    #[allow(clippy::too_many_arguments)] // the round's state, read only
     fn ring_conflicts(
         &self,
         dirty: &[bool],
         exact: &[bool],
-        rings: &RingFacts,
-        shoelace: &Shoelace,
-        cross_out: &[f64],
-        out: &[Vec<Coord>],
-        segs: &[Vec<Seg>],
+        (rings, shoelace, cross_out, out): (&RingFacts, &Shoelace, &[f64], &[Vec<Coord>]),
+        along: &mut Along<'_>,
+        levels: &Ragged<u8>,
         bump: &mut Vec<(usize, Seg)>,
-    ) {
+    ) -> Result<(), Error> {
         let mut suspects: Vec<usize> = (0..dirty.len())
             .filter(|&a| dirty[a])
             .flat_map(|a| rings.chains_of[a].iter().map(|&c| c as usize))
@@ -319,7 +316,7 @@ impl Topology {
         for &ci in &suspects {
             let sign = rings.sign_in[ci];
             if sign != 0.0 && shoelace.ring(self, ci, cross_out).signum() != sign {
-                bump_chain(self, ci, segs, bump);
+                bump_chain(self, ci, along, levels, bump)?;
             }
             if let Some(p) = rings.polygon_of[ci] {
                 polys.push(p as usize);
@@ -332,11 +329,12 @@ impl Topology {
             let now = holes_inside(self, members, out);
             for (h, (&was, &is)) in rings.inside_in[p].iter().zip(&now).enumerate() {
                 if was && !is {
-                    bump_chain(self, members[0], segs, bump);
-                    bump_chain(self, members[h + 1], segs, bump);
+                    bump_chain(self, members[0], along, levels, bump)?;
+                    bump_chain(self, members[h + 1], along, levels, bump)?;
                 }
             }
         }
+        Ok(())
     }
 
     /// Positions of all chains assembled from `arcs` (joints once, rings
@@ -425,14 +423,21 @@ impl Topology {
 }
 
 /// Adds every leg of every arc of chain `ci` to `bump`.
-fn bump_chain(t: &Topology, ci: usize, segs: &[Vec<Seg>], bump: &mut Vec<(usize, Seg)>) {
+fn bump_chain(
+    t: &Topology,
+    ci: usize,
+    along: &mut Along<'_>,
+    levels: &Ragged<u8>,
+    bump: &mut Vec<(usize, Seg)>,
+) -> Result<(), Error> {
     for r in &t.chains()[ci].arcs {
-        for s in &segs[r.arc] {
+        for s in along.segs(r.arc, levels)? {
             if !s.original {
                 bump.push((r.arc, *s));
             }
         }
     }
+    Ok(())
 }
 
 /// The refinement levels the rounds start from: `start`'s for the arcs it

@@ -2,7 +2,10 @@
 //! each piece's control polygon refined along its legs, the method's curve
 //! flattened, and each output segment traced back to the legs it lies along.
 
+use std::collections::hash_map::Entry;
+
 use geo_types::Coord;
+use rustc_hash::FxHashMap;
 
 use super::{MAX_LEVEL, STRAIGHT};
 use crate::error::Error;
@@ -51,9 +54,68 @@ impl Plans {
     }
 }
 
-/// One arc smoothed at the given leg levels: its positions, what each output
-/// segment lies along, and how many pieces were kept as they were because
-/// their curve could not be built.
+/// What each output segment of an arc lies along ([`Seg`]), for the arcs a
+/// conflict names: found again by smoothing the arc once more at the levels
+/// it was smoothed at (the same bits), rather than held for every arc.
+pub(super) struct Along<'a> {
+    arcs: &'a [Vec<Coord>],
+    plans: &'a Plans,
+    opts: &'a SmoothOptions,
+    tol: f64,
+    found: FxHashMap<usize, Vec<Seg>>,
+}
+
+impl<'a> Along<'a> {
+    pub(super) fn new(
+        arcs: &'a [Vec<Coord>],
+        plans: &'a Plans,
+        opts: &'a SmoothOptions,
+        tol: f64,
+    ) -> Self {
+        Along {
+            arcs,
+            plans,
+            opts,
+            tol,
+            found: FxHashMap::default(),
+        }
+    }
+
+    /// The segments of arc `a` smoothed at `levels[a]`.
+    pub(super) fn segs(&mut self, a: usize, levels: &Ragged<u8>) -> Result<&[Seg], Error> {
+        match self.found.entry(a) {
+            Entry::Occupied(e) => Ok(e.into_mut()),
+            Entry::Vacant(v) => {
+                let plan = self.plans.get(a);
+                let mut work = Smoothing::default();
+                let arc = &self.arcs[a];
+                smooth_arc(a, arc, plan, &levels[a], self.opts, self.tol, &mut work)?;
+                Ok(v.insert(work.segs))
+            }
+        }
+    }
+
+    /// Forgets what was found: the levels changed.
+    pub(super) fn clear(&mut self) {
+        self.found.clear();
+    }
+}
+
+/// One smoothed arc, in vectors used again for every arc: the arcs kept
+/// through the rounds are copied out of them once each arc's temporary
+/// vectors are gone, so that they lie packed rather than among the holes
+/// those leave.
+#[derive(Default)]
+pub(super) struct Smoothing {
+    /// The arc's positions.
+    pub(super) out: Vec<Coord>,
+    /// What each output segment lies along.
+    pub(super) segs: Vec<Seg>,
+}
+
+/// One arc smoothed at the given leg levels into `work` (its positions and
+/// what each segment lies along); returns how many pieces were kept as they
+/// were because their curve could not be built.
 pub(super) fn smooth_arc(
     ai: usize,
     arc: &[Coord],
@@ -61,17 +123,21 @@ pub(super) fn smooth_arc(
     levels: &[u8],
     opts: &SmoothOptions,
     tol: f64,
-) -> Result<(Vec<Coord>, Vec<Seg>, usize), Error> {
+    work: &mut Smoothing,
+) -> Result<usize, Error> {
+    let Smoothing { out, segs } = work;
+    out.clear();
+    segs.clear();
     let n_legs = arc.len() - 1;
     if n_legs == 0 {
-        return Ok((arc.to_vec(), Vec::new(), 0));
+        out.extend_from_slice(arc);
+        return Ok(0);
     }
     let closed = is_closed(arc);
     if closed && n_legs < 3 {
         // Too few distinct positions for a ring's curve: kept as it is.
         let all: Vec<usize> = (0..=n_legs).map(|j| j % n_legs).collect();
-        let (mut out, mut segs) = (Vec::new(), Vec::new());
-        keep(arc, &all, &mut out, &mut segs);
+        keep(arc, &all, out, segs);
         return finish(ai, out, segs, 0, closed);
     }
     // Leg l runs from position l to l + 1 (for a closed arc, modulo n_legs).
@@ -88,8 +154,6 @@ pub(super) fn smooth_arc(
         plan.fixed[i] || (i < n_legs && straight(i)) || before.is_some_and(straight)
     };
     let spline_err = |e| Error::Spline { arc: ai, source: e };
-    let mut out: Vec<Coord> = Vec::new();
-    let mut segs: Vec<Seg> = Vec::new();
     let mut kept = 0;
     // Positions in the order smoothed: a closed arc from its first cut round
     // to it again.
@@ -98,10 +162,10 @@ pub(super) fn smooth_arc(
             let all: Vec<usize> = (0..=n_legs).collect();
             let (ctrl, leg_of) = refine(arc, &all, levels, true, opts.frame);
             match curve_polyline(&ctrl, true, opts, tol, plan.min_out).map_err(spline_err)? {
-                Some(flat) => collect(&flat, &leg_of, &mut out, &mut segs),
+                Some(flat) => collect(&flat, &leg_of, out, segs),
                 None => {
                     kept += 1;
-                    keep(arc, &all, &mut out, &mut segs);
+                    keep(arc, &all, out, segs);
                 }
             }
             return finish(ai, out, segs, kept, closed);
@@ -120,7 +184,7 @@ pub(super) fn smooth_arc(
         let piece = &walk[j0..=j];
         j0 = j;
         if piece.len() == 2 {
-            keep(arc, piece, &mut out, &mut segs);
+            keep(arc, piece, out, segs);
             continue;
         }
         let (ctrl, leg_of) = refine(arc, piece, levels, false, opts.frame);
@@ -128,7 +192,7 @@ pub(super) fn smooth_arc(
         match curve_polyline(&ctrl, false, opts, tol, min).map_err(spline_err)? {
             Some(flat) => {
                 let joint = out.len().checked_sub(1);
-                collect(&flat, &leg_of, &mut out, &mut segs);
+                collect(&flat, &leg_of, out, segs);
                 // The piece ends exactly at its cut positions.
                 out[joint.unwrap_or(0)] = arc[piece[0]];
                 let last = out.len() - 1;
@@ -136,7 +200,7 @@ pub(super) fn smooth_arc(
             }
             None => {
                 kept += 1;
-                keep(arc, piece, &mut out, &mut segs);
+                keep(arc, piece, out, segs);
             }
         }
     }
@@ -146,11 +210,11 @@ pub(super) fn smooth_arc(
 /// Checks an arc's output and closes a closed one on its first position.
 fn finish(
     ai: usize,
-    mut out: Vec<Coord>,
-    segs: Vec<Seg>,
+    out: &mut [Coord],
+    segs: &[Seg],
     kept: usize,
     closed: bool,
-) -> Result<(Vec<Coord>, Vec<Seg>, usize), Error> {
+) -> Result<usize, Error> {
     if out.iter().any(|c| !(c.x.is_finite() && c.y.is_finite())) {
         return Err(Error::Overflow { arc: ai });
     }
@@ -160,7 +224,7 @@ fn finish(
         out[last] = first;
     }
     debug_assert_eq!(segs.len() + 1, out.len());
-    Ok((out, segs, kept))
+    Ok(kept)
 }
 
 /// Appends the original edges along the positions `walk` of `arc`.
