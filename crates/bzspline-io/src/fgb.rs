@@ -452,7 +452,8 @@ pub fn to_bytes(features: &dyn Source, schema: Option<&Schema>, name: &str) -> R
     for i in 0..features.count() {
         let mut values = Vec::new();
         for (k, f) in fields.iter().enumerate() {
-            let v = features.property(i, &f.name).unwrap_or(&Value::Null);
+            let v = features.property(i, &f.name);
+            let v = v.as_ref();
             if let Some(v) =
                 column_value(v, f).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?
             {

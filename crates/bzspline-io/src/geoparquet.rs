@@ -647,8 +647,7 @@ fn stores(features: &dyn Source, fields: &[Field]) -> Vec<Store> {
                 (Store::Date | Store::Instant, _) => false,
                 _ => true,
             };
-            let all = (0..features.count())
-                .all(|i| fits(features.property(i, &f.name).unwrap_or(&Value::Null)));
+            let all = (0..features.count()).all(|i| fits(&features.property(i, &f.name)));
             if all {
                 store
             } else {
@@ -770,7 +769,8 @@ fn write_to<W: std::io::Write + Send>(
         for (f, store) in fields.iter().zip(&stores) {
             let mut cells = Vec::with_capacity(group.len());
             for i in group.clone() {
-                let v = features.property(i, &f.name).unwrap_or(&Value::Null);
+                let v = features.property(i, &f.name);
+                let v = v.as_ref();
                 cells.push(
                     stored(v, f, *store).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?,
                 );

@@ -603,7 +603,8 @@ fn fill(
             let mut values = Vec::with_capacity(fields.len() + 1);
             values.push(blob);
             for field in fields {
-                let v = features.property(i, &field.name).unwrap_or(&Value::Null);
+                let v = features.property(i, &field.name);
+                let v = v.as_ref();
                 values.push(
                     sql_value(v, field).map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?,
                 );

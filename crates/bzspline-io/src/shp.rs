@@ -822,8 +822,7 @@ fn table_for(
             FieldName::try_from(name.as_str()).map_err(|e| anyhow!("field {:?}: {e}", f.name))?;
         let widest = || {
             (0..features.count())
-                .filter_map(|i| features.property(i, &f.name))
-                .filter_map(layer::as_text)
+                .filter_map(|i| layer::as_text(&features.property(i, &f.name)))
                 .map(|t| t.len())
                 .max()
                 .unwrap_or(1)
@@ -892,7 +891,8 @@ fn record(features: &dyn Source, i: usize, fields: &[Field]) -> Result<dbase::Re
         width,
     } in fields
     {
-        let v = features.property(i, key).unwrap_or(&Value::Null);
+        let v = features.property(i, key);
+        let v = v.as_ref();
         let bad = || anyhow!("field {name:?}: {v} does not fit a {kind:?} field");
         let text = |t: String| -> Result<FieldValue> {
             if t.len() > *width {

@@ -17,7 +17,7 @@ use serde::de::{self, DeserializeSeed, MapAccess, SeqAccess, Visitor};
 use serde::Deserializer;
 use serde_json::{Map, Value};
 
-use crate::features::Source;
+use crate::features::{Source, NULL};
 
 /// One feature: geojson's, its geometry's coordinates taken out (an empty
 /// collection in their place), and that geometry in the plane.
@@ -224,8 +224,9 @@ impl Source for Collection {
             serde_json::to_value(g).unwrap_or(Value::Null)
         }))
     }
-    fn property(&self, i: usize, name: &str) -> Option<&Value> {
-        self.items[i].feature.properties.as_ref()?.get(name)
+    fn property(&self, i: usize, name: &str) -> Cow<'_, Value> {
+        let props = self.items[i].feature.properties.as_ref();
+        Cow::Borrowed(props.and_then(|p| p.get(name)).unwrap_or(&NULL))
     }
     fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
         match &self.items[i].feature.properties {
