@@ -638,3 +638,48 @@ fn bad_layer_files_are_refused_naming_the_file_and_nothing_is_written() {
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "what was there");
     }
 }
+
+#[test]
+#[cfg_attr(
+    not(gdal),
+    ignore = "needs GDAL's gdalsrsinfo (apt-get install gdal-bin)"
+)]
+fn a_crs_given_as_projjson_gets_a_prj_that_gdal_reads_as_the_same_crs() {
+    let dir = tempfile::tempdir().unwrap();
+    let shp = path(dir.path(), "x.shp");
+    let countries = common::fixture("countries.geojson").display().to_string();
+    succeeds(&["smooth", &countries, "-o", &shp]);
+    let prj = path(dir.path(), "x.prj");
+    // Geographic and projected, in metres, US feet and grads, on datums and
+    // datum ensembles, by every method of the table.
+    let codes = [
+        4269, 4258, 4807, 7844, 32633, 2154, 27700, 3035, 5070, 2056, 3413, 3031, 27572, 6933,
+        2193, 3395, 2263, 31467, 28992, 3577, 3005, 5514,
+    ];
+    // Krovak (EPSG:5514) is not among the methods written: no .prj, as
+    // before, rather than a wrong one.
+    let unwritten = [5514];
+    for code in codes {
+        let epsg = format!("EPSG:{code}");
+        let projjson: Value =
+            serde_json::from_str(&gdal("gdalsrsinfo", &["-o", "PROJJSON", &epsg])).unwrap();
+        let prj_text = bzspline_io::layer::Crs::from_projjson(&projjson).prj();
+        assert_eq!(prj_text.is_none(), unwritten.contains(&code), "{epsg}");
+        let Some(text) = prj_text else {
+            continue;
+        };
+        std::fs::write(&prj, &text).unwrap();
+        // Read as GDAL's Shapefile driver (and so QGIS) reads a .prj: the
+        // same datum, ellipsoid, projection and units, found as the same
+        // EPSG code (GDAL may say it is less than sure of the match: it
+        // finds no code at all in the .prj of ESRI's WKT it writes itself).
+        assert_eq!(
+            gdal("gdalsrsinfo", &["-o", "proj4", &shp]).trim(),
+            gdal("gdalsrsinfo", &["-o", "proj4", &epsg]).trim(),
+            "{epsg} as proj4, from\n{text}"
+        );
+        let found = gdal("gdalsrsinfo", &["-o", "epsg", &shp]);
+        let last = found.lines().rfind(|l| !l.trim().is_empty());
+        assert_eq!(last, Some(epsg.as_str()), "{found}\nfrom\n{text}");
+    }
+}

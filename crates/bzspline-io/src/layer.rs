@@ -145,13 +145,18 @@ impl Crs {
 
     /// The text of a `.prj`: ESRI's WKT for WGS 84 longitude and latitude
     /// (as GDAL writes it), the file's WKT 1 as it is, else whatever WKT
-    /// the file gave (WKT 2, which older readers of `.prj` files ignore).
+    /// the file gave (WKT 2, which GDAL's Shapefile driver reads as no CRS),
+    /// else the WKT 1 of its PROJJSON ([`crate::wkt1`]); `None` when there
+    /// is none of these.
     #[must_use]
     pub fn prj(&self) -> Option<String> {
         if self.epsg() == Some(4326) {
             return Some(ESRI_WGS84_PRJ.to_owned());
         }
-        self.wkt.clone()
+        self.wkt.clone().or_else(|| {
+            let p: Value = serde_json::from_str(self.projjson.as_deref()?).ok()?;
+            crate::wkt1::from_projjson(&p)
+        })
     }
 
     /// The EPSG code, when the authority is EPSG.

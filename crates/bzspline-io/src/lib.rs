@@ -19,6 +19,7 @@
 //! - [`features`]: a layer's features held compactly (geo-types, values
 //!   in the fields' order), and the features a layer writer takes.
 //! - [`files`]: which reader and writer a layer file's format selects.
+//! - [`wkt1`]: a CRS given as PROJJSON written as the WKT 1 of a `.prj`.
 //! - `shp` (feature `shapefile`): ESRI Shapefiles in and out.
 //! - `gpkg` (feature `geopackage`): GeoPackage feature layers in and out.
 //! - `fgb` (feature `flatgeobuf`): FlatGeobuf files in and out.
@@ -50,3 +51,4 @@ pub mod shp;
 pub mod smooth;
 pub mod time;
 pub mod topojson;
+pub mod wkt1;
