@@ -1,7 +1,8 @@
 //! The command's GeoParquet reader on arbitrary bytes, then the writer on
 //! what was read: never a panic; a refusal is one line naming the file; an
-//! accepted layer has finite coordinates, and what it writes reads back and
-//! writes again to the same features in the same order.
+//! accepted layer has finite coordinates, its CRS makes a `.prj` or none,
+//! and what it writes reads back and writes again to the same features in
+//! the same order.
 #![no_main]
 
 use bzspline_fuzz::{finite, geoparquet};
@@ -26,6 +27,10 @@ fuzz_target!(|bytes: &[u8]| {
             g.is_null() || g.get("geometries").is_some() || finite(&g["coordinates"]),
             "non-finite coordinates read"
         );
+    }
+    // The .prj a Shapefile of the layer would get (from its PROJJSON).
+    if let Some(crs) = &layer.schema.crs {
+        let _ = crs.prj();
     }
     if let Ok(written) = geoparquet::to_bytes(&layer.features, Some(&layer.schema)) {
         let again =
