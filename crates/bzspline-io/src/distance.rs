@@ -210,21 +210,10 @@ impl Space {
     }
 }
 
-/// Metres in the unit of a PROJJSON projected CRS's first axis: `metre`,
-/// `foot`, `US survey foot`, or a unit object with its conversion factor.
+/// Metres in the unit of a PROJJSON projected CRS's first axis
+/// ([`crate::wkt1`] reads PROJJSON's units).
 fn projjson_unit(p: &serde_json::Value) -> Option<f64> {
-    let unit = &p["coordinate_system"]["axis"][0]["unit"];
-    match unit {
-        serde_json::Value::String(name) => match name.as_str() {
-            "metre" => Some(1.0),
-            "foot" => Some(0.3048),
-            "US survey foot" => Some(1200.0 / 3937.0),
-            _ => None,
-        },
-        u => u["conversion_factor"]
-            .as_f64()
-            .filter(|m| m.is_finite() && *m > 0.0),
-    }
+    crate::wkt1::metres_in(&p["coordinate_system"]["axis"][0]["unit"])
 }
 
 /// Metres a projected CRS's unit is, for the codes known without a WKT.

@@ -16,7 +16,7 @@ use serde_json::Value;
 #[must_use]
 pub fn from_projjson(p: &Value) -> Option<String> {
     match p["type"].as_str()? {
-        "GeographicCRS" => geogcs(p),
+        "GeographicCRS" => geographic(p).map(|(wkt, _)| wkt),
         "ProjectedCRS" => projcs(p),
         _ => None,
     }
@@ -139,29 +139,62 @@ enum Kind {
 
 const DEGREE: f64 = 0.017_453_292_519_943_3;
 
-/// The unit `u` of PROJJSON (`metre`, `degree`, `unity`, or an object with
-/// its type, name and factor), when it measures `kind`.
+impl Unit {
+    /// A unit EPSG names by `code`.
+    fn epsg(name: &str, factor: f64, code: i64) -> Unit {
+        Unit {
+            name: name.to_owned(),
+            factor,
+            authority: format!(",AUTHORITY[\"EPSG\",\"{code}\"]"),
+        }
+    }
+
+    fn metre() -> Unit {
+        Unit::epsg("metre", 1.0, 9001)
+    }
+
+    fn degree() -> Unit {
+        Unit::epsg("degree", DEGREE, 9122)
+    }
+
+    /// What a bare number of `kind` is in (PROJJSON's default units).
+    fn default_of(kind: Kind) -> Unit {
+        match kind {
+            Kind::Length => Unit::metre(),
+            Kind::Angle => Unit::degree(),
+            Kind::Scale => Unit::epsg("unity", 1.0, 9201),
+        }
+    }
+}
+
+/// The unit `u` of PROJJSON, when it measures `kind`: one named by a string
+/// (`metre`, `foot`, `US survey foot`, `degree`, `unity`) or an object with
+/// its name and factor to the metre, radian or unity (and its type, when
+/// it says one, of that kind).
 fn unit(u: &Value, kind: Kind) -> Option<Unit> {
-    let simple = |name: &str, factor: f64, code: i64| Unit {
-        name: name.to_owned(),
-        factor,
-        authority: format!(",AUTHORITY[\"EPSG\",\"{code}\"]"),
-    };
     match (u, kind) {
-        (Value::String(s), Kind::Length) if s == "metre" => Some(simple("metre", 1.0, 9001)),
-        (Value::String(s), Kind::Angle) if s == "degree" => Some(simple("degree", DEGREE, 9122)),
-        (Value::String(s), Kind::Scale) if s == "unity" => Some(simple("unity", 1.0, 9201)),
+        (Value::String(s), Kind::Length) => match s.as_str() {
+            "metre" => Some(Unit::metre()),
+            "foot" => Some(Unit::epsg("foot", 0.3048, 9002)),
+            "US survey foot" => Some(Unit::epsg("US survey foot", 1200.0 / 3937.0, 9003)),
+            _ => None,
+        },
+        (Value::String(s), Kind::Angle) if s == "degree" => Some(Unit::degree()),
+        (Value::String(s), Kind::Scale) if s == "unity" => Some(Unit::default_of(Kind::Scale)),
         (Value::Object(_), _) => {
-            let ok = matches!(
-                (u["type"].as_str()?, kind),
-                ("LinearUnit", Kind::Length)
-                    | ("AngularUnit", Kind::Angle)
-                    | ("ScaleUnit", Kind::Scale)
-            );
+            let of_kind = match u.get("type").and_then(Value::as_str) {
+                None => true,
+                Some(t) => matches!(
+                    (t, kind),
+                    ("LinearUnit", Kind::Length)
+                        | ("AngularUnit", Kind::Angle)
+                        | ("ScaleUnit", Kind::Scale)
+                ),
+            };
             let factor = u["conversion_factor"]
                 .as_f64()
                 .filter(|f| *f > 0.0 && f.is_finite())?;
-            ok.then(|| Unit {
+            of_kind.then(|| Unit {
                 name: u["name"].as_str().unwrap_or("unknown").to_owned(),
                 factor,
                 authority: authority(u).unwrap_or_default(),
@@ -171,25 +204,34 @@ fn unit(u: &Value, kind: Kind) -> Option<Unit> {
     }
 }
 
-/// A value with its unit, in `to`: a bare number is in metres or degrees
-/// as `kind` says.
-fn value_in(v: &Value, kind: Kind, to: &Unit) -> Option<f64> {
-    let (x, from) = match v {
-        Value::Number(n) => (n.as_f64()?, None),
-        Value::Object(_) => (v["value"].as_f64()?, Some(unit(&v["unit"], kind)?)),
-        _ => return None,
+/// Metres in one PROJJSON length unit `u` (for [`crate::distance`]).
+pub(crate) fn metres_in(u: &Value) -> Option<f64> {
+    unit(u, Kind::Length).map(|u| u.factor)
+}
+
+/// `x` given in the unit `from` (the default unit of `kind` for none), in
+/// `to`.
+fn convert(x: f64, from: Option<&Value>, kind: Kind, to: &Unit) -> Option<f64> {
+    let from = match from {
+        Some(u) => unit(u, kind)?,
+        None => Unit::default_of(kind),
     };
-    let from_factor = match (from, kind) {
-        (Some(u), _) => u.factor,
-        (None, Kind::Angle) => DEGREE,
-        (None, _) => 1.0,
-    };
-    let out = if from_factor == to.factor {
+    let out = if from.factor == to.factor {
         x
     } else {
-        x * from_factor / to.factor
+        x * from.factor / to.factor
     };
     out.is_finite().then_some(out)
+}
+
+/// A measure in `to`: a bare number (in the default unit of `kind`) or
+/// `{"value": v, "unit": u}`.
+fn value_in(v: &Value, kind: Kind, to: &Unit) -> Option<f64> {
+    match v {
+        Value::Number(n) => convert(n.as_f64()?, None, kind, to),
+        Value::Object(_) => convert(v["value"].as_f64()?, Some(&v["unit"]), kind, to),
+        _ => None,
+    }
 }
 
 /// `,AUTHORITY["EPSG","4326"]` for an object's `id` (or first of `ids`).
@@ -228,7 +270,7 @@ fn geographic(g: &Value) -> Option<(String, Unit)> {
     }
     let angle = match axes.and_then(|a| a[0].get("unit")) {
         Some(u) => unit(u, Kind::Angle)?,
-        None => unit(&Value::String("degree".into()), Kind::Angle)?,
+        None => Unit::degree(),
     };
     let datum = g.get("datum");
     let frame = match datum {
@@ -237,7 +279,7 @@ fn geographic(g: &Value) -> Option<(String, Unit)> {
         None => g.get("datum_ensemble")?,
     };
     let e = &frame["ellipsoid"];
-    let metre = unit(&Value::String("metre".into()), Kind::Length)?;
+    let metre = Unit::metre();
     let a = value_in(
         e.get("semi_major_axis").or_else(|| e.get("radius"))?,
         Kind::Length,
@@ -261,13 +303,10 @@ fn geographic(g: &Value) -> Option<(String, Unit)> {
     }
     // WKT 1 writes the prime meridian in degrees.
     let (pm_name, pm) = match datum.and_then(|d| d.get("prime_meridian")) {
-        Some(pm) => {
-            let degree = unit(&Value::String("degree".into()), Kind::Angle)?;
-            (
-                pm["name"].as_str()?,
-                value_in(&pm["longitude"], Kind::Angle, &degree)?,
-            )
-        }
+        Some(pm) => (
+            pm["name"].as_str()?,
+            value_in(&pm["longitude"], Kind::Angle, &Unit::degree())?,
+        ),
         None => ("Greenwich", 0.0),
     };
     let datum_name = match authority(frame).as_deref() {
@@ -297,10 +336,6 @@ fn geographic(g: &Value) -> Option<(String, Unit)> {
         authority(g).unwrap_or_default(),
     );
     Some((wkt, angle))
-}
-
-fn geogcs(g: &Value) -> Option<String> {
-    geographic(g).map(|(wkt, _)| wkt)
 }
 
 fn projcs(p: &Value) -> Option<String> {
@@ -336,14 +371,18 @@ fn projcs(p: &Value) -> Option<String> {
             "scale_factor" => Kind::Scale,
             _ => Kind::Angle,
         };
-        unit(&param["unit"], kind)?;
-        let raw = serde_json::json!({"value": param["value"], "unit": param["unit"]});
         let to = match kind {
             Kind::Length => length.clone(),
             Kind::Angle => angle.clone(),
-            Kind::Scale => unit(&Value::String("unity".into()), Kind::Scale)?,
+            Kind::Scale => Unit::default_of(Kind::Scale),
         };
-        let v = value_in(&raw, kind, &to)?;
+        // Each parameter names its unit.
+        let v = convert(
+            param["value"].as_f64()?,
+            Some(param.get("unit")?),
+            kind,
+            &to,
+        )?;
         out.push_str(&format!(",PARAMETER[{},{}]", quote(name), number(v)));
     }
     // Every parameter the method has must be one WKT 1 is given.
