@@ -315,18 +315,62 @@ fn check_polygons(
 struct Builder {
     /// Each position's bits, by id.
     keys: Vec<(u64, u64)>,
-    /// Every arc's ids, one arc after another (a closed arc ends on its
-    /// first id again).
+    /// The arcs found so far.
+    arcs: ArcIds,
+    /// The arcs by what they hold ([`ArcIds::found_by`]).
+    index: HashTable<u32>,
+    /// The arc being looked up, in its canonical form.
+    scratch: Vec<u32>,
+}
+
+/// Arcs as the ids of their positions, one arc after another.
+struct ArcIds {
+    /// Every arc's ids (a closed arc ends on its first id again).
     ids: Vec<u32>,
     /// Where each arc's ids start in `ids`, and where the last one ends.
     starts: Vec<usize>,
     /// Whether each arc is a ring without junctions (a closed arc).
     closed: Vec<bool>,
-    /// The arcs by what they hold: an open arc by its ids, a closed one by
-    /// its ids without the closing repeat.
-    index: HashTable<u32>,
-    /// The arc being looked up, in its canonical form.
-    scratch: Vec<u32>,
+}
+
+impl Default for ArcIds {
+    fn default() -> Self {
+        ArcIds {
+            ids: Vec::new(),
+            starts: vec![0],
+            closed: Vec::new(),
+        }
+    }
+}
+
+impl ArcIds {
+    /// Arc `a`'s ids as it is found by: an open arc's all, a closed arc's
+    /// without the closing repeat.
+    fn found_by(&self, a: usize) -> &[u32] {
+        let ids = &self.ids[self.starts[a]..self.starts[a + 1]];
+        if self.closed[a] {
+            &ids[..ids.len() - 1]
+        } else {
+            ids
+        }
+    }
+
+    /// The hash arc `a` is found by.
+    fn hash(&self, a: usize) -> u64 {
+        arc_hash(self.closed[a], self.found_by(a))
+    }
+
+    /// Adds an arc of `ids` (closed: ending on its first id again).
+    fn push(&mut self, ids: &[u32], closed: bool) -> usize {
+        let a = self.closed.len();
+        self.ids.extend_from_slice(ids);
+        if closed {
+            self.ids.push(ids[0]);
+        }
+        self.starts.push(self.ids.len());
+        self.closed.push(closed);
+        a
+    }
 }
 
 /// The hash of an arc: whether it is closed, its ids (without a closed
@@ -339,54 +383,27 @@ impl Builder {
     fn new(keys: Vec<(u64, u64)>) -> Builder {
         Builder {
             keys,
-            starts: vec![0],
             ..Builder::default()
-        }
-    }
-
-    /// Arc `a`'s ids as it is found by: without a closed arc's repeat.
-    fn found_by(&self, a: usize) -> &[u32] {
-        let ids = &self.ids[self.starts[a]..self.starts[a + 1]];
-        if self.closed[a] {
-            &ids[..ids.len() - 1]
-        } else {
-            ids
         }
     }
 
     /// The arc `scratch` (closed or not), stored when it is new.
     fn find_or_add(&mut self, closed: bool) -> usize {
         let hash = arc_hash(closed, &self.scratch);
-        let found = self.index.find(hash, |&a| {
-            self.closed[a as usize] == closed && self.found_by(a as usize) == &self.scratch[..]
+        let Builder {
+            arcs,
+            index,
+            scratch,
+            ..
+        } = self;
+        let found = index.find(hash, |&a| {
+            arcs.closed[a as usize] == closed && arcs.found_by(a as usize) == &scratch[..]
         });
         if let Some(&a) = found {
             return a as usize;
         }
-        let a = self.closed.len();
-        self.ids.extend_from_slice(&self.scratch);
-        if closed {
-            self.ids.push(self.scratch[0]);
-        }
-        self.starts.push(self.ids.len());
-        self.closed.push(closed);
-        let Builder {
-            index,
-            ids,
-            starts,
-            closed: closed_arcs,
-            ..
-        } = self;
-        index.insert_unique(hash, a as u32, |&b| {
-            let b = b as usize;
-            let all = &ids[starts[b]..starts[b + 1]];
-            let by = if closed_arcs[b] {
-                &all[..all.len() - 1]
-            } else {
-                all
-            };
-            arc_hash(closed_arcs[b], by)
-        });
+        let a = arcs.push(scratch, closed);
+        index.insert_unique(hash, a as u32, |&b| arcs.hash(b as usize));
         a
     }
 
@@ -469,10 +486,11 @@ impl Builder {
 
     /// The arcs' positions.
     fn arcs(&self, points: &[Coord]) -> Vec<Vec<Coord>> {
-        self.starts
+        let ArcIds { ids, starts, .. } = &self.arcs;
+        starts
             .windows(2)
             .map(|w| {
-                self.ids[w[0]..w[1]]
+                ids[w[0]..w[1]]
                     .iter()
                     .map(|&id| points[id as usize])
                     .collect()
