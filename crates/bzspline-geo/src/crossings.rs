@@ -1,6 +1,6 @@
 //! Where polylines meet where they should not: pairs of segments that cross,
-//! touch or overlap, found through an R-tree of the segments' boxes and
-//! decided with exact orientation predicates.
+//! touch or overlap, found through a packed R-tree of the boxes of runs of
+//! segments and decided with exact orientation predicates.
 //!
 //! Two segments may share an end position only where the polylines are meant
 //! to meet: consecutive segments of one polyline, and *nodes* (the ends of
@@ -14,7 +14,10 @@ use geo_types::Coord;
 use robust::{orient2d, Coord as RCoord};
 
 use crate::graph::key;
-use rstar::{Envelope, RTree, RTreeObject, AABB};
+use geo_index::rtree::sort::HilbertSort;
+use geo_index::rtree::util::f64_box_to_f32;
+use geo_index::rtree::{RTree, RTreeBuilder, RTreeIndex};
+use rstar::{Envelope, AABB};
 
 /// A segment of polyline `line`, from its position `seg` to `seg + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -35,10 +38,57 @@ struct Item {
     env: AABB<[f64; 2]>,
 }
 
-impl RTreeObject for Item {
-    type Envelope = AABB<[f64; 2]>;
-    fn envelope(&self) -> Self::Envelope {
-        self.env
+impl Item {
+    /// The run of `line` (its positions `l`) from segment `first`.
+    fn of(line: usize, l: &[Coord], first: usize) -> Item {
+        let count = RUN.min(l.len() - 1 - first);
+        let mut env = seg_env(l[first], l[first + 1]);
+        for c in &l[first + 2..=first + count] {
+            env.merge(&AABB::from_point([c.x, c.y]));
+        }
+        Item {
+            line: line as u32,
+            first: first as u32,
+            count: count as u32,
+            env,
+        }
+    }
+
+    /// The run's box in single precision, rounded outward so that it holds
+    /// the exact box: the tree may offer a few runs more than meet, never
+    /// fewer.
+    fn env32(&self) -> (f32, f32, f32, f32) {
+        let (l, u) = (self.env.lower(), self.env.upper());
+        f64_box_to_f32(l[0], l[1], u[0], u[1])
+    }
+}
+
+/// Runs of segments in a packed (Hilbert-sorted, immutable) R-tree of their
+/// boxes in single precision: 20 bytes a run where a dynamic tree of double
+/// boxes takes over 100, and the first round of a large coverage indexes
+/// every run of its output.
+struct Runs {
+    tree: RTree<f32>,
+    /// The line and first segment of each run, in the order they were added
+    /// (the tree's item numbers).
+    ids: Vec<(u32, u32)>,
+}
+
+impl Runs {
+    fn new(runs: impl Iterator<Item = Item>, count: usize) -> Runs {
+        // Lines are numbered in u32 and a run holds several positions, so
+        // the count of runs fits.
+        let mut builder = RTreeBuilder::<f32>::new(count as u32);
+        let mut ids = Vec::with_capacity(count);
+        for r in runs {
+            let (x0, y0, x1, y1) = r.env32();
+            builder.add(x0, y0, x1, y1);
+            ids.push((r.line, r.first));
+        }
+        Runs {
+            tree: builder.finish::<HilbertSort>(),
+            ids,
+        }
     }
 }
 
@@ -198,32 +248,19 @@ impl Lines<'_> {
             .enumerate()
             .filter(move |(li, l)| keep(*li) && l.len() >= 2)
             .flat_map(|(li, l)| {
-                let n = l.len() - 1;
-                (0..n).step_by(RUN).map(move |first| {
-                    let count = RUN.min(n - first);
-                    let mut env = seg_env(l[first], l[first + 1]);
-                    for c in &l[first + 2..=first + count] {
-                        env.merge(&AABB::from_point([c.x, c.y]));
-                    }
-                    Item {
-                        line: li as u32,
-                        first: first as u32,
-                        count: count as u32,
-                        env,
-                    }
-                })
+                (0..l.len() - 1)
+                    .step_by(RUN)
+                    .map(move |f| Item::of(li, l, f))
             })
     }
 
-    /// The runs of the lines `keep` selects, in a vector of their number.
-    fn collect_runs(&self, keep: impl Fn(usize) -> bool + Copy) -> Vec<Item> {
+    /// The runs of the lines `keep` selects, in a packed tree.
+    fn index(&self, keep: impl Fn(usize) -> bool + Copy) -> Runs {
         let count = (self.lines.iter().enumerate())
             .filter(|(li, l)| keep(*li) && l.len() >= 2)
             .map(|(_, l)| (l.len() - 1).div_ceil(RUN))
             .sum();
-        let mut out = Vec::with_capacity(count);
-        out.extend(self.runs(keep));
-        out
+        Runs::new(self.runs(keep), count)
     }
 
     /// Every conflicting pair with at least one segment on a line in `dirty`,
@@ -243,21 +280,21 @@ impl Lines<'_> {
             .map(|(l, _)| l.len().saturating_sub(1))
             .sum();
         let few = changed * 8 < total;
-        let tree = RTree::bulk_load(if few {
-            self.collect_runs(|li| dirty[li])
-        } else {
-            self.collect_runs(|_| true)
-        });
+        let runs = self.index(|li| !few || dirty[li]);
         let mut out = Vec::new();
         for p in self.runs(|li| few || dirty[li]) {
-            let p = &p;
-            for q in tree.locate_in_envelope_intersecting(&p.env) {
+            let (x0, y0, x1, y1) = p.env32();
+            for i in runs.tree.search(x0, y0, x1, y1) {
+                let (line, first) = runs.ids[i as usize];
                 // Both on dirty lines: the pair of runs is met from both sides.
-                let key = |i: &Item| (i.line, i.first);
-                if dirty[p.line as usize] && dirty[q.line as usize] && key(q) < key(p) {
+                if dirty[p.line as usize]
+                    && dirty[line as usize]
+                    && (line, first) < (p.line, p.first)
+                {
                     continue;
                 }
-                self.run_conflicts(p, q, &mut out);
+                let q = Item::of(line as usize, &self.lines[line as usize], first as usize);
+                self.run_conflicts(&p, &q, &mut out);
             }
         }
         out.sort_unstable();
@@ -361,5 +398,72 @@ mod tests {
             nodes: &nodes,
         };
         assert_eq!(set.conflicts(&[true, false]).len(), 2);
+    }
+
+    /// Every pair of segments judged one by one, with no index.
+    fn brute_force(set: &Lines, dirty: &[bool]) -> Vec<(SegId, SegId)> {
+        let segs: Vec<SegId> = (set.lines.iter().enumerate())
+            .flat_map(|(li, l)| {
+                (0..l.len().saturating_sub(1)).map(move |s| SegId {
+                    line: li as u32,
+                    seg: s as u32,
+                })
+            })
+            .collect();
+        let mut out = Vec::new();
+        for (i, &p) in segs.iter().enumerate() {
+            for &q in &segs[i + 1..] {
+                let any_dirty = dirty[p.line as usize] || dirty[q.line as usize];
+                if any_dirty && set.conflict(p, q) {
+                    out.push((p.min(q), p.max(q)));
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    #[test]
+    fn the_index_finds_what_brute_force_finds_below_single_precision() {
+        // Polylines far from the origin (where a single-precision box is
+        // about 1 unit coarse) with steps of a thousandth of that: the
+        // index's rounded boxes must still offer every pair that meets.
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..40 {
+            let (ox, oy) = (1.0e7 + next(), -3.0e6 - next());
+            let step = if case % 2 == 0 { 1e-3 } else { 0.3 };
+            let lines: Vec<Vec<Coord>> = (0..12)
+                .map(|_| {
+                    let mut p = c(ox + next() * 40.0 * step, oy + next() * 40.0 * step);
+                    (0..1 + (next() * 30.0) as usize)
+                        .map(|_| {
+                            p = c(
+                                p.x + (next() - 0.5) * step * 8.0,
+                                p.y + (next() - 0.5) * step * 8.0,
+                            );
+                            p
+                        })
+                        .collect()
+                })
+                .collect();
+            let closed = vec![false; lines.len()];
+            let nodes = FxHashSet::default();
+            let set = Lines {
+                lines: &lines,
+                closed: &closed,
+                nodes: &nodes,
+            };
+            for dirty in [vec![true; 12], (0..12).map(|i| i == case % 12).collect()] {
+                let found = set.conflicts(&dirty);
+                assert!(case > 0 || !found.is_empty(), "the cases meet somewhere");
+                assert_eq!(found, brute_force(&set, &dirty), "case {case}");
+            }
+        }
     }
 }
