@@ -428,13 +428,8 @@ mod tests {
         // Polylines far from the origin (where a single-precision box is
         // about 1 unit coarse) with steps of a thousandth of that: the
         // index's rounded boxes must still offer every pair that meets.
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = bzspline_testing::Rng(7);
+        let mut next = move || rng.next();
         for case in 0..40 {
             let (ox, oy) = (1.0e7 + next(), -3.0e6 - next());
             let step = if case % 2 == 0 { 1e-3 } else { 0.3 };
