@@ -4,6 +4,7 @@
 use geo_types::{Coord, Geometry, GeometryCollection, Line, LineString, MultiLineString};
 use geo_types::{MultiPolygon, Polygon};
 
+use crate::arcs::Arcs;
 use crate::error::Error;
 use crate::levels::Levels;
 use crate::nodes::Nodes;
@@ -224,7 +225,7 @@ impl Coverage {
     ///
     /// When `arcs` has fewer arcs than the topology.
     #[must_use]
-    pub fn assemble(&self, arcs: &[Vec<Coord>]) -> Vec<Geometry<f64>> {
+    pub fn assemble(&self, arcs: &Arcs) -> Vec<Geometry<f64>> {
         let mut next = 0usize;
         let mut take = || {
             let c = self.topology.chain_coords(next, arcs);

@@ -13,6 +13,7 @@ use rustc_hash::FxHashSet;
 use geo_types::Coord;
 use robust::{orient2d, Coord as RCoord};
 
+use crate::arcs::Arcs;
 use crate::graph::key;
 use geo_index::rtree::sort::HilbertSort;
 use geo_index::rtree::util::f64_box_to_f32;
@@ -186,7 +187,7 @@ fn overlap_from(e: Coord, a: Coord, b: Coord) -> bool {
 
 /// The polylines and the positions where they may meet.
 pub(crate) struct Lines<'a> {
-    pub lines: &'a [Vec<Coord>],
+    pub lines: &'a Arcs,
     /// A closed polyline's last segment is followed by its first.
     pub closed: &'a [bool],
     pub nodes: &'a FxHashSet<(u64, u64)>,
@@ -352,13 +353,13 @@ mod tests {
 
     #[test]
     fn meeting_at_nodes_and_consecutive_segments_is_allowed() {
-        let lines = vec![
+        let lines = Arcs::from(vec![
             vec![c(0.0, 0.0), c(1.0, 0.0), c(2.0, 1.0)],
             vec![c(0.0, 0.0), c(0.0, 1.0)],
             vec![c(1.0, 0.0), c(1.0, -1.0)],
-        ];
+        ]);
         let mut nodes = FxHashSet::default();
-        for l in &lines[..2] {
+        for l in lines.iter().take(2) {
             nodes.insert(key(l[0]));
             nodes.insert(key(l[l.len() - 1]));
         }
@@ -387,10 +388,10 @@ mod tests {
 
     #[test]
     fn an_overlap_at_a_node_conflicts() {
-        let lines = vec![
+        let lines = Arcs::from(vec![
             vec![c(0.0, 0.0), c(2.0, 0.0)],
             vec![c(0.0, 0.0), c(1.0, 0.0), c(1.0, 1.0)],
-        ];
+        ]);
         let nodes: FxHashSet<_> = [key(c(0.0, 0.0))].into_iter().collect();
         let set = Lines {
             lines: &lines,
@@ -433,7 +434,7 @@ mod tests {
         for case in 0..40 {
             let (ox, oy) = (1.0e7 + next(), -3.0e6 - next());
             let step = if case % 2 == 0 { 1e-3 } else { 0.3 };
-            let lines: Vec<Vec<Coord>> = (0..12)
+            let lines: Arcs = (0..12)
                 .map(|_| {
                     let mut p = c(ox + next() * 40.0 * step, oy + next() * 40.0 * step);
                     (0..1 + (next() * 30.0) as usize)
@@ -444,7 +445,7 @@ mod tests {
                             );
                             p
                         })
-                        .collect()
+                        .collect::<Vec<_>>()
                 })
                 .collect();
             let closed = vec![false; lines.len()];

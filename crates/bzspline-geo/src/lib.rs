@@ -74,6 +74,7 @@
 //! [`MAX_LEVEL`] is kept as the original edge, the last resort. Conflicts
 //! between two original edges were in the input and are left as they are.
 
+mod arcs;
 mod coverage;
 mod crossings;
 mod error;
@@ -90,6 +91,7 @@ mod smooth;
 mod smoothing;
 mod topology;
 
+pub use arcs::{Arcs, ArcsIter};
 pub use coverage::{coverage_chains, Coverage, CoverageBuilder, Location};
 pub use error::Error;
 pub use line::smooth_line;

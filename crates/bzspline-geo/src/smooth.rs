@@ -5,6 +5,7 @@
 use geo_types::{Coord, Rect};
 use rustc_hash::{FxHashMap, FxHashSet};
 
+use crate::arcs::Arcs;
 use crate::crossings::{Lines, SegId};
 use crate::error::Error;
 use crate::graph::key;
@@ -95,7 +96,7 @@ impl core::ops::AddAssign<&Stats> for Stats {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Smoothed {
     /// Each arc's smoothed positions.
-    pub arcs: Vec<Vec<Coord>>,
+    pub arcs: Arcs,
     /// What was done.
     pub stats: Stats,
     /// The levels each refined arc ended at ([`Topology::smooth_from`]).
@@ -184,7 +185,7 @@ impl Topology {
         let mut stats = self.input_stats(tolerance);
         let (plans, nodes) = self.plans(opts.keep_angle, opts.frame);
         stats.closed_arcs = plans.closed_curve.iter().filter(|&&c| c).count();
-        let closed: Vec<bool> = arcs.iter().map(|a| is_closed(a)).collect();
+        let closed: Vec<bool> = arcs.iter().map(is_closed).collect();
 
         let shoelace = Shoelace::about(arcs, extent);
         let cross_in: Vec<f64> = arcs.iter().map(|a| shoelace.arc(a)).collect();
@@ -193,7 +194,9 @@ impl Topology {
         stats.area_in = shoelace.polygons(self, &cross_in);
 
         let mut levels = start_levels(arcs, start);
-        let mut out: Vec<Vec<Coord>> = vec![Vec::new(); arcs.len()];
+        // Every arc starts empty, so the first round lays the arcs out in order.
+        let mut out = Arcs::with_capacity(arcs.len(), arcs.iter().map(<[Coord]>::len).sum());
+        (0..arcs.len()).for_each(|_| out.push([]));
         let mut along = Along::new(arcs, &plans, opts, tolerance);
         let mut work = Smoothing::default();
         let mut dirty = vec![true; arcs.len()];
@@ -206,7 +209,7 @@ impl Topology {
                 stats.kept_pieces +=
                     smooth_arc(a, &arcs[a], plan, &levels[a], opts, tolerance, &mut work)?;
                 cross_out[a] = shoelace.arc(&work.out);
-                out[a] = work.out.clone();
+                out.set(a, &work.out);
             }
             input_conflicts.retain(|(p, q)| !dirty[p.line as usize] && !dirty[q.line as usize]);
             let lines = Lines {
@@ -231,7 +234,7 @@ impl Topology {
                     }
                 }
             }
-            let facts = (&rings, &shoelace, &cross_out[..], &out[..]);
+            let facts = (&rings, &shoelace, &cross_out[..], &out);
             self.ring_conflicts(&dirty, exact, facts, &mut along, &levels, &mut bump)?;
             dirty.iter_mut().for_each(|d| *d = false);
             if bump.is_empty() {
@@ -300,7 +303,7 @@ impl Topology {
         &self,
         dirty: &[bool],
         exact: &[bool],
-        (rings, shoelace, cross_out, out): (&RingFacts, &Shoelace, &[f64], &[Vec<Coord>]),
+        (rings, shoelace, cross_out, out): (&RingFacts, &Shoelace, &[f64], &Arcs),
         along: &mut Along<'_>,
         levels: &Ragged<u8>,
         bump: &mut Vec<(usize, Seg)>,
@@ -339,7 +342,7 @@ impl Topology {
 
     /// Positions of all chains assembled from `arcs` (joints once, rings
     /// closed).
-    fn positions(&self, arcs: &[Vec<Coord>]) -> usize {
+    fn positions(&self, arcs: &Arcs) -> usize {
         self.chains()
             .iter()
             .map(|c| c.arcs.iter().map(|r| arcs[r.arc].len() - 1).sum::<usize>() + 1)
@@ -352,11 +355,7 @@ impl Topology {
         // How often each position occurs over all arcs (a closed arc's end once).
         let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
         for a in arcs {
-            let distinct = if is_closed(a) {
-                &a[..a.len() - 1]
-            } else {
-                &a[..]
-            };
+            let distinct = if is_closed(a) { &a[..a.len() - 1] } else { a };
             for &c in distinct {
                 *count.entry(key(c)).or_insert(0) += 1;
             }
@@ -388,7 +387,7 @@ impl Topology {
         };
         let mut plans = Plans {
             closed_curve: Vec::with_capacity(arcs.len()),
-            fixed: Ragged::with_capacity(arcs.len(), arcs.iter().map(Vec::len).sum()),
+            fixed: Ragged::with_capacity(arcs.len(), arcs.iter().map(<[Coord]>::len).sum()),
             min_out,
         };
         for (ai, a) in arcs.iter().enumerate() {
@@ -442,7 +441,7 @@ fn bump_chain(
 
 /// The refinement levels the rounds start from: `start`'s for the arcs it
 /// holds (of the right length), 0 for every leg of the others.
-fn start_levels(arcs: &[Vec<Coord>], start: &Levels) -> Ragged<u8> {
+fn start_levels(arcs: &Arcs, start: &Levels) -> Ragged<u8> {
     let mut levels = Ragged::filled(arcs.iter().map(|a| a.len() - 1), 0);
     if !start.is_empty() {
         for (i, a) in arcs.iter().enumerate() {
@@ -499,7 +498,7 @@ fn leg_range(s: Seg, n: u32, wrap: bool) -> Vec<u32> {
 }
 
 /// The corners of `extent`, or of the arcs' bounding box.
-fn bounds(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> ([f64; 2], [f64; 2]) {
+fn bounds(arcs: &Arcs, extent: Option<Rect<f64>>) -> ([f64; 2], [f64; 2]) {
     if let Some(r) = extent {
         return ([r.min().x, r.min().y], [r.max().x, r.max().y]);
     }
@@ -511,7 +510,7 @@ fn bounds(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> ([f64; 2], [f64; 2]
     (lo, hi)
 }
 
-fn default_tolerance(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> f64 {
+fn default_tolerance(arcs: &Arcs, extent: Option<Rect<f64>>) -> f64 {
     let (lo, hi) = bounds(arcs, extent);
     default_tolerance_of(lo, hi)
 }

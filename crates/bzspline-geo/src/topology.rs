@@ -10,6 +10,7 @@ use geo_types::Coord;
 use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
+use crate::arcs::Arcs;
 use crate::error::Error;
 pub use crate::graph::ChainKind;
 use crate::graph::{junctions, key, Paths};
@@ -67,7 +68,7 @@ pub struct Chain {
 /// Arcs, the lines and rings made of them, and which rings form a polygon.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Topology {
-    arcs: Vec<Vec<Coord>>,
+    arcs: Arcs,
     chains: Vec<Chain>,
     polygons: Vec<Vec<usize>>,
     nodes: Nodes,
@@ -166,8 +167,9 @@ impl Topology {
         polygons: Vec<Vec<usize>>,
     ) -> Result<Topology, Error> {
         check_polygons(chains.len(), &polygons, |i| chains[i].kind)?;
-        let mut arcs = arcs;
-        for (ai, a) in arcs.iter_mut().enumerate() {
+        let total = arcs.iter().map(Vec::len).sum();
+        let mut kept = Arcs::with_capacity(arcs.len(), total);
+        for (ai, mut a) in arcs.into_iter().enumerate() {
             if let Some(pi) = a.iter().position(|c| !(c.x.is_finite() && c.y.is_finite())) {
                 return Err(Error::NonFinite {
                     chain: ai,
@@ -178,7 +180,9 @@ impl Topology {
             if a.is_empty() {
                 return Err(Error::EmptyArc { arc: ai });
             }
+            kept.push(a);
         }
+        let arcs = kept;
         for (ci, c) in chains.iter().enumerate() {
             if let Some(r) = c.arcs.iter().find(|r| r.arc >= arcs.len()) {
                 return Err(Error::ArcIndex {
@@ -198,7 +202,7 @@ impl Topology {
 
     /// The arcs' positions.
     #[must_use]
-    pub fn arcs(&self) -> &[Vec<Coord>] {
+    pub fn arcs(&self) -> &Arcs {
         &self.arcs
     }
 
@@ -255,7 +259,7 @@ impl Topology {
     ///
     /// When `i` is not a chain's index or `arcs` is shorter than the arcs.
     #[must_use]
-    pub fn chain_coords(&self, i: usize, arcs: &[Vec<Coord>]) -> Vec<Coord> {
+    pub fn chain_coords(&self, i: usize, arcs: &Arcs) -> Vec<Coord> {
         let chain = &self.chains[i];
         let mut out: Vec<Coord> = Vec::new();
         for r in &chain.arcs {
@@ -485,17 +489,13 @@ impl Builder {
     }
 
     /// The arcs' positions.
-    fn arcs(&self, points: &[Coord]) -> Vec<Vec<Coord>> {
+    fn arcs(&self, points: &[Coord]) -> Arcs {
         let ArcIds { ids, starts, .. } = &self.arcs;
-        starts
-            .windows(2)
-            .map(|w| {
-                ids[w[0]..w[1]]
-                    .iter()
-                    .map(|&id| points[id as usize])
-                    .collect()
-            })
-            .collect()
+        let mut arcs = Arcs::with_capacity(starts.len().saturating_sub(1), ids.len());
+        for w in starts.windows(2) {
+            arcs.push(ids[w[0]..w[1]].iter().map(|&id| points[id as usize]));
+        }
+        arcs
     }
 }
 

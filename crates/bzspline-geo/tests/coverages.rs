@@ -424,7 +424,7 @@ fn snapping_puts_a_vertex_near_an_edge_into_it() {
         topo.arcs()[shared[0]].len(),
         5,
         "{:?}",
-        topo.arcs()[shared[0]]
+        &topo.arcs()[shared[0]]
     );
     // A snap distance below the hair changes nothing.
     let (same, stats) = Coverage::builder(input.clone())

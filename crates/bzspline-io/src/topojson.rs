@@ -6,7 +6,7 @@
 //! Specification: <https://github.com/topojson/topojson-specification>.
 
 use anyhow::{anyhow, bail, Result};
-use bzspline_geo::{ArcRef, Chain, ChainKind, Topology};
+use bzspline_geo::{ArcRef, Arcs, Chain, ChainKind, Topology};
 use geo_types::Coord;
 use serde_json::{json, Map, Value};
 
@@ -270,7 +270,7 @@ impl TopoDoc {
 
     /// The document with `arcs` (the topology's, smoothed) in place of its
     /// own, unquantized: no transform, no bounding box; points decoded.
-    pub fn to_topojson(&self, arcs: &[Vec<Coord>]) -> Value {
+    pub fn to_topojson(&self, arcs: &Arcs) -> Value {
         let mut root = self.root.clone();
         root.remove("transform");
         root.remove("bbox");
@@ -307,7 +307,7 @@ impl TopoDoc {
     /// GeoJSON features of every object (or only `object`), with the lines
     /// and rings assembled from `arcs`: a GeometryCollection object gives one
     /// feature per member, any other object one feature.
-    pub fn to_geojson(&self, arcs: &[Vec<Coord>], object: Option<&str>) -> Result<Value> {
+    pub fn to_geojson(&self, arcs: &Arcs, object: Option<&str>) -> Result<Value> {
         let Some(Value::Object(objects)) = self.root.get("objects") else {
             return Ok(json!({"type": "FeatureCollection", "features": []}));
         };
@@ -348,7 +348,7 @@ impl TopoDoc {
 
     /// The GeoJSON geometry of a geometry object; `next` counts chains in the
     /// order [`read`] met them.
-    fn geometry(&self, g: &Value, arcs: &[Vec<Coord>], next: &mut usize) -> Value {
+    fn geometry(&self, g: &Value, arcs: &Arcs, next: &mut usize) -> Value {
         let mut take = || {
             let mut c = self.topology.chain_coords(*next, arcs);
             // GeoJSON's rings have 4 or more positions: a ring collapsed by
@@ -408,7 +408,7 @@ pub fn from_features(
     name: &str,
     features: &[(Option<Value>, Value, Option<&geojson::GeometryValue>)],
     topology: &Topology,
-    arcs: &[Vec<Coord>],
+    arcs: &Arcs,
 ) -> Value {
     let mut next = 0usize;
     let mut refs = || -> Value {

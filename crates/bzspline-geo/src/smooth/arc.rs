@@ -8,6 +8,7 @@ use geo_types::Coord;
 use rustc_hash::FxHashMap;
 
 use super::{MAX_LEVEL, STRAIGHT};
+use crate::arcs::Arcs;
 use crate::error::Error;
 use crate::geodesy::{self, Convention};
 use crate::graph::key;
@@ -58,7 +59,7 @@ impl Plans {
 /// conflict names: found again by smoothing the arc once more at the levels
 /// it was smoothed at (the same bits), rather than held for every arc.
 pub(super) struct Along<'a> {
-    arcs: &'a [Vec<Coord>],
+    arcs: &'a Arcs,
     plans: &'a Plans,
     opts: &'a SmoothOptions,
     tol: f64,
@@ -66,12 +67,7 @@ pub(super) struct Along<'a> {
 }
 
 impl<'a> Along<'a> {
-    pub(super) fn new(
-        arcs: &'a [Vec<Coord>],
-        plans: &'a Plans,
-        opts: &'a SmoothOptions,
-        tol: f64,
-    ) -> Self {
+    pub(super) fn new(arcs: &'a Arcs, plans: &'a Plans, opts: &'a SmoothOptions, tol: f64) -> Self {
         Along {
             arcs,
             plans,

@@ -4,6 +4,7 @@
 use geo_types::{Coord, Rect};
 
 use super::bounds;
+use crate::arcs::Arcs;
 use crate::ragged::Ragged;
 use crate::topology::{ChainKind, Topology};
 
@@ -57,7 +58,7 @@ impl RingFacts {
 }
 
 /// For each hole of `rings` (shell first), whether it lies inside the shell.
-pub(super) fn holes_inside(t: &Topology, rings: &[usize], arcs: &[Vec<Coord>]) -> Vec<bool> {
+pub(super) fn holes_inside(t: &Topology, rings: &[usize], arcs: &Arcs) -> Vec<bool> {
     if rings.len() < 2 {
         return Vec::new();
     }
@@ -83,7 +84,7 @@ pub(super) struct Shoelace {
 }
 
 impl Shoelace {
-    pub(super) fn about(arcs: &[Vec<Coord>], extent: Option<Rect<f64>>) -> Shoelace {
+    pub(super) fn about(arcs: &Arcs, extent: Option<Rect<f64>>) -> Shoelace {
         let (lo, hi) = bounds(arcs, extent);
         let mid = |a: f64, b: f64| {
             if a.is_finite() {

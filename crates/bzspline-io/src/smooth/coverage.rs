@@ -3,8 +3,7 @@
 //! into the same features, with properties, ids and foreign members kept.
 
 use anyhow::{anyhow, Result};
-use bzspline_geo::{Coverage, SmoothOptions, Stats};
-use geo_types::Coord;
+use bzspline_geo::{Arcs, Coverage, SmoothOptions, Stats};
 use geojson::{GeoJson, Geometry, GeometryValue};
 use serde_json::Value;
 
@@ -17,7 +16,7 @@ pub struct Smoothed {
     /// The coverage (its topology numbers the chains).
     pub coverage: Coverage,
     /// The smoothed arcs.
-    pub arcs: Vec<Vec<Coord>>,
+    pub arcs: Arcs,
 }
 
 /// The geometry slots of a document: one per feature (or the lone geometry).
@@ -115,7 +114,7 @@ pub struct Together {
     /// The coverage (its topology numbers the chains).
     pub coverage: Coverage,
     /// The smoothed arcs.
-    pub arcs: Vec<Vec<Coord>>,
+    pub arcs: Arcs,
 }
 
 /// Smooths geometries as one coverage (positions within `snap` joined
