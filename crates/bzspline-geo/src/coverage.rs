@@ -9,6 +9,7 @@ use crate::error::Error;
 use crate::levels::Levels;
 use crate::nodes::Nodes;
 use crate::options::{Frame, SmoothOptions};
+use crate::ragged::Ragged;
 use crate::smooth::Stats;
 use crate::topology::{snap_in, ChainKind, Topology};
 
@@ -297,10 +298,10 @@ pub fn coverage_chains(geometries: &[Geometry<f64>]) -> Vec<(ChainKind, Vec<Coor
 #[allow(clippy::type_complexity)] // three parallel results, used once
 fn gather(
     geometries: &mut [Geometry<f64>],
-) -> (Vec<(ChainKind, Vec<Coord>)>, Vec<Origin>, Vec<Vec<usize>>) {
+) -> (Vec<(ChainKind, Vec<Coord>)>, Vec<Origin>, Ragged<usize>) {
     let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
     let mut origins: Vec<Origin> = Vec::new();
-    let mut polygons: Vec<Vec<usize>> = Vec::new();
+    let mut polygons: Ragged<usize> = Ragged::new();
     for (gi, g) in geometries.iter_mut().enumerate() {
         let mut member = 0;
         visit(g, &mut |part| {
@@ -325,7 +326,7 @@ fn gather(
                         });
                         chains.push((ChainKind::Ring, r));
                     }
-                    polygons.push((first..chains.len()).collect());
+                    polygons.push_row(first..chains.len());
                 }
             }
             member += 1;

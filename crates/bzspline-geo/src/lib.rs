@@ -100,6 +100,7 @@ pub use options::{
     check_keep_angle, check_snap, check_tolerance, default_tolerance_of, Frame, SmoothOptions,
     DEFAULT_TOLERANCE_FRACTION,
 };
+pub use ragged::Ragged;
 pub use smooth::{Smoothed, Stats, MAX_LEVEL};
 pub use smoothing::Smooth;
 pub use topology::{snap, snap_in, ArcRef, Chain, ChainKind, Topology};

@@ -253,7 +253,7 @@ impl Topology {
         stats.positions_out = self.positions(&out);
         stats.area_out = shoelace.polygons(self, &cross_out);
         let mut ended = Levels::default();
-        for (a, l) in arcs.iter().zip(levels.rows()) {
+        for (a, l) in arcs.iter().zip(levels.iter()) {
             if l.iter().any(|&v| v > 0) {
                 ended.insert(arc_key(a), l.to_vec());
             }

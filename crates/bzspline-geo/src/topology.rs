@@ -16,6 +16,7 @@ pub use crate::graph::ChainKind;
 use crate::graph::{junctions, key, Paths};
 use crate::nodes::Nodes;
 use crate::options::Frame;
+use crate::ragged::Ragged;
 
 /// One arc of a chain, in its stored direction or reversed (TopoJSON writes
 /// the reversed arc `k` as `!k`, that is `-k - 1`).
@@ -70,7 +71,7 @@ pub struct Chain {
 pub struct Topology {
     arcs: Arcs,
     chains: Vec<Chain>,
-    polygons: Vec<Vec<usize>>,
+    polygons: Ragged<usize>,
     nodes: Nodes,
 }
 
@@ -106,6 +107,7 @@ impl Topology {
         polygons: Vec<Vec<usize>>,
         nodes: Nodes,
     ) -> Result<Topology, Error> {
+        let polygons = Ragged::from(polygons);
         check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
         Ok(Topology::from_paths(Paths::of(chains)?, polygons, nodes))
     }
@@ -114,7 +116,7 @@ impl Topology {
     /// positions as soon as each is held once.
     pub(crate) fn from_owned_chains(
         chains: Vec<(ChainKind, Vec<Coord>)>,
-        polygons: Vec<Vec<usize>>,
+        polygons: Ragged<usize>,
         nodes: Nodes,
     ) -> Result<Topology, Error> {
         check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
@@ -124,7 +126,7 @@ impl Topology {
     }
 
     /// The arcs of chains given as paths of distinct positions.
-    fn from_paths(paths: Paths, polygons: Vec<Vec<usize>>, nodes: Nodes) -> Topology {
+    fn from_paths(paths: Paths, polygons: Ragged<usize>, nodes: Nodes) -> Topology {
         let Paths { points, paths } = paths;
         let mut junction = junctions(points.len(), &paths).0;
         if !nodes.is_empty() {
@@ -166,6 +168,7 @@ impl Topology {
         chains: Vec<Chain>,
         polygons: Vec<Vec<usize>>,
     ) -> Result<Topology, Error> {
+        let polygons = Ragged::from(polygons);
         check_polygons(chains.len(), &polygons, |i| chains[i].kind)?;
         let total = arcs.iter().map(Vec::len).sum();
         let mut kept = Arcs::with_capacity(arcs.len(), total);
@@ -220,7 +223,7 @@ impl Topology {
 
     /// Each polygon's rings (indices into [`Topology::chains`]), shell first.
     #[must_use]
-    pub fn polygons(&self) -> &[Vec<usize>] {
+    pub fn polygons(&self) -> &Ragged<usize> {
         &self.polygons
     }
 
@@ -293,7 +296,7 @@ impl Topology {
 
 fn check_polygons(
     n: usize,
-    polygons: &[Vec<usize>],
+    polygons: &Ragged<usize>,
     kind: impl Fn(usize) -> ChainKind,
 ) -> Result<(), Error> {
     for (pi, p) in polygons.iter().enumerate() {

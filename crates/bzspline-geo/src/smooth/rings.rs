@@ -17,7 +17,7 @@ pub(super) struct RingFacts {
     /// Each ring's winding in the input (0 for a line or a flat ring).
     pub(super) sign_in: Vec<f64>,
     /// Per polygon, whether each hole lies inside the shell in the input.
-    pub(super) inside_in: Vec<Vec<bool>>,
+    pub(super) inside_in: Ragged<bool>,
 }
 
 impl RingFacts {
@@ -43,11 +43,11 @@ impl RingFacts {
                 ChainKind::Line => 0.0,
             })
             .collect();
-        let inside_in = t
-            .polygons()
-            .iter()
-            .map(|p| holes_inside(t, p, t.arcs()))
-            .collect();
+        let polygons = t.polygons();
+        let mut inside_in = Ragged::with_capacity(polygons.len(), polygons.values().len());
+        for p in polygons.iter() {
+            inside_in.push_row(holes_inside(t, p, t.arcs()));
+        }
         RingFacts {
             chains_of,
             polygon_of,
