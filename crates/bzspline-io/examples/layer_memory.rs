@@ -56,7 +56,7 @@ fn main() -> ExitCode {
         .records_mut()
         .iter_mut()
         .filter_map(|r| match std::mem::replace(&mut r.shape, Shape::Null) {
-            Shape::Plane(g) => Some(g),
+            Shape::Plane(g) => Some(*g),
             _ => None,
         })
         .collect();

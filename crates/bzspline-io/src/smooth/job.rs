@@ -239,14 +239,14 @@ impl Job {
         let geoms: Vec<geo_types::Geometry<f64>> = records
             .iter_mut()
             .map(|r| match std::mem::replace(&mut r.shape, Shape::Null) {
-                Shape::Plane(g) => g,
+                Shape::Plane(g) => *g,
                 _ => empty(),
             })
             .collect();
         let out = self.smooth_geometries(name, geoms, &lib, snap)?;
         for ((r, g), had) in records.iter_mut().zip(out).zip(had) {
             if had {
-                r.shape = Shape::Plane(g);
+                r.shape = Shape::Plane(Box::new(g));
             }
         }
         Ok(())
