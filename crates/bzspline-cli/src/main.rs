@@ -3,6 +3,12 @@
 
 use clap::Parser;
 
+/// mimalloc in place of the system allocator: smoothing a large coverage frees the
+/// read phase's many small allocations and then asks for large arrays; glibc keeps the
+/// freed holes resident, mimalloc reuses them (BENCHMARKS.md, peak memory of `smooth`).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod cli;
 mod commands;
 mod fit;
