@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The npm package's checks, on a fresh machine: installs the wasm32 target and
 # wasm-bindgen-cli at the version of Cargo.lock (and Chromium for the page
-# test), builds the WebAssembly, runs the Node tests (d3, Observable Plot,
-# Recharts in jsdom, Chart.js on a recording canvas, the
-# command's smoothing bit for bit, a page in headless Chromium), checks the
-# TypeScript declarations with tsc, then packs
-# the package, installs the tarball in a fresh folder outside the repository
-# and runs a smoke test there. Prints "N passed, M failed".
+# test), packs the package (its prepack script builds the WebAssembly), runs
+# the Node tests on that build (d3, Observable Plot, Recharts in jsdom, Chart.js
+# on a recording canvas, the command's smoothing bit for bit, a page in
+# headless Chromium), checks the TypeScript declarations with tsc, then
+# installs the tarball in a fresh folder outside the repository and runs a
+# smoke test there. Prints "N passed, M failed".
 set -uo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -32,7 +32,15 @@ fi
 
 cd "$here" || fail "no package folder"
 PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --ignore-scripts --no-audit --no-fund --loglevel=error || fail "npm ci failed"
-node scripts/build.mjs || fail "the WebAssembly build failed"
+# The package as a user gets it: npm pack, whose prepack script builds the
+# WebAssembly into wasm/ (a fresh checkout has none: it is built, not
+# committed) and into the tarball. The tests below run on that build; the
+# tarball is installed into a folder of its own at the end.
+rm -rf wasm
+smoke=$(mktemp -d)
+# (The build's own output may come first; npm prints the tarball's name last.)
+tarball=$(npm pack --silent --pack-destination "$smoke" | tail -n 1) || tarball=""
+[ -n "$tarball" ] && [ -f "$smoke/$tarball" ] || fail "npm pack (and the WebAssembly build in it) failed"
 [ -x "$root/target/debug/bzspline" ] || (cd "$root" && cargo build -q --locked -p bzspline-cli) || fail "cargo build failed"
 
 log=$(mktemp)
@@ -54,14 +62,8 @@ else
     status=1
 fi
 
-# The package as a user gets it: npm pack, installed into a folder of its own.
-# A fresh checkout has no wasm/ (it is built, not committed): the prepack
-# script must build it into the tarball.
-rm -rf wasm
-smoke=$(mktemp -d)
-# (The build's own output may come first; npm prints the tarball's name last.)
-if tarball=$(npm pack --silent --pack-destination "$smoke" | tail -n 1) &&
-    (cd "$smoke" && npm init -y >/dev/null && npm install --no-audit --no-fund --loglevel=error "./$tarball" d3-shape@3) &&
+# The tarball, installed into a folder of its own.
+if (cd "$smoke" && npm init -y >/dev/null && npm install --no-audit --no-fund --loglevel=error "./$tarball" d3-shape@3) &&
     cp "$here/test/smoke.mjs" "$smoke/" && (cd "$smoke" && node smoke.mjs); then
     echo "pack smoke: ok ($tarball, $(du -k "$smoke/$tarball" | cut -f1) kB)"
     passed=$((passed + 1))
