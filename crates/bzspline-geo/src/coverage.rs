@@ -56,10 +56,47 @@ struct Origin {
 #[derive(Clone, Debug)]
 pub struct Coverage {
     /// Each geometry's shape: its points as given, its lines and rings
-    /// without positions (the topology holds them once).
-    geometries: Vec<Geometry<f64>>,
+    /// only counted (the topology holds their positions once).
+    shapes: Vec<Shape>,
     topology: Topology,
-    origins: Vec<Origin>,
+}
+
+/// A geometry without the positions of its lines and rings: what
+/// [`rebuild`] puts them back into, in 24 bytes where a geo-types
+/// `Geometry` takes 56.
+#[derive(Clone, Debug)]
+enum Shape {
+    /// A Point or MultiPoint, as given.
+    Kept(Box<Geometry<f64>>),
+    /// A Line, whose ends stand in when its line has none.
+    Line(Box<Line<f64>>),
+    LineString,
+    /// So many LineStrings.
+    MultiLineString(usize),
+    /// A Polygon of so many rings (a Rect's or Triangle's is one).
+    Polygon(usize),
+    /// Polygons of so many rings each.
+    MultiPolygon(Box<[usize]>),
+    Collection(Box<[Shape]>),
+}
+
+impl Shape {
+    /// The shape of `g`.
+    fn of(g: &Geometry<f64>) -> Shape {
+        let rings = |p: &Polygon<f64>| 1 + p.interiors().len();
+        match g {
+            Geometry::Point(_) | Geometry::MultiPoint(_) => Shape::Kept(Box::new(g.clone())),
+            Geometry::Line(l) => Shape::Line(Box::new(*l)),
+            Geometry::LineString(_) => Shape::LineString,
+            Geometry::MultiLineString(m) => Shape::MultiLineString(m.0.len()),
+            Geometry::Polygon(p) => Shape::Polygon(rings(p)),
+            Geometry::MultiPolygon(m) => Shape::MultiPolygon(m.0.iter().map(rings).collect()),
+            Geometry::Rect(_) | Geometry::Triangle(_) => Shape::Polygon(1),
+            Geometry::GeometryCollection(c) => {
+                Shape::Collection(c.0.iter().map(Shape::of).collect())
+            }
+        }
+    }
 }
 
 /// The inputs of a [`Coverage`] beyond its geometries, by name
@@ -112,16 +149,14 @@ impl CoverageBuilder {
     /// for a snap distance that is not a finite non-negative number.
     pub fn build(self) -> Result<Coverage, Error> {
         let mut geometries = self.geometries;
-        let (mut chains, origins, polygons) = gather(&mut geometries);
+        let (mut chains, polygons) = gather(&mut geometries);
+        let shapes = geometries.iter().map(Shape::of).collect();
+        drop(geometries);
         if let Some(eps) = self.snap {
             snap_in(&mut chains, eps, self.frame)?;
         }
         let topology = Topology::from_owned_chains(chains, polygons, self.nodes)?;
-        Ok(Coverage {
-            geometries,
-            topology,
-            origins,
-        })
+        Ok(Coverage { shapes, topology })
     }
 }
 
@@ -156,13 +191,13 @@ impl Coverage {
     /// How many geometries the coverage holds.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.geometries.len()
+        self.shapes.len()
     }
 
     /// Whether the coverage holds no geometry.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.geometries.is_empty()
+        self.shapes.is_empty()
     }
 
     /// Smooths the coverage (see [`Topology::smooth`]) and returns the
@@ -207,14 +242,12 @@ impl Coverage {
         round: usize,
         exact: &[bool],
     ) -> Result<(Vec<Geometry<f64>>, Stats, Levels), Error> {
-        let chains: Vec<bool> = if exact.is_empty() {
-            Vec::new()
-        } else {
-            self.origins
-                .iter()
-                .map(|o| exact.get(o.geometry).copied().unwrap_or(false))
-                .collect()
-        };
+        let mut chains: Vec<bool> = Vec::new();
+        if !exact.is_empty() {
+            each_origin(&self.shapes, &mut |o| {
+                chains.push(exact.get(o.geometry).copied().unwrap_or(false));
+            });
+        }
         let s = self.topology.smooth_round(opts, start, round, &chains)?;
         Ok((self.assemble(&s.arcs), s.stats, s.levels))
     }
@@ -233,10 +266,7 @@ impl Coverage {
             next += 1;
             c
         };
-        self.geometries
-            .iter()
-            .map(|g| rebuild(g, &mut take))
-            .collect()
+        self.shapes.iter().map(|g| rebuild(g, &mut take)).collect()
     }
 
     /// Where an error's chain (or, for an arc's error, the first chain that
@@ -244,7 +274,16 @@ impl Coverage {
     #[must_use]
     pub fn locate(&self, e: &Error) -> Option<Location> {
         let chain = self.topology.chain_of(e)?;
-        let o = self.origins.get(chain)?;
+        // Walked again from the shapes: only an error needs it.
+        let mut o = None;
+        let mut i = 0;
+        each_origin(&self.shapes, &mut |found| {
+            if i == chain {
+                o = Some(found);
+            }
+            i += 1;
+        });
+        let o = o?;
         Some(Location {
             geometry: o.geometry,
             member: o.member,
@@ -291,48 +330,65 @@ pub fn coverage_chains(geometries: &[Geometry<f64>]) -> Vec<(ChainKind, Vec<Coor
     gather(&mut geometries.to_vec()).0
 }
 
-/// The chains of `geometries`, where each comes from, and which rings form
-/// each polygon. The positions of every line and ring are moved into the
-/// chains, not copied: each geometry is left as its shape, its lines and
-/// rings without positions, for [`rebuild`].
-#[allow(clippy::type_complexity)] // three parallel results, used once
-fn gather(
-    geometries: &mut [Geometry<f64>],
-) -> (Vec<(ChainKind, Vec<Coord>)>, Vec<Origin>, Ragged<usize>) {
+/// The chains of `geometries`, and which rings form each polygon. The
+/// positions of every line and ring are moved into the chains, not copied:
+/// each geometry is left with its lines and rings without positions, for
+/// [`Shape::of`].
+#[allow(clippy::type_complexity)] // two parallel results, used once
+fn gather(geometries: &mut [Geometry<f64>]) -> (Vec<(ChainKind, Vec<Coord>)>, Ragged<usize>) {
     let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
-    let mut origins: Vec<Origin> = Vec::new();
     let mut polygons: Ragged<usize> = Ragged::new();
-    for (gi, g) in geometries.iter_mut().enumerate() {
+    for g in geometries.iter_mut() {
+        visit(g, &mut |part| match part {
+            Part::Line(coords) => chains.push((ChainKind::Line, coords)),
+            Part::Polygon(rings) => {
+                let first = chains.len();
+                chains.extend(rings.into_iter().map(|r| (ChainKind::Ring, r)));
+                polygons.push_row(first..chains.len());
+            }
+        });
+    }
+    (chains, polygons)
+}
+
+/// Calls `f` with where each chain comes from, in the order [`gather`] takes
+/// them out, from the geometries' shapes.
+fn each_origin(shapes: &[Shape], f: &mut dyn FnMut(Origin)) {
+    for (gi, g) in shapes.iter().enumerate() {
         let mut member = 0;
-        visit(g, &mut |part| {
-            match part {
-                Part::Line(coords) => {
-                    origins.push(Origin {
+        parts(g, &mut |rings| {
+            match rings {
+                None => f(Origin {
+                    geometry: gi,
+                    member,
+                    ring: 0,
+                    polygon: false,
+                }),
+                Some(n) => (0..n).for_each(|ring| {
+                    f(Origin {
                         geometry: gi,
                         member,
-                        ring: 0,
-                        polygon: false,
+                        ring,
+                        polygon: true,
                     });
-                    chains.push((ChainKind::Line, coords));
-                }
-                Part::Polygon(rings) => {
-                    let first = chains.len();
-                    for (ri, r) in rings.into_iter().enumerate() {
-                        origins.push(Origin {
-                            geometry: gi,
-                            member,
-                            ring: ri,
-                            polygon: true,
-                        });
-                        chains.push((ChainKind::Ring, r));
-                    }
-                    polygons.push_row(first..chains.len());
-                }
+                }),
             }
             member += 1;
         });
     }
-    (chains, origins, polygons)
+}
+
+/// Calls `f` on every line (`None`) and polygon (`Some` of its count of
+/// rings) of `s`, in the order [`visit`] meets them in its geometry.
+fn parts(s: &Shape, f: &mut dyn FnMut(Option<usize>)) {
+    match s {
+        Shape::Kept(_) => {}
+        Shape::Line(_) | Shape::LineString => f(None),
+        Shape::MultiLineString(n) => (0..*n).for_each(|_| f(None)),
+        Shape::Polygon(rings) => f(Some(*rings)),
+        Shape::MultiPolygon(rings) => rings.iter().for_each(|&r| f(Some(r))),
+        Shape::Collection(c) => c.iter().for_each(|s| parts(s, f)),
+    }
 }
 
 /// A line's positions, or a polygon's rings' (the shell first).
@@ -369,35 +425,143 @@ fn take_rings(p: &mut Polygon<f64>) -> Vec<Vec<Coord>> {
         .collect()
 }
 
-/// `g` with each line and ring, in the order [`visit`] meets them, from `take`.
-fn rebuild(g: &Geometry<f64>, take: &mut dyn FnMut() -> Vec<Coord>) -> Geometry<f64> {
+/// The geometry of shape `s` with each line and ring, in the order
+/// [`visit`] met them, from `take`.
+fn rebuild(s: &Shape, take: &mut dyn FnMut() -> Vec<Coord>) -> Geometry<f64> {
     let polygon = |rings: usize, take: &mut dyn FnMut() -> Vec<Coord>| {
         let shell = LineString(take());
         let holes = (1..rings).map(|_| LineString(take())).collect();
         Polygon::new(shell, holes)
     };
-    match g {
-        Geometry::Point(_) | Geometry::MultiPoint(_) => g.clone(),
-        Geometry::Line(l) => {
+    match s {
+        Shape::Kept(g) => (**g).clone(),
+        Shape::Line(l) => {
             let c = take();
             Geometry::Line(Line::new(
                 c.first().copied().unwrap_or(l.start),
                 c.last().copied().unwrap_or(l.end),
             ))
         }
-        Geometry::LineString(_) => Geometry::LineString(LineString(take())),
-        Geometry::MultiLineString(m) => Geometry::MultiLineString(MultiLineString(
-            m.0.iter().map(|_| LineString(take())).collect(),
+        Shape::LineString => Geometry::LineString(LineString(take())),
+        Shape::MultiLineString(n) => Geometry::MultiLineString(MultiLineString(
+            (0..*n).map(|_| LineString(take())).collect(),
         )),
-        Geometry::Polygon(p) => Geometry::Polygon(polygon(1 + p.interiors().len(), take)),
-        Geometry::MultiPolygon(m) => Geometry::MultiPolygon(MultiPolygon(
-            m.0.iter()
-                .map(|p| polygon(1 + p.interiors().len(), take))
-                .collect(),
+        Shape::Polygon(rings) => Geometry::Polygon(polygon(*rings, take)),
+        Shape::MultiPolygon(rings) => Geometry::MultiPolygon(MultiPolygon(
+            rings.iter().map(|&r| polygon(r, take)).collect(),
         )),
-        Geometry::Rect(_) | Geometry::Triangle(_) => Geometry::Polygon(polygon(1, take)),
-        Geometry::GeometryCollection(c) => Geometry::GeometryCollection(GeometryCollection(
-            c.0.iter().map(|g| rebuild(g, take)).collect(),
+        Shape::Collection(c) => Geometry::GeometryCollection(GeometryCollection(
+            c.iter().map(|s| rebuild(s, take)).collect(),
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo_types::{coord, MultiPoint, Point, Rect, Triangle};
+
+    /// A ring or line whose every x is `code` or `code + 0.5`.
+    fn coded(code: f64, ring: bool) -> LineString<f64> {
+        let mut c = vec![
+            coord! { x: code, y: 0.0 },
+            coord! { x: code + 0.5, y: 0.0 },
+            coord! { x: code + 0.5, y: 1.0 },
+        ];
+        if ring {
+            c.push(c[0]);
+        }
+        LineString(c)
+    }
+
+    fn polygon(gi: usize, member: usize, holes: usize) -> Polygon<f64> {
+        let code = |r: usize| (gi * 1000 + member * 10 + r) as f64;
+        Polygon::new(
+            coded(code(0), true),
+            (1..=holes).map(|r| coded(code(r), true)).collect(),
+        )
+    }
+
+    /// Every kind of geometry, nested, with each line and ring's positions
+    /// telling where it is: x is `1000 geometry + 10 member + ring`.
+    fn geometries() -> Vec<Geometry<f64>> {
+        let code = |gi: usize, member: usize| (gi * 1000 + member * 10) as f64;
+        let box_at = |x: f64| Rect::new(coord! { x: x, y: 0.0 }, coord! { x: x + 0.5, y: 1.0 });
+        let tri_at = |x: f64| {
+            Triangle::new(
+                coord! { x: x, y: 0.0 },
+                coord! { x: x + 0.5, y: 0.0 },
+                coord! { x: x, y: 1.0 },
+            )
+        };
+        vec![
+            Geometry::Point(Point::new(-1.0, -1.0)),
+            Geometry::Polygon(polygon(1, 0, 2)),
+            Geometry::LineString(coded(code(2, 0), false)),
+            Geometry::MultiPolygon(MultiPolygon(vec![polygon(3, 0, 0), polygon(3, 1, 3)])),
+            Geometry::MultiPoint(MultiPoint(vec![Point::new(-2.0, -2.0)])),
+            Geometry::MultiLineString(MultiLineString(vec![
+                coded(code(5, 0), false),
+                coded(code(5, 1), false),
+            ])),
+            Geometry::Rect(box_at(code(6, 0))),
+            Geometry::Triangle(tri_at(code(7, 0))),
+            Geometry::Line(Line::new(
+                coord! { x: code(8, 0), y: 0.0 },
+                coord! { x: code(8, 0) + 0.5, y: 1.0 },
+            )),
+            Geometry::GeometryCollection(GeometryCollection(vec![
+                Geometry::Polygon(polygon(9, 0, 1)),
+                Geometry::Point(Point::new(-3.0, -3.0)),
+                Geometry::GeometryCollection(GeometryCollection(vec![
+                    Geometry::LineString(coded(code(9, 1), false)),
+                    Geometry::MultiPolygon(MultiPolygon(vec![polygon(9, 2, 0), polygon(9, 3, 1)])),
+                ])),
+                Geometry::Rect(box_at(code(9, 4))),
+            ])),
+        ]
+    }
+
+    #[test]
+    fn origins_walked_from_the_shapes_name_each_chain_taken_out() {
+        let mut taken = geometries();
+        let (chains, _) = gather(&mut taken);
+        let shapes: Vec<Shape> = taken.iter().map(Shape::of).collect();
+        let mut origins = Vec::new();
+        each_origin(&shapes, &mut |o| origins.push(o));
+        assert_eq!(origins.len(), chains.len());
+        for (o, (kind, coords)) in origins.iter().zip(&chains) {
+            assert_eq!(o.polygon, *kind == ChainKind::Ring);
+            let code = (o.geometry * 1000 + o.member * 10 + o.ring) as f64;
+            assert!(
+                coords.iter().all(|c| c.x == code || c.x == code + 0.5),
+                "{o:?}: {coords:?}"
+            );
+        }
+        // Put back together from the positions taken out, each geometry is
+        // the one given, a Rect or Triangle as its Polygon.
+        let coverage = Coverage::new(geometries()).unwrap();
+        assert_eq!(coverage.topology().chains().len(), chains.len());
+        let mut next = chains.iter();
+        let back: Vec<Geometry<f64>> = shapes
+            .iter()
+            .map(|s| rebuild(s, &mut || next.next().unwrap().1.clone()))
+            .collect();
+        assert!(next.next().is_none());
+        let as_polygon = |g: Geometry<f64>| match g {
+            Geometry::Rect(r) => Geometry::Polygon(r.to_polygon()),
+            Geometry::Triangle(t) => Geometry::Polygon(t.to_polygon()),
+            Geometry::GeometryCollection(c) => Geometry::GeometryCollection(GeometryCollection(
+                c.0.into_iter()
+                    .map(|g| match g {
+                        Geometry::Rect(r) => Geometry::Polygon(r.to_polygon()),
+                        g => g,
+                    })
+                    .collect(),
+            )),
+            g => g,
+        };
+        let given: Vec<Geometry<f64>> = geometries().into_iter().map(as_polygon).collect();
+        assert_eq!(back, given);
     }
 }
