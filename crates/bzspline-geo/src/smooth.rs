@@ -192,6 +192,8 @@ impl Topology {
         let mut cross_out: Vec<f64> = vec![0.0; arcs.len()];
         let rings = RingFacts::of(self, &shoelace, &cross_in);
         stats.area_in = shoelace.polygons(self, &cross_in);
+        // Not needed again: freed before the rounds' peak.
+        drop(cross_in);
 
         let mut levels = start_levels(arcs, start);
         // Every arc starts empty, so the first round lays the arcs out in order.
@@ -290,7 +292,7 @@ impl Topology {
         let mut j = vec![false; n];
         for (c, _) in self.chains().iter().zip(exact).filter(|(_, &e)| e) {
             for r in &c.arcs {
-                j[r.arc] = true;
+                j[r.index()] = true;
             }
         }
         j
@@ -345,7 +347,13 @@ impl Topology {
     fn positions(&self, arcs: &Arcs) -> usize {
         self.chains()
             .iter()
-            .map(|c| c.arcs.iter().map(|r| arcs[r.arc].len() - 1).sum::<usize>() + 1)
+            .map(|c| {
+                c.arcs
+                    .iter()
+                    .map(|r| arcs[r.index()].len() - 1)
+                    .sum::<usize>()
+                    + 1
+            })
             .sum()
     }
 
@@ -361,18 +369,19 @@ impl Topology {
             }
         }
         let mut in_line = vec![false; arcs.len()];
-        let mut min_out = vec![2usize; arcs.len()];
+        let mut min_out = vec![2u8; arcs.len()];
         for c in self.chains() {
             for r in &c.arcs {
                 if c.kind == ChainKind::Line {
-                    in_line[r.arc] = true;
+                    in_line[r.index()] = true;
                 }
-                let want = match (c.kind, c.arcs.len()) {
+                let want: u8 = match (c.kind, c.arcs.len()) {
                     (ChainKind::Ring, 1) => 4,
                     (ChainKind::Ring, 2) => 3,
                     _ => 2,
                 };
-                min_out[r.arc] = min_out[r.arc].max(want.min(arcs[r.arc].len()));
+                let len = u8::try_from(arcs[r.index()].len()).unwrap_or(u8::MAX);
+                min_out[r.index()] = min_out[r.index()].max(want.min(len));
             }
         }
         let mut nodes: FxHashSet<(u64, u64)> = count
@@ -430,9 +439,9 @@ fn bump_chain(
     bump: &mut Vec<(usize, Seg)>,
 ) -> Result<(), Error> {
     for r in &t.chains()[ci].arcs {
-        for s in along.segs(r.arc, levels)? {
+        for s in along.segs(r.index(), levels)? {
             if !s.original {
-                bump.push((r.arc, *s));
+                bump.push((r.index(), *s));
             }
         }
     }

@@ -22,17 +22,25 @@ use crate::ragged::Ragged;
 /// the reversed arc `k` as `!k`, that is `-k - 1`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ArcRef {
-    /// Index into [`Topology::arcs`].
-    pub arc: usize,
+    /// Index into [`Topology::arcs`] ([`ArcRef::index`] as a `usize`):
+    /// a topology holds fewer than 2^32 arcs, and a chain's reference takes
+    /// 8 bytes.
+    pub arc: u32,
     /// The chain runs along the arc from its last position to its first.
     pub reversed: bool,
 }
 
 impl ArcRef {
+    /// The arc's index into [`Topology::arcs`].
+    #[must_use]
+    pub fn index(self) -> usize {
+        self.arc as usize
+    }
+
     /// The reference TopoJSON writes: `k`, or `!k` (`-k - 1`) when reversed.
     #[must_use]
     pub fn to_topojson(self) -> i64 {
-        let k = self.arc as i64;
+        let k = i64::from(self.arc);
         if self.reversed {
             -k - 1
         } else {
@@ -40,19 +48,14 @@ impl ArcRef {
         }
     }
 
-    /// The reference from TopoJSON's `k` or `!k`.
+    /// The reference from TopoJSON's `k` or `!k`; an index beyond `u32`
+    /// becomes `u32::MAX`, which names no arc of any topology.
     #[must_use]
     pub fn from_topojson(k: i64) -> ArcRef {
-        if k < 0 {
-            ArcRef {
-                arc: (-(k + 1)) as usize,
-                reversed: true,
-            }
-        } else {
-            ArcRef {
-                arc: k as usize,
-                reversed: false,
-            }
+        let (index, reversed) = if k < 0 { (-(k + 1), true) } else { (k, false) };
+        ArcRef {
+            arc: u32::try_from(index).unwrap_or(u32::MAX),
+            reversed,
         }
     }
 }
@@ -187,7 +190,7 @@ impl Topology {
         }
         let arcs = kept;
         for (ci, c) in chains.iter().enumerate() {
-            if let Some(r) = c.arcs.iter().find(|r| r.arc >= arcs.len()) {
+            if let Some(r) = c.arcs.iter().find(|r| r.index() >= arcs.len()) {
                 return Err(Error::ArcIndex {
                     chain: ci,
                     arc: r.to_topojson(),
@@ -236,7 +239,7 @@ impl Topology {
             Error::Overflow { arc } | Error::Spline { arc, .. } | Error::EmptyArc { arc } => self
                 .chains
                 .iter()
-                .position(|c| c.arcs.iter().any(|r| r.arc == *arc)),
+                .position(|c| c.arcs.iter().any(|r| r.index() == *arc)),
             _ => None,
         }
     }
@@ -247,7 +250,7 @@ impl Topology {
         let mut uses = vec![0u32; self.arcs.len()];
         for c in &self.chains {
             for r in &c.arcs {
-                uses[r.arc] += 1;
+                uses[r.index()] += 1;
             }
         }
         uses
@@ -266,7 +269,7 @@ impl Topology {
         let chain = &self.chains[i];
         let mut out: Vec<Coord> = Vec::new();
         for r in &chain.arcs {
-            let arc = &arcs[r.arc];
+            let arc = &arcs[r.index()];
             let mut push = |c: Coord| {
                 if out.last().map(|&l| key(l)) != Some(key(c)) {
                     out.push(c);
@@ -395,7 +398,7 @@ impl Builder {
     }
 
     /// The arc `scratch` (closed or not), stored when it is new.
-    fn find_or_add(&mut self, closed: bool) -> usize {
+    fn find_or_add(&mut self, closed: bool) -> u32 {
         let hash = arc_hash(closed, &self.scratch);
         let Builder {
             arcs,
@@ -407,10 +410,12 @@ impl Builder {
             arcs.closed[a as usize] == closed && arcs.found_by(a as usize) == &scratch[..]
         });
         if let Some(&a) = found {
-            return a as usize;
+            return a;
         }
-        let a = arcs.push(scratch, closed);
-        index.insert_unique(hash, a as u32, |&b| arcs.hash(b as usize));
+        // Arcs are counted in u32, as positions are: more would take over
+        // 2^32 segments.
+        let a = arcs.push(scratch, closed) as u32;
+        index.insert_unique(hash, a, |&b| arcs.hash(b as usize));
         a
     }
 
@@ -733,7 +738,7 @@ mod tests {
             .chains()
             .iter()
             .flat_map(|ch| ch.arcs.iter().copied())
-            .filter(|r| r.arc == shared)
+            .filter(|r| r.index() == shared)
             .collect();
         assert_eq!(refs.len(), 2);
         assert_ne!(refs[0].reversed, refs[1].reversed);
@@ -802,7 +807,7 @@ mod tests {
         // The ring is cut at (1, 1), where the line ends; a ring with one
         // junction is one arc from that junction round to it.
         let ring = &t.chains()[0];
-        let a = &t.arcs()[ring.arcs[0].arc];
+        let a = &t.arcs()[ring.arcs[0].index()];
         assert_eq!(ring.arcs.len(), 1);
         assert_eq!(a[0], c(1.0, 1.0));
         assert_eq!(a[a.len() - 1], c(1.0, 1.0));

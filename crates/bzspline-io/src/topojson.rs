@@ -154,7 +154,7 @@ impl Reader<'_> {
                     bail!("{name}: {at}: arc index {k} is not an integer");
                 };
                 let r = ArcRef::from_topojson(k);
-                if r.arc >= self.arcs.len() {
+                if r.index() >= self.arcs.len() {
                     bail!(
                         "{name}: {at}: arc {k} is out of range (there are {} arcs)",
                         self.arcs.len()

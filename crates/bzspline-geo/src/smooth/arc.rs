@@ -41,7 +41,8 @@ pub(super) struct Plan<'a> {
 pub(super) struct Plans {
     pub(super) closed_curve: Vec<bool>,
     pub(super) fixed: Ragged<bool>,
-    pub(super) min_out: Vec<usize>,
+    /// 2, 3 or 4 ([`Plan::min_out`]): a byte an arc.
+    pub(super) min_out: Vec<u8>,
 }
 
 impl Plans {
@@ -50,7 +51,7 @@ impl Plans {
         Plan {
             closed_curve: self.closed_curve[a],
             fixed: &self.fixed[a],
-            min_out: self.min_out[a],
+            min_out: usize::from(self.min_out[a]),
         }
     }
 }

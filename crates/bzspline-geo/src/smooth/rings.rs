@@ -27,8 +27,8 @@ impl RingFacts {
         let mut filled = vec![0usize; uses.len()];
         for (ci, c) in t.chains().iter().enumerate() {
             for r in &c.arcs {
-                chains_of[r.arc][filled[r.arc]] = ci as u32;
-                filled[r.arc] += 1;
+                chains_of[r.index()][filled[r.index()]] = ci as u32;
+                filled[r.index()] += 1;
             }
         }
         let mut polygon_of: Vec<Option<u32>> = vec![None; t.chains().len()];
@@ -128,9 +128,9 @@ impl Shoelace {
             .iter()
             .map(|r| {
                 if r.reversed {
-                    -cross[r.arc]
+                    -cross[r.index()]
                 } else {
-                    cross[r.arc]
+                    cross[r.index()]
                 }
             })
             .sum::<f64>()
