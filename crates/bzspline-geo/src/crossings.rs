@@ -8,8 +8,6 @@
 //! arc hold them). Even there they conflict when they run on from the shared
 //! position in the same direction (an overlap).
 
-use rustc_hash::FxHashSet;
-
 use geo_types::Coord;
 use robust::{orient2d, Coord as RCoord};
 
@@ -27,32 +25,60 @@ pub(crate) struct SegId {
     pub seg: u32,
 }
 
-/// Segments in one tree entry: a run of consecutive segments of one line
-/// under one box, so that the tree holds a fraction of the segments.
+/// Segments in one tree entry: a run of consecutive segments, under one box,
+/// so that the tree holds a fraction of the segments.
 const RUN: usize = 8;
 
-/// A run of up to [`RUN`] segments of line `line`, from segment `first`.
+/// A run of up to [`RUN`] segments from segment `start`, in the order of the
+/// lines and of their segments: a run goes on into the next lines when its
+/// own ends, so that short lines (a mosaic's arcs have a few positions each)
+/// share entries of the tree. Arcs are numbered as the rings that hold
+/// them are walked, so the lines of a run mostly lie side by side.
 struct Item {
-    line: u32,
-    first: u32,
-    count: u32,
+    start: SegId,
+    /// The run holds a segment of a line in `dirty`.
+    dirty: bool,
     env: AABB<[f64; 2]>,
 }
 
+/// The segments of `lines` from `start` on, across the lines, in order.
+fn segs_from(lines: &Arcs, start: SegId) -> impl Iterator<Item = SegId> + '_ {
+    (start.line as usize..lines.len()).flat_map(move |li| {
+        let first = if li == start.line as usize {
+            start.seg
+        } else {
+            0
+        };
+        let n = lines[li].len().saturating_sub(1) as u32;
+        (first..n).map(move |seg| SegId {
+            line: li as u32,
+            seg,
+        })
+    })
+}
+
 impl Item {
-    /// The run of `line` (its positions `l`) from segment `first`.
-    fn of(line: usize, l: &[Coord], first: usize) -> Item {
-        let count = RUN.min(l.len() - 1 - first);
-        let mut env = seg_env(l[first], l[first + 1]);
-        for c in &l[first + 2..=first + count] {
-            env.merge(&AABB::from_point([c.x, c.y]));
+    /// The run of `lines` from segment `start`.
+    fn of(lines: &Arcs, dirty: &[bool], start: SegId) -> Item {
+        let mut env: Option<AABB<[f64; 2]>> = None;
+        let mut any_dirty = false;
+        for id in segs_from(lines, start).take(RUN) {
+            let l = &lines[id.line as usize];
+            let e = seg_env(l[id.seg as usize], l[id.seg as usize + 1]);
+            env.get_or_insert(e).merge(&e);
+            any_dirty |= dirty[id.line as usize];
         }
         Item {
-            line: line as u32,
-            first: first as u32,
-            count: count as u32,
-            env,
+            start,
+            dirty: any_dirty,
+            // A run starts at a segment, so it holds at least that one.
+            env: env.unwrap_or_else(|| AABB::from_point([0.0, 0.0])),
         }
+    }
+
+    /// The run's segments.
+    fn segs<'a>(&self, lines: &'a Arcs) -> impl Iterator<Item = SegId> + 'a {
+        segs_from(lines, self.start).take(RUN)
     }
 
     /// The run's box in single precision, rounded outward so that it holds
@@ -70,9 +96,9 @@ impl Item {
 /// every run of its output.
 struct Runs {
     tree: RTree<f32>,
-    /// The line and first segment of each run, in the order they were added
-    /// (the tree's item numbers).
-    ids: Vec<(u32, u32)>,
+    /// The first segment of each run, in the order they were added (the
+    /// tree's item numbers).
+    ids: Vec<SegId>,
 }
 
 impl Runs {
@@ -84,7 +110,7 @@ impl Runs {
         for r in runs {
             let (x0, y0, x1, y1) = r.env32();
             builder.add(x0, y0, x1, y1);
-            ids.push((r.line, r.first));
+            ids.push(r.start);
         }
         Runs {
             tree: builder.finish::<HilbertSort>(),
@@ -190,7 +216,8 @@ pub(crate) struct Lines<'a> {
     pub lines: &'a Arcs,
     /// A closed polyline's last segment is followed by its first.
     pub closed: &'a [bool],
-    pub nodes: &'a FxHashSet<(u64, u64)>,
+    /// The nodes' keys, sorted.
+    pub nodes: &'a [(u64, u64)],
 }
 
 impl Lines<'_> {
@@ -227,7 +254,7 @@ impl Lines<'_> {
         match shared.as_slice() {
             [] => intersect(at(a0), at(a1), at(b0), at(b1)),
             [(e, oa, ob)] => {
-                let may_meet = consecutive || self.nodes.contains(&key(*e));
+                let may_meet = consecutive || self.nodes.binary_search(&key(*e)).is_ok();
                 if !may_meet {
                     return true;
                 }
@@ -242,26 +269,17 @@ impl Lines<'_> {
         }
     }
 
-    /// The runs of segments of the lines `keep` selects, one at a time.
-    fn runs<'s>(&'s self, keep: impl Fn(usize) -> bool + 's) -> impl Iterator<Item = Item> + 's {
-        self.lines
-            .iter()
-            .enumerate()
-            .filter(move |(li, l)| keep(*li) && l.len() >= 2)
-            .flat_map(|(li, l)| {
-                (0..l.len() - 1)
-                    .step_by(RUN)
-                    .map(move |f| Item::of(li, l, f))
-            })
-    }
-
-    /// The runs of the lines `keep` selects, in a packed tree.
-    fn index(&self, keep: impl Fn(usize) -> bool + Copy) -> Runs {
-        let count = (self.lines.iter().enumerate())
-            .filter(|(li, l)| keep(*li) && l.len() >= 2)
-            .map(|(_, l)| (l.len() - 1).div_ceil(RUN))
-            .sum();
-        Runs::new(self.runs(keep), count)
+    /// Every run of segments, one at a time, each with whether it holds a
+    /// segment of a line in `dirty`.
+    fn runs<'s>(&'s self, dirty: &'s [bool]) -> impl Iterator<Item = Item> + 's {
+        let lines = self.lines;
+        let mut next = segs_from(lines, SegId { line: 0, seg: 0 });
+        std::iter::from_fn(move || {
+            let start = next.next()?;
+            // The run's other segments.
+            next.by_ref().take(RUN - 1).for_each(drop);
+            Some(Item::of(lines, dirty, start))
+        })
     }
 
     /// Every conflicting pair with at least one segment on a line in `dirty`,
@@ -270,7 +288,8 @@ impl Lines<'_> {
     /// When most lines are dirty, every run of segments is put in one tree and
     /// the dirty runs are looked up in it; when few are (a refinement round),
     /// the tree holds only the dirty runs and every run is looked up in that,
-    /// which is much cheaper than building the whole tree again.
+    /// which is much cheaper than building the whole tree again. A run is
+    /// dirty when it holds a segment of a dirty line.
     pub(crate) fn conflicts(&self, dirty: &[bool]) -> Vec<(SegId, SegId)> {
         let total: usize = self.lines.iter().map(|l| l.len().saturating_sub(1)).sum();
         let changed: usize = self
@@ -281,21 +300,23 @@ impl Lines<'_> {
             .map(|(l, _)| l.len().saturating_sub(1))
             .sum();
         let few = changed * 8 < total;
-        let runs = self.index(|li| !few || dirty[li]);
+        let count = if few {
+            self.runs(dirty).filter(|r| r.dirty).count()
+        } else {
+            total.div_ceil(RUN)
+        };
+        let runs = Runs::new(self.runs(dirty).filter(|r| !few || r.dirty), count);
         let mut out = Vec::new();
-        for p in self.runs(|li| few || dirty[li]) {
+        for p in self.runs(dirty).filter(|r| few || r.dirty) {
             let (x0, y0, x1, y1) = p.env32();
             for i in runs.tree.search(x0, y0, x1, y1) {
-                let (line, first) = runs.ids[i as usize];
-                // Both on dirty lines: the pair of runs is met from both sides.
-                if dirty[p.line as usize]
-                    && dirty[line as usize]
-                    && (line, first) < (p.line, p.first)
-                {
+                let start = runs.ids[i as usize];
+                let q = Item::of(self.lines, dirty, start);
+                // Both dirty: the pair of runs is met from both sides.
+                if p.dirty && q.dirty && start < p.start {
                     continue;
                 }
-                let q = Item::of(line as usize, &self.lines[line as usize], first as usize);
-                self.run_conflicts(&p, &q, &mut out);
+                self.run_conflicts(dirty, &p, &q, &mut out);
             }
         }
         out.sort_unstable();
@@ -303,27 +324,25 @@ impl Lines<'_> {
         out
     }
 
-    /// The conflicting pairs of segments of two runs.
-    fn run_conflicts(&self, p: &Item, q: &Item, out: &mut Vec<(SegId, SegId)>) {
-        let (lp, lq) = (&self.lines[p.line as usize], &self.lines[q.line as usize]);
-        for i in p.first..p.first + p.count {
-            let ep = seg_env(lp[i as usize], lp[i as usize + 1]);
+    /// The conflicting pairs of segments of two runs with at least one
+    /// segment on a dirty line.
+    fn run_conflicts(&self, dirty: &[bool], p: &Item, q: &Item, out: &mut Vec<(SegId, SegId)>) {
+        let seg_env_of = |id: SegId| {
+            let l = &self.lines[id.line as usize];
+            seg_env(l[id.seg as usize], l[id.seg as usize + 1])
+        };
+        for a in p.segs(self.lines) {
+            let ep = seg_env_of(a);
             if !boxes_meet(&ep, &q.env) {
                 continue;
             }
-            for j in q.first..q.first + q.count {
-                let eq = seg_env(lq[j as usize], lq[j as usize + 1]);
-                if !boxes_meet(&ep, &eq) {
+            for b in q.segs(self.lines) {
+                if !(dirty[a.line as usize] || dirty[b.line as usize]) {
                     continue;
                 }
-                let a = SegId {
-                    line: p.line,
-                    seg: i,
-                };
-                let b = SegId {
-                    line: q.line,
-                    seg: j,
-                };
+                if !boxes_meet(&ep, &seg_env_of(b)) {
+                    continue;
+                }
                 if self.conflict(a, b) {
                     out.push((a.min(b), a.max(b)));
                 }
@@ -358,11 +377,12 @@ mod tests {
             vec![c(0.0, 0.0), c(0.0, 1.0)],
             vec![c(1.0, 0.0), c(1.0, -1.0)],
         ]);
-        let mut nodes = FxHashSet::default();
+        let mut nodes = Vec::new();
         for l in lines.iter().take(2) {
-            nodes.insert(key(l[0]));
-            nodes.insert(key(l[l.len() - 1]));
+            nodes.push(key(l[0]));
+            nodes.push(key(l[l.len() - 1]));
         }
+        nodes.sort_unstable();
         let closed = vec![false; 3];
         let set = Lines {
             lines: &lines,
@@ -377,7 +397,8 @@ mod tests {
                 (SegId { line: 0, seg: 1 }, SegId { line: 2, seg: 0 })
             ]
         );
-        nodes.insert(key(c(1.0, 0.0)));
+        nodes.push(key(c(1.0, 0.0)));
+        nodes.sort_unstable();
         let set = Lines {
             lines: &lines,
             closed: &closed,
@@ -392,7 +413,7 @@ mod tests {
             vec![c(0.0, 0.0), c(2.0, 0.0)],
             vec![c(0.0, 0.0), c(1.0, 0.0), c(1.0, 1.0)],
         ]);
-        let nodes: FxHashSet<_> = [key(c(0.0, 0.0))].into_iter().collect();
+        let nodes = [key(c(0.0, 0.0))];
         let set = Lines {
             lines: &lines,
             closed: &[false, false],
@@ -429,15 +450,19 @@ mod tests {
         // Polylines far from the origin (where a single-precision box is
         // about 1 unit coarse) with steps of a thousandth of that: the
         // index's rounded boxes must still offer every pair that meets.
+        // Every other case has short lines (a run of the tree then spans
+        // several), and the dirty lines are all, one, or a random third.
         let mut rng = bzspline_testing::Rng(7);
         let mut next = move || rng.next();
-        for case in 0..40 {
+        for case in 0..60 {
             let (ox, oy) = (1.0e7 + next(), -3.0e6 - next());
-            let step = if case % 2 == 0 { 1e-3 } else { 0.3 };
-            let lines: Arcs = (0..12)
+            let step = if case % 3 == 0 { 1e-3 } else { 0.3 };
+            let longest = if case % 2 == 0 { 30.0 } else { 4.0 };
+            let count = 12 + case % 13;
+            let lines: Arcs = (0..count)
                 .map(|_| {
                     let mut p = c(ox + next() * 40.0 * step, oy + next() * 40.0 * step);
-                    (0..1 + (next() * 30.0) as usize)
+                    (0..1 + (next() * longest) as usize)
                         .map(|_| {
                             p = c(
                                 p.x + (next() - 0.5) * step * 8.0,
@@ -449,13 +474,18 @@ mod tests {
                 })
                 .collect();
             let closed = vec![false; lines.len()];
-            let nodes = FxHashSet::default();
+            let nodes = [];
             let set = Lines {
                 lines: &lines,
                 closed: &closed,
                 nodes: &nodes,
             };
-            for dirty in [vec![true; 12], (0..12).map(|i| i == case % 12).collect()] {
+            let some: Vec<bool> = (0..count).map(|_| next() < 0.33).collect();
+            for dirty in [
+                vec![true; count],
+                (0..count).map(|i| i == case % count).collect(),
+                some,
+            ] {
                 let found = set.conflicts(&dirty);
                 assert!(case > 0 || !found.is_empty(), "the cases meet somewhere");
                 assert_eq!(found, brute_force(&set, &dirty), "case {case}");

@@ -320,7 +320,7 @@ impl Topology {
         let mut polys: Vec<usize> = Vec::new();
         for &ci in &suspects {
             let sign = rings.sign_in[ci];
-            if sign != 0.0 && shoelace.ring(self, ci, cross_out).signum() != sign {
+            if sign != 0 && shoelace.ring(self, ci, cross_out).signum() != f64::from(sign) {
                 bump_chain(self, ci, along, levels, bump)?;
             }
             if let Some(p) = rings.polygon_of[ci] {
@@ -357,8 +357,9 @@ impl Topology {
             .sum()
     }
 
-    /// Each arc's plan, and the nodes: positions where arcs may meet.
-    fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Plans, FxHashSet<(u64, u64)>) {
+    /// Each arc's plan, and the nodes: positions where arcs may meet (keys,
+    /// sorted, each once: half the bytes of a hash set).
+    fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Plans, Vec<(u64, u64)>) {
         let arcs = self.arcs();
         // How often each position occurs over all arcs (a closed arc's end once).
         let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
@@ -384,7 +385,7 @@ impl Topology {
                 min_out[r.index()] = min_out[r.index()].max(want.min(len));
             }
         }
-        let mut nodes: FxHashSet<(u64, u64)> = count
+        let mut nodes: Vec<(u64, u64)> = count
             .iter()
             .filter(|&(_, &n)| n >= 2)
             .map(|(&k, _)| k)
@@ -404,8 +405,8 @@ impl Topology {
             let first_node = is_node(a[0]) || in_line[ai];
             let closed_curve = closed && !first_node && a.len() >= 4;
             if !closed_curve {
-                nodes.insert(key(a[0]));
-                nodes.insert(key(a[a.len() - 1]));
+                nodes.push(key(a[0]));
+                nodes.push(key(a[a.len() - 1]));
             }
             let n = if closed { a.len() - 1 } else { a.len() };
             plans.fixed.push_row((0..n).map(|i| is_node(a[i])));
@@ -421,11 +422,15 @@ impl Topology {
                     };
                     if turning_degrees(prev, a[i], next, frame) > deg {
                         fixed[i] = true;
-                        nodes.insert(key(a[i]));
+                        nodes.push(key(a[i]));
                     }
                 }
             }
         }
+        drop(count);
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes.shrink_to_fit();
         (plans, nodes)
     }
 }

@@ -14,8 +14,9 @@ pub(super) struct RingFacts {
     pub(super) chains_of: Ragged<u32>,
     /// The polygon each ring belongs to.
     pub(super) polygon_of: Vec<Option<u32>>,
-    /// Each ring's winding in the input (0 for a line or a flat ring).
-    pub(super) sign_in: Vec<f64>,
+    /// Each ring's winding in the input: the sign of its shoelace sum, as
+    /// `f64::signum` gives it (0 for a line).
+    pub(super) sign_in: Vec<i8>,
     /// Per polygon, whether each hole lies inside the shell in the input.
     pub(super) inside_in: Ragged<bool>,
 }
@@ -39,8 +40,8 @@ impl RingFacts {
         }
         let sign_in = (0..t.chains().len())
             .map(|ci| match t.chains()[ci].kind {
-                ChainKind::Ring => shoelace.ring(t, ci, cross_in).signum(),
-                ChainKind::Line => 0.0,
+                ChainKind::Ring => shoelace.ring(t, ci, cross_in).signum() as i8,
+                ChainKind::Line => 0,
             })
             .collect();
         let polygons = t.polygons();
