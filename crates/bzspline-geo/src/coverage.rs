@@ -269,6 +269,28 @@ impl Coverage {
         self.shapes.iter().map(|g| rebuild(g, &mut take)).collect()
     }
 
+    /// As [`Coverage::assemble`], letting go of the coverage on the way: its
+    /// own arcs before the geometries are put together, each chain's arcs
+    /// and each shape's points once they are used. For the last step of smoothing a large
+    /// coverage, whose peak then holds the smoothed arcs and geometries but
+    /// no longer the input's positions.
+    ///
+    /// # Panics
+    ///
+    /// When `arcs` has fewer arcs than the topology.
+    #[must_use]
+    pub fn into_geometries(self, arcs: &Arcs) -> Vec<Geometry<f64>> {
+        let Coverage { shapes, topology } = self;
+        let mut chains = topology.into_chains().into_iter();
+        let mut take = || {
+            // Each chain's arcs are let go of once it is put together.
+            chains
+                .next()
+                .map_or_else(Vec::new, |c| crate::topology::chain_coords(&c, arcs))
+        };
+        shapes.into_iter().map(|g| rebuild(&g, &mut take)).collect()
+    }
+
     /// Where an error's chain (or, for an arc's error, the first chain that
     /// uses the arc) comes from.
     #[must_use]
@@ -563,5 +585,10 @@ mod tests {
         };
         let given: Vec<Geometry<f64>> = geometries().into_iter().map(as_polygon).collect();
         assert_eq!(back, given);
+        // Assembled with the coverage let go of on the way, the same.
+        let arcs = coverage.topology().arcs().clone();
+        let kept = coverage.assemble(&arcs);
+        assert_eq!(kept.len(), given.len());
+        assert_eq!(coverage.into_geometries(&arcs), kept);
     }
 }

@@ -212,6 +212,11 @@ impl Topology {
         &self.arcs
     }
 
+    /// The chains, the rest let go of ([`crate::Coverage::into_geometries`]).
+    pub(crate) fn into_chains(self) -> Vec<Chain> {
+        self.chains
+    }
+
     /// The nodes given ([`Topology::from_chains_with_nodes`]); none otherwise.
     #[must_use]
     pub fn nodes(&self) -> &Nodes {
@@ -266,34 +271,7 @@ impl Topology {
     /// When `i` is not a chain's index or `arcs` is shorter than the arcs.
     #[must_use]
     pub fn chain_coords(&self, i: usize, arcs: &Arcs) -> Vec<Coord> {
-        let chain = &self.chains[i];
-        let mut out: Vec<Coord> = Vec::new();
-        for r in &chain.arcs {
-            let arc = &arcs[r.index()];
-            let mut push = |c: Coord| {
-                if out.last().map(|&l| key(l)) != Some(key(c)) {
-                    out.push(c);
-                }
-            };
-            if r.reversed {
-                arc.iter().rev().for_each(|&c| push(c));
-            } else {
-                arc.iter().for_each(|&c| push(c));
-            }
-        }
-        if chain.kind == ChainKind::Ring {
-            if let Some(&first) = out.first() {
-                if out.len() == 1 || key(first) != key(out[out.len() - 1]) {
-                    out.push(first);
-                }
-                // A ring collapsed to one or two positions still has the four
-                // a ring needs (RFC 7946).
-                while out.len() < 4 {
-                    out.push(first);
-                }
-            }
-        }
-        out
+        chain_coords(&self.chains[i], arcs)
     }
 }
 
@@ -311,6 +289,44 @@ fn check_polygons(
         }
     }
     Ok(())
+}
+
+/// The positions of `chain` put together from `arcs` ([`Topology::chain_coords`]).
+pub(crate) fn chain_coords(chain: &Chain, arcs: &Arcs) -> Vec<Coord> {
+    // Consecutive arcs share their joint, and a ring's last arc ends at
+    // its first position: the count when every joint is one position
+    // (a vector grown by doubling would hold a third more on average).
+    let joined = (chain.arcs.iter().map(|r| arcs[r.index()].len()))
+        .sum::<usize>()
+        .saturating_sub(chain.arcs.len().saturating_sub(1));
+    let least = if chain.kind == ChainKind::Ring { 4 } else { 0 };
+    let mut out: Vec<Coord> = Vec::with_capacity(joined.max(least));
+    for r in &chain.arcs {
+        let arc = &arcs[r.index()];
+        let mut push = |c: Coord| {
+            if out.last().map(|&l| key(l)) != Some(key(c)) {
+                out.push(c);
+            }
+        };
+        if r.reversed {
+            arc.iter().rev().for_each(|&c| push(c));
+        } else {
+            arc.iter().for_each(|&c| push(c));
+        }
+    }
+    if chain.kind == ChainKind::Ring {
+        if let Some(&first) = out.first() {
+            if out.len() == 1 || key(first) != key(out[out.len() - 1]) {
+                out.push(first);
+            }
+            // A ring collapsed to one or two positions still has the four
+            // a ring needs (RFC 7946).
+            while out.len() < 4 {
+                out.push(first);
+            }
+        }
+    }
+    out
 }
 
 /// Cuts chains into arcs and finds each arc again when another chain runs

@@ -76,7 +76,7 @@ fn main() -> ExitCode {
         }
     };
     step("smoothing");
-    let out = coverage.assemble(&smoothed.arcs);
+    let out = coverage.into_geometries(&smoothed.arcs);
     step("assembling");
     println!("{} geometries", out.len());
     ExitCode::SUCCESS

@@ -118,7 +118,8 @@ pub struct Together {
 }
 
 /// Smooths geometries as one coverage (positions within `snap` joined
-/// first). Errors name `where_`, or the geometry at fault by `place`.
+/// first), keeping the coverage and its smoothed arcs (for TopoJSON). Errors
+/// name `where_`, or the geometry at fault by `place`.
 pub fn smooth_together(
     geoms: Vec<geo_types::Geometry<f64>>,
     opts: &SmoothOptions,
@@ -126,6 +127,41 @@ pub fn smooth_together(
     where_: &str,
     place: &dyn Fn(usize) -> String,
 ) -> Result<Together> {
+    let (coverage, s) = smooth_coverage(geoms, opts, snap, where_, place)?;
+    Ok(Together {
+        geometries: coverage.assemble(&s.arcs),
+        stats: s.stats,
+        coverage,
+        arcs: s.arcs,
+    })
+}
+
+/// The smoothed geometries of [`smooth_together`] and what smoothing did,
+/// the coverage let go of as they are put together (a smaller peak for a
+/// large layer).
+///
+/// # Errors
+///
+/// As [`smooth_together`].
+pub fn smooth_into_geometries(
+    geoms: Vec<geo_types::Geometry<f64>>,
+    opts: &SmoothOptions,
+    snap: Option<f64>,
+    where_: &str,
+    place: &dyn Fn(usize) -> String,
+) -> Result<(Vec<geo_types::Geometry<f64>>, Stats)> {
+    let (coverage, s) = smooth_coverage(geoms, opts, snap, where_, place)?;
+    Ok((coverage.into_geometries(&s.arcs), s.stats))
+}
+
+/// The coverage of `geoms` and its smoothing.
+fn smooth_coverage(
+    geoms: Vec<geo_types::Geometry<f64>>,
+    opts: &SmoothOptions,
+    snap: Option<f64>,
+    where_: &str,
+    place: &dyn Fn(usize) -> String,
+) -> Result<(Coverage, bzspline_geo::Smoothed)> {
     let coverage = Coverage::builder(geoms)
         .snap(snap)
         .frame(opts.frame)
@@ -135,12 +171,7 @@ pub fn smooth_together(
         .topology()
         .smooth(opts)
         .map_err(|e| located(&coverage, &e, place, where_))?;
-    Ok(Together {
-        geometries: coverage.assemble(&s.arcs),
-        stats: s.stats,
-        coverage,
-        arcs: s.arcs,
-    })
+    Ok((coverage, s))
 }
 
 /// Smooths every feature's geometry of `doc` on its own, as a coverage of
@@ -180,7 +211,7 @@ pub fn smooth_apart(
             .smooth(opts)
             .map_err(|e| located(&coverage, &e, &|_| place(i), where_))?;
         total += &s.stats;
-        out.extend(coverage.assemble(&s.arcs));
+        out.extend(coverage.into_geometries(&s.arcs));
     }
     Ok((out, total))
 }

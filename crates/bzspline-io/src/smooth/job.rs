@@ -296,8 +296,7 @@ impl Job {
         let (out, stats) = if self.settings.independent {
             coverage::smooth_apart(geoms, lib, name, &place)?
         } else {
-            let t = coverage::smooth_together(geoms, lib, snap, name, &place)?;
-            (t.geometries, t.stats)
+            coverage::smooth_into_geometries(geoms, lib, snap, name, &place)?
         };
         self.total += &stats;
         Ok(out)
