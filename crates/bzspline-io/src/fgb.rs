@@ -370,16 +370,19 @@ pub fn write(path: &Path, features: &dyn Source, schema: Option<&Schema>) -> Res
     let stem = path
         .file_stem()
         .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-    let bytes =
-        to_bytes(features, schema, &stem).map_err(|e| anyhow!("{}: {e}", path.display()))?;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
     let mut tmp = layer::staging_file(dir, "")
         .with_context(|| format!("creating a file in {}", dir.display()))?;
-    std::io::Write::write_all(&mut tmp, &bytes)
-        .with_context(|| format!("writing {}", path.display()))?;
+    // Written straight to the file: a large layer's bytes are never all
+    // held at once.
+    let mut out = std::io::BufWriter::new(tmp.as_file_mut());
+    write_to(&mut out, features, schema, &stem)
+        .and_then(|()| std::io::Write::flush(&mut out).map_err(Into::into))
+        .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    drop(out);
     tmp.persist(path)
         .map_err(|e| e.error)
         .with_context(|| format!("writing {}", path.display()))?;
@@ -393,6 +396,18 @@ pub fn write(path: &Path, features: &dyn Source, schema: Option<&Schema>) -> Res
 ///
 /// As [`write()`].
 pub fn to_bytes(features: &dyn Source, schema: Option<&Schema>, name: &str) -> Result<Vec<u8>> {
+    let mut out = Vec::new();
+    write_to(&mut out, features, schema, name)?;
+    Ok(out)
+}
+
+/// Writes the FlatGeobuf file of [`to_bytes`] to `out`.
+fn write_to(
+    out: &mut impl std::io::Write,
+    features: &dyn Source,
+    schema: Option<&Schema>,
+    name: &str,
+) -> Result<()> {
     let name = match schema {
         Some(s) if !s.name.is_empty() => s.name.clone(),
         _ => name.to_owned(),
@@ -482,10 +497,8 @@ pub fn to_bytes(features: &dyn Source, schema: Option<&Schema>, name: &str) -> R
             bail!("feature {i}: {}", one_line(&e));
         }
     }
-    let mut out = Vec::new();
-    fgb.write(&mut out)
-        .map_err(|e| anyhow!("{}", one_line(&e)))?;
-    Ok(out)
+    fgb.write(out).map_err(|e| anyhow!("{}", one_line(&e)))?;
+    Ok(())
 }
 
 /// A property's value as its column holds it.
