@@ -8,7 +8,7 @@ use clap::Parser;
 /// freed holes resident, mimalloc reuses them (BENCHMARKS.md, peak memory of `smooth`).
 /// Its version 2 (the crate's `v2`) hands freed pages back to the system after 10 ms
 /// where version 3 waits a second: each step of `smooth` frees what the next no longer
-/// needs, and with version 3 the command's peak on 10^6 polygons was 14 % higher.
+/// needs, and with version 3 the command's peak on 10^6 polygons was 15-24 % higher.
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
