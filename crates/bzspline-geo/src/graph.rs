@@ -37,14 +37,20 @@ pub(crate) struct Paths {
 }
 
 impl Paths {
-    pub(crate) fn of<C: AsRef<[Coord]>>(chains: &[(ChainKind, C)]) -> Result<Paths, Error> {
+    /// The paths of `chains`, taken one at a time: chains given by value are
+    /// let go of as soon as their ids are found, so that their positions and
+    /// the distinct positions are not all held at once.
+    pub(crate) fn of<C: AsRef<[Coord]>>(
+        chains: impl IntoIterator<Item = (ChainKind, C)>,
+    ) -> Result<Paths, Error> {
+        let chains = chains.into_iter();
         // The ids by their positions' bits, the positions themselves held
         // once, in `points`.
         let mut ids: HashTable<u32> = HashTable::new();
         let hash = |k: (u64, u64)| FxBuildHasher.hash_one(k);
         let mut points: Vec<Coord> = Vec::new();
-        let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.len());
-        for (ci, (kind, coords)) in chains.iter().enumerate() {
+        let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.size_hint().0);
+        for (ci, (kind, coords)) in chains.enumerate() {
             let coords = coords.as_ref();
             let mut path: Vec<u32> = Vec::with_capacity(coords.len());
             for (pi, &c) in coords.iter().enumerate() {
@@ -73,12 +79,12 @@ impl Paths {
                     path.push(id);
                 }
             }
-            if *kind == ChainKind::Ring {
+            if kind == ChainKind::Ring {
                 while path.len() > 1 && path.first() == path.last() {
                     path.pop();
                 }
             }
-            paths.push((*kind, path));
+            paths.push((kind, path));
         }
         Ok(Paths { points, paths })
     }

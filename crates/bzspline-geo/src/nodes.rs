@@ -65,7 +65,7 @@ impl Nodes {
     ///
     /// [`Error::NonFinite`] for a coordinate that is not finite.
     pub fn of(chains: &[(ChainKind, Vec<Coord>)]) -> Result<Nodes, Error> {
-        let Paths { points, paths } = Paths::of(chains)?;
+        let Paths { points, paths } = Paths::of(chains.iter().map(|(k, c)| (*k, c)))?;
         let (junction, _) = junctions(points.len(), &paths);
         let keys = points
             .iter()
@@ -145,7 +145,7 @@ pub struct Meeting {
 ///
 /// [`Error::NonFinite`] for a coordinate that is not finite.
 pub fn meetings(chains: &[(ChainKind, Vec<Coord>)]) -> Result<Vec<Meeting>, Error> {
-    let Paths { points, paths } = Paths::of(chains)?;
+    let Paths { points, paths } = Paths::of(chains.iter().map(|(k, c)| (*k, c)))?;
     let (junction, seen) = junctions(points.len(), &paths);
     Ok(points
         .iter()

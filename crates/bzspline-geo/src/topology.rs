@@ -112,7 +112,8 @@ impl Topology {
     ) -> Result<Topology, Error> {
         let polygons = Ragged::from(polygons);
         check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
-        Ok(Topology::from_paths(Paths::of(chains)?, polygons, nodes))
+        let paths = Paths::of(chains.iter().map(|(k, c)| (*k, c)))?;
+        Ok(Topology::from_paths(paths, polygons, nodes))
     }
 
     /// As [`Topology::from_chains_with_nodes`], letting go of the chains'
@@ -123,9 +124,7 @@ impl Topology {
         nodes: Nodes,
     ) -> Result<Topology, Error> {
         check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
-        let paths = Paths::of(&chains)?;
-        drop(chains);
-        Ok(Topology::from_paths(paths, polygons, nodes))
+        Ok(Topology::from_paths(Paths::of(chains)?, polygons, nodes))
     }
 
     /// The arcs of chains given as paths of distinct positions.
@@ -137,17 +136,17 @@ impl Topology {
                 *j |= nodes.contains(*p);
             }
         }
-        let mut b = Builder::new(points.iter().map(|&p| key(p)).collect());
+        // Each path is let go of once cut, as the chains are in `Paths::of`.
+        let mut b = Builder::new(&points);
         let mut out_chains = Vec::with_capacity(paths.len());
-        for (kind, path) in &paths {
+        for (kind, path) in paths {
             let arcs = match kind {
-                ChainKind::Line => b.cut_line(path, &junction),
-                ChainKind::Ring => b.cut_ring(path, &junction),
+                ChainKind::Line => b.cut_line(&path, &junction),
+                ChainKind::Ring => b.cut_ring(&path, &junction),
             };
-            out_chains.push(Chain { kind: *kind, arcs });
+            out_chains.push(Chain { kind, arcs });
         }
-        drop(paths);
-        let arcs = b.arcs(&points);
+        let arcs = b.arcs();
         Topology {
             arcs,
             chains: out_chains,
@@ -337,10 +336,9 @@ pub(crate) fn chain_coords(chain: &Chain, arcs: &Arcs) -> Vec<Coord> {
 /// whose sequence of positions (compared by their bits) is the smaller, a
 /// closed one from its smallest position in its smaller direction. So a part
 /// of a coverage holds each of its arcs exactly as the whole does.
-#[derive(Default)]
-struct Builder {
-    /// Each position's bits, by id.
-    keys: Vec<(u64, u64)>,
+struct Builder<'a> {
+    /// Each position, by id (compared by [`key`]).
+    points: &'a [Coord],
     /// The arcs found so far.
     arcs: ArcIds,
     /// The arcs by what they hold ([`ArcIds::found_by`]).
@@ -405,12 +403,19 @@ fn arc_hash(closed: bool, ids: &[u32]) -> u64 {
     FxBuildHasher.hash_one((closed, ids))
 }
 
-impl Builder {
-    fn new(keys: Vec<(u64, u64)>) -> Builder {
+impl<'a> Builder<'a> {
+    fn new(points: &'a [Coord]) -> Builder<'a> {
         Builder {
-            keys,
-            ..Builder::default()
+            points,
+            arcs: ArcIds::default(),
+            index: HashTable::new(),
+            scratch: Vec::new(),
         }
+    }
+
+    /// The bits of position `id`, by which arcs are put in canonical form.
+    fn key(&self, id: u32) -> (u64, u64) {
+        key(self.points[id as usize])
     }
 
     /// The arc `scratch` (closed or not), stored when it is new.
@@ -436,12 +441,11 @@ impl Builder {
     }
 
     fn open_arc(&mut self, run: &[u32]) -> ArcRef {
-        let k = &self.keys;
         let reversed = run
             .iter()
             .rev()
-            .map(|&i| k[i as usize])
-            .lt(run.iter().map(|&i| k[i as usize]));
+            .map(|&i| self.key(i))
+            .lt(run.iter().map(|&i| self.key(i)));
         self.scratch.clear();
         if reversed {
             self.scratch.extend(run.iter().rev());
@@ -492,14 +496,13 @@ impl Builder {
     /// and in either direction.
     fn closed_arc(&mut self, path: &[u32]) -> ArcRef {
         let k = path.len();
-        let keys = &self.keys;
-        let m = (0..k).min_by_key(|&i| keys[path[i] as usize]).unwrap_or(0);
+        let m = (0..k).min_by_key(|&i| self.key(path[i])).unwrap_or(0);
         let fwd = (0..k).map(|j| path[(m + j) % k]);
         let bwd = (0..k).map(|j| path[(m + k - j) % k]);
         let reversed = bwd
             .clone()
-            .map(|i| keys[i as usize])
-            .lt(fwd.clone().map(|i| keys[i as usize]));
+            .map(|i| self.key(i))
+            .lt(fwd.clone().map(|i| self.key(i)));
         self.scratch.clear();
         if reversed {
             self.scratch.extend(bwd);
@@ -513,7 +516,8 @@ impl Builder {
     }
 
     /// The arcs' positions.
-    fn arcs(&self, points: &[Coord]) -> Arcs {
+    fn arcs(&self) -> Arcs {
+        let points = self.points;
         let ArcIds { ids, starts, .. } = &self.arcs;
         let mut arcs = Arcs::with_capacity(starts.len().saturating_sub(1), ids.len());
         for w in starts.windows(2) {
