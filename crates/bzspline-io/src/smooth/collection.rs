@@ -1,9 +1,9 @@
 //! A GeoJSON FeatureCollection read one feature at a time: each feature
 //! checked and converted as the whole document would be
 //! ([`crate::input::check_document`], geojson's types), its geometry kept
-//! as geo-types and the rest of it (properties, id, foreign members) as
-//! geojson's [`Feature`] without coordinates, never the document's JSON
-//! tree. A collection in the plane is smoothed where it is and written a
+//! as geo-types and the rest of it (properties, id, foreign members) as the
+//! compact JSON text of geojson's [`Feature`] without coordinates, read
+//! again when the feature is written, never the document's JSON tree. A collection in the plane is smoothed where it is and written a
 //! feature at a time, to the same text as the document would give; anything
 //! else (positions with z or of more than 3 numbers, a refusal of any kind,
 //! another type of document) is left to the document's path, which reads it
@@ -11,6 +11,7 @@
 
 use std::borrow::Cow;
 use std::fmt;
+use std::sync::OnceLock;
 
 use geojson::{Feature, FeatureCollection, GeometryValue};
 use serde::de::{self, DeserializeSeed, MapAccess, SeqAccess, Visitor};
@@ -19,10 +20,14 @@ use serde_json::{Map, Value};
 
 use crate::features::{Source, NULL};
 
-/// One feature: geojson's, its geometry's coordinates taken out (an empty
-/// collection in their place), and that geometry in the plane.
+/// One feature: geojson's as compact JSON, its geometry's coordinates
+/// taken out (an empty collection in their place), and that geometry in the
+/// plane. The text takes a few bytes beyond the properties' own, where
+/// geojson's `Feature` with its maps of JSON values takes hundreds.
 struct Item {
-    feature: Feature,
+    rest: Box<str>,
+    /// Whether the feature has a geometry.
+    geometry: bool,
     shape: Option<geo_types::Geometry<f64>>,
 }
 
@@ -31,6 +36,9 @@ pub struct Collection {
     /// The collection without features (its bbox and foreign members).
     head: FeatureCollection,
     items: Vec<Item>,
+    /// Every feature's properties, read from its text the first time a
+    /// writer of another format asks for one ([`Source`]).
+    properties: OnceLock<Vec<Map<String, Value>>>,
 }
 
 /// A feature as the document's path would take it, `None` where that path
@@ -54,7 +62,12 @@ fn item(mut v: Value) -> Option<Item> {
             Some(shape)
         }
     };
-    Some(Item { feature, shape })
+    let rest = serde_json::to_string(&feature).ok()?.into_boxed_str();
+    Some(Item {
+        rest,
+        geometry: feature.geometry.is_some(),
+        shape,
+    })
 }
 
 /// The `features` array, one feature at a time.
@@ -124,7 +137,11 @@ impl Collection {
         }
         members.insert("features".to_owned(), Value::Array(Vec::new()));
         let head: FeatureCollection = serde_json::from_value(Value::Object(members)).ok()?;
-        Some(Collection { head, items })
+        Some(Collection {
+            head,
+            items,
+            properties: OnceLock::new(),
+        })
     }
 
     /// The number of features.
@@ -154,35 +171,38 @@ impl Collection {
     /// of features without geometry are dropped.
     pub fn put_geometries(&mut self, geometries: Vec<geo_types::Geometry<f64>>) {
         for (item, g) in self.items.iter_mut().zip(geometries) {
-            if item.feature.geometry.is_some() {
+            if item.geometry {
                 item.shape = Some(g);
             }
         }
     }
 
-    /// Feature `i` as the document's path gives it: its geometry's
-    /// coordinates put back, the geometry's bbox (no longer tight) dropped.
-    fn feature(&self, i: usize) -> Cow<'_, Feature> {
+    /// Feature `i` as the document's path gives it: read again from its
+    /// text, its geometry's coordinates put back and the geometry's bbox
+    /// (no longer tight) dropped (while its geometry is taken out to be
+    /// smoothed, without coordinates).
+    fn feature(&self, i: usize) -> serde_json::Result<Feature> {
         let item = &self.items[i];
-        match self.geometry_of(i) {
-            Some(g) => {
-                let mut f = item.feature.clone();
-                f.geometry = Some(g);
-                Cow::Owned(f)
-            }
-            None => Cow::Borrowed(&item.feature),
+        let mut f: Feature = serde_json::from_str(&item.rest)?;
+        if let (Some(g), Some(shape)) = (f.geometry.as_mut(), item.shape.as_ref()) {
+            g.value = GeometryValue::from(shape);
+            g.bbox = None;
         }
+        Ok(f)
     }
 
-    /// Feature `i`'s geometry with its coordinates put back, its bbox
-    /// dropped; `None` for none.
-    fn geometry_of(&self, i: usize) -> Option<geojson::Geometry> {
-        let item = &self.items[i];
-        let (g, shape) = (item.feature.geometry.as_ref()?, item.shape.as_ref()?);
-        let mut g = g.clone();
-        g.value = GeometryValue::from(shape);
-        g.bbox = None;
-        Some(g)
+    /// Every feature's properties (empty for none), read once.
+    fn all_properties(&self) -> &[Map<String, Value>] {
+        self.properties.get_or_init(|| {
+            (0..self.len())
+                .map(|i| {
+                    self.feature(i)
+                        .ok()
+                        .and_then(|f| f.properties)
+                        .unwrap_or_default()
+                })
+                .collect()
+        })
     }
 
     /// Writes the collection as compact GeoJSON, a feature at a time, to
@@ -206,7 +226,7 @@ impl Collection {
             if i > 0 {
                 w.write_all(b",")?;
             }
-            crate::model::write_json_compact(&mut w, &*self.feature(i))?;
+            crate::model::write_json_compact(&mut w, &self.feature(i)?)?;
         }
         w.write_all(&head[open..])
     }
@@ -217,22 +237,16 @@ impl Source for Collection {
         self.len()
     }
     fn geometry(&self, i: usize) -> Cow<'_, Value> {
-        let g = self
-            .geometry_of(i)
-            .or_else(|| self.items[i].feature.geometry.clone());
+        let g = self.feature(i).ok().and_then(|f| f.geometry);
         Cow::Owned(g.map_or(Value::Null, |g| {
             serde_json::to_value(g).unwrap_or(Value::Null)
         }))
     }
     fn property(&self, i: usize, name: &str) -> Cow<'_, Value> {
-        let props = self.items[i].feature.properties.as_ref();
-        Cow::Borrowed(props.and_then(|p| p.get(name)).unwrap_or(&NULL))
+        Cow::Borrowed(self.all_properties()[i].get(name).unwrap_or(&NULL))
     }
     fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
-        match &self.items[i].feature.properties {
-            Some(m) => Cow::Borrowed(m),
-            None => Cow::Owned(Map::new()),
-        }
+        Cow::Borrowed(&self.all_properties()[i])
     }
 }
 
@@ -339,6 +353,25 @@ mod tests {
         s.options.tolerance = Some(20.0);
         let (a, b) = both(&text, &s);
         assert_eq!(a, b);
+    }
+
+    #[test]
+    fn a_collection_gives_each_features_properties_and_geometry() {
+        let doc = collection();
+        let job = Job::new(settings(false));
+        let c = job.read_collection(&doc.to_string()).unwrap();
+        let features = doc["features"].as_array().unwrap();
+        assert_eq!(c.count(), features.len());
+        for (i, f) in features.iter().enumerate() {
+            let want = f["properties"].as_object().cloned().unwrap_or_default();
+            assert_eq!(*c.properties(i), want, "feature {i}");
+            for (k, v) in &want {
+                assert_eq!(*c.property(i, k), *v, "feature {i}, {k}");
+            }
+            assert_eq!(*c.property(i, "absent"), Value::Null);
+            let g = c.geometry(i);
+            assert_eq!(g["type"], f["geometry"]["type"], "feature {i}");
+        }
     }
 
     #[test]
