@@ -1,16 +1,16 @@
 #!/usr/bin/env python3
 """Peak memory of `bzspline smooth` on one large coverage in every layer
 format: a mosaic of nx by ny cells (bench/dask_coverage.py's, every border
-shared by its two cells) written as GeoJSON, GeoPackage and FlatGeobuf (by
-pyogrio's GDAL) and GeoParquet (by geopandas and pyarrow), each smoothed as
-one coverage into a file of its own format.
+shared by its two cells) written as GeoJSON, GeoPackage, FlatGeobuf and ESRI
+Shapefile (by pyogrio's GDAL) and GeoParquet (by geopandas and pyarrow), each
+smoothed as one coverage into a file of its own format.
 
     cargo build --release -p bzspline-cli
     cargo build --release -p bzspline-io --all-features --example layer_memory
     python3 bench/maps/memory.py [--nx 1000] [--ny 1000] [--k 2] [--bin target/release/bzspline]
 
 Needs geopandas, pyogrio and pyarrow. Prints, per format, the input's size
-S, the peak resident memory of the command (GNU time's maximum resident set
+S (a Shapefile's `.shp`, `.shx` and `.dbf` together), the peak resident memory of the command (GNU time's maximum resident set
 size), that peak over S, the seconds, the reference of 2 S plus the
 coverage's positions (16 bytes each), and, from the layer_memory example
 (for the layer formats), the peak once the layer is read, before its
@@ -58,9 +58,11 @@ def main():
             "GeoPackage": os.path.join(d, "cells.gpkg"),
             "FlatGeobuf": os.path.join(d, "cells.fgb"),
             "GeoParquet": os.path.join(d, "cells.parquet"),
+            "Shapefile": os.path.join(d, "cells.shp"),
         }
         gdf.to_parquet(files["GeoParquet"])
-        for name, driver in [("GeoJSON", "GeoJSON"), ("GeoPackage", "GPKG"), ("FlatGeobuf", "FlatGeobuf")]:
+        for name, driver in [("GeoJSON", "GeoJSON"), ("GeoPackage", "GPKG"), ("FlatGeobuf", "FlatGeobuf"),
+                             ("Shapefile", "ESRI Shapefile")]:
             gdf.to_file(files[name], driver=driver, engine="pyogrio")
         print("| input | S, MB | peak, MB | peak / S | 2 S + positions, MB | s | peak once read, MB |")
         print("|---|---:|---:|---:|---:|---:|---:|")
@@ -71,7 +73,7 @@ def main():
             if r.returncode != 0:
                 sys.exit(f"{name}: {r.stderr}")
             kb, secs = r.stderr.strip().splitlines()[-1].split()
-            size = os.path.getsize(path) / 1e6
+            size = sum(os.path.getsize(f) for f in siblings(path)) / 1e6
             peak = int(kb) / 1e3
             ref = 2 * size + positions * 16 / 1e6
             read = "-"
@@ -82,7 +84,16 @@ def main():
                 read = next(f"{int(l.split()[2]):,}" for l in r.stdout.splitlines()
                             if l.startswith("reading"))
             print(f"| {name} | {size:,.0f} | {peak:,.0f} | {peak / size:.1f} | {ref:,.0f} | {float(secs):.1f} | {read} |")
-            os.remove(out)
+            for f in siblings(out, (".shx", ".dbf", ".prj", ".cpg")):
+                os.remove(f)
+
+
+def siblings(path, exts=(".shx", ".dbf")):
+    """The file at `path`, with those of a Shapefile's files `exts` that are there."""
+    stem, ext = os.path.splitext(path)
+    if ext != ".shp":
+        return [path]
+    return [path] + [stem + e for e in exts if os.path.exists(stem + e)]
 
 
 if __name__ == "__main__":

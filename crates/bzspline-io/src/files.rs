@@ -148,11 +148,7 @@ pub fn write(
     let name = path.display();
     match output {
         #[cfg(feature = "shapefile")]
-        Output::Shapefile => {
-            let files =
-                crate::shp::write(features, schema).map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
-            crate::shp::save(path, &files)
-        }
+        Output::Shapefile => crate::shp::write_file(path, features, schema),
         #[cfg(feature = "geopackage")]
         Output::Geopackage => crate::gpkg::write(path, features, schema),
         #[cfg(feature = "flatgeobuf")]

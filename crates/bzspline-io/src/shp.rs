@@ -2,8 +2,8 @@
 //! a GeoJSON FeatureCollection (attributes as properties, in the table's
 //! field order) that the smoothing and the point readers take, and written
 //! back from one, with the input's fields (names, types, widths) and its
-//! `.prj` kept. Written files are built in memory and renamed into place
-//! only when every one of them is complete.
+//! `.prj` kept. Written files go to staging files a record at a time and
+//! are renamed into place only when every one of them is complete.
 //!
 //! Shapes map to GeoJSON as GDAL maps them: a Polyline of one part is a
 //! LineString, of several a MultiLineString; a Polygon's outer rings
@@ -12,7 +12,7 @@
 //! closed; Z is the third coordinate and M is dropped. Multipatch shapes are
 //! refused.
 
-use std::io::Cursor;
+use std::io::{BufReader, BufWriter, Cursor, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context, Result};
@@ -469,7 +469,8 @@ pub type Files = Vec<(&'static str, Vec<u8>)>;
 /// a `.dbf` allows are cut (and numbered where two would meet, as GDAL
 /// does); text fields without a width are as wide as their longest value. Every feature must be of one
 /// kind (points, multipoints, lines or polygons), all with z or none; a
-/// feature without geometry is a null shape record.
+/// feature without geometry is a null shape record. [`write_file`] writes
+/// the same bytes to files without holding them.
 ///
 /// # Errors
 ///
@@ -477,6 +478,120 @@ pub type Files = Vec<(&'static str, Vec<u8>)>;
 /// (naming the feature and field), no feature at all or none with a
 /// geometry.
 pub fn write(features: &dyn Source, schema: Option<&Schema>) -> Result<Files> {
+    let (mut shp, mut shx, mut dbf) = (
+        Cursor::new(Vec::new()),
+        Cursor::new(Vec::new()),
+        Cursor::new(Vec::new()),
+    );
+    let (nulls, prj) = write_to(features, schema, &mut shp, &mut shx, &mut dbf)?;
+    let (shp, shx) = if nulls.is_empty() {
+        (shp.into_inner(), shx.into_inner())
+    } else {
+        let (mut out, mut index) = (Cursor::new(Vec::new()), Cursor::new(Vec::new()));
+        with_null_shapes(
+            shp.get_ref().as_slice(),
+            &nulls,
+            features.count(),
+            &mut out,
+            &mut index,
+        )?;
+        (out.into_inner(), index.into_inner())
+    };
+    let mut files: Files = vec![("shp", shp), ("shx", shx), ("dbf", dbf.into_inner())];
+    if let Some(p) = prj {
+        files.push(("prj", p.into_bytes()));
+    }
+    files.push(("cpg", b"UTF-8".to_vec()));
+    Ok(files)
+}
+
+/// Writes the Shapefile of [`write()`] as `path` (the `.shp`) and its
+/// siblings, a record at a time: each file goes to a staging file in the
+/// same folder, and all are renamed into place only when every one was
+/// written, as [`save`] does.
+///
+/// # Errors
+///
+/// As [`write()`], each naming `path`; when a file cannot be created,
+/// written or renamed.
+pub fn write_file(path: &Path, features: &dyn Source, schema: Option<&Schema>) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let stage = || {
+        layer::staging_file(dir, "")
+            .with_context(|| format!("creating a file in {}", dir.display()))
+    };
+    let (mut shp, mut shx, mut dbf) = (stage()?, stage()?, stage()?);
+    let (nulls, prj) = {
+        let (mut s, mut x, mut d) = (
+            BufWriter::new(shp.as_file_mut()),
+            BufWriter::new(shx.as_file_mut()),
+            BufWriter::new(dbf.as_file_mut()),
+        );
+        let written = write_to(features, schema, &mut s, &mut x, &mut d)
+            .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        for (w, ext) in [(&mut s, "shp"), (&mut x, "shx"), (&mut d, "dbf")] {
+            w.flush()
+                .with_context(|| format!("writing {}", sibling(path, ext).display()))?;
+        }
+        written
+    };
+    if !nulls.is_empty() {
+        // The records written are those with a geometry: copy them again
+        // with a null shape record at each feature without one.
+        let (mut out, mut index) = (stage()?, stage()?);
+        let shapes = shp.as_file_mut();
+        shapes
+            .seek(SeekFrom::Start(0))
+            .with_context(|| format!("writing {}", sibling(path, "shp").display()))?;
+        {
+            let (mut o, mut i) = (
+                BufWriter::new(out.as_file_mut()),
+                BufWriter::new(index.as_file_mut()),
+            );
+            with_null_shapes(
+                BufReader::new(&*shapes),
+                &nulls,
+                features.count(),
+                &mut o,
+                &mut i,
+            )
+            .and_then(|()| Ok(o.flush().and_then(|()| i.flush())?))
+            .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        }
+        (shp, shx) = (out, index);
+    }
+    let mut small: Files = Vec::new();
+    if let Some(p) = prj {
+        small.push(("prj", p.into_bytes()));
+    }
+    small.push(("cpg", b"UTF-8".to_vec()));
+    let mut done = vec![
+        (shp, sibling(path, "shp")),
+        (shx, sibling(path, "shx")),
+        (dbf, sibling(path, "dbf")),
+    ];
+    for (ext, bytes) in &small {
+        let mut tmp = stage()?;
+        tmp.write_all(bytes)
+            .with_context(|| format!("writing {}", sibling(path, ext).display()))?;
+        done.push((tmp, sibling(path, ext)));
+    }
+    persist(path, done, &small)
+}
+
+/// Writes the `.shp`, `.shx` (the records of the features with a geometry,
+/// numbered from 1) and `.dbf` of [`write()`] to `shp`, `shx` and `dbf`;
+/// gives the features without geometry and the `.prj`.
+fn write_to<W: Write + Seek>(
+    features: &dyn Source,
+    schema: Option<&Schema>,
+    shp: &mut W,
+    shx: &mut W,
+    dbf: &mut W,
+) -> Result<(Vec<usize>, Option<String>)> {
     if features.is_empty() {
         bail!("no features to write as a Shapefile");
     }
@@ -505,99 +620,102 @@ pub fn write(features: &dyn Source, schema: Option<&Schema>) -> Result<Files> {
         None => Some(layer::ESRI_WGS84_PRJ.to_owned()),
         Some(s) => s.crs.as_ref().and_then(Crs::prj),
     };
-    let (mut shp, mut shx, mut dbf) = (
-        Cursor::new(Vec::new()),
-        Cursor::new(Vec::new()),
-        Cursor::new(Vec::new()),
-    );
-    {
-        let mut table = builder.build_with_dest(&mut dbf);
-        let mut shapes = shapefile::ShapeWriter::with_shx(&mut shp, &mut shx);
-        for i in 0..features.count() {
-            let record = record(features, i, &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
-            table
-                .write_record(&record)
-                .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
-            let g = &*features.geometry(i);
-            if g.is_null() {
-                continue; // its null shape is spliced in below
-            }
-            let w = &mut shapes;
-            match kind {
-                Kind::Points(false) => put(w, point(g)),
-                Kind::Points(true) => put(w, point_z(g)),
-                Kind::MultiPoints(false) => put(w, points(g, xy_of).map(Multipoint::new)),
-                Kind::MultiPoints(true) => put(w, points(g, xyz_of).map(MultipointZ::new)),
-                Kind::Lines(false) => put(w, parts(g, xy_of).map(Polyline::with_parts)),
-                Kind::Lines(true) => put(w, parts(g, xyz_of).map(PolylineZ::with_parts)),
-                Kind::Polygons(false) => put(w, rings(g, xy_of).map(Polygon::with_rings)),
-                Kind::Polygons(true) => put(w, rings(g, xyz_of).map(PolygonZ::with_rings)),
-            }
-            .map_err(|e| anyhow!("feature {i}: {e}"))?;
+    let mut nulls = Vec::new();
+    let mut table = builder.build_with_dest(dbf);
+    let mut shapes = shapefile::ShapeWriter::with_shx(&mut *shp, shx);
+    for i in 0..features.count() {
+        let record = record(features, i, &fields).map_err(|e| anyhow!("feature {i}: {e}"))?;
+        table
+            .write_record(&record)
+            .map_err(|e| anyhow!("feature {i}: {}", one_line(&e)))?;
+        let g = &*features.geometry(i);
+        if g.is_null() {
+            nulls.push(i); // its null shape is spliced in afterwards
+            continue;
         }
+        let w = &mut shapes;
+        match kind {
+            Kind::Points(false) => put(w, point(g)),
+            Kind::Points(true) => put(w, point_z(g)),
+            Kind::MultiPoints(false) => put(w, points(g, xy_of).map(Multipoint::new)),
+            Kind::MultiPoints(true) => put(w, points(g, xyz_of).map(MultipointZ::new)),
+            Kind::Lines(false) => put(w, parts(g, xy_of).map(Polyline::with_parts)),
+            Kind::Lines(true) => put(w, parts(g, xyz_of).map(PolylineZ::with_parts)),
+            Kind::Polygons(false) => put(w, rings(g, xy_of).map(Polygon::with_rings)),
+            Kind::Polygons(true) => put(w, rings(g, xyz_of).map(PolygonZ::with_rings)),
+        }
+        .map_err(|e| anyhow!("feature {i}: {e}"))?;
     }
-    let nulls: Vec<usize> = (0..features.count())
-        .filter(|&i| features.geometry(i).is_null())
-        .collect();
-    let (shp, shx) = with_null_shapes(&shp.into_inner(), &nulls, features.count())?;
-    let mut files: Files = vec![("shp", shp), ("shx", shx), ("dbf", dbf.into_inner())];
-    if let Some(p) = prj {
-        files.push(("prj", p.into_bytes()));
+    shapes
+        .finalize()
+        .map_err(|e| anyhow!("the shapes: {}", one_line(&e)))?;
+    table
+        .finalize()
+        .map_err(|e| anyhow!("the table: {}", one_line(&e)))?;
+    drop((shapes, table));
+    // A record's offset and the file's length are counted in 16-bit words
+    // in an i32: the writer itself does not check that they fit.
+    let bytes = shp.seek(SeekFrom::End(0))?;
+    if bytes / 2 > i32::MAX as u64 {
+        bail!("the Shapefile exceeds 2 GB");
     }
-    files.push(("cpg", b"UTF-8".to_vec()));
-    Ok(files)
+    Ok((nulls, prj))
 }
 
-/// The `.shp` and `.shx` of `shp` (records of the features with a
-/// geometry, numbered from 1) with a null shape record (shape type 0) at
-/// each of the features `nulls` (increasing) of `total`: records renumbered,
-/// offsets and file lengths (in 16-bit words) written again; the bounding
-/// box is the shapes'.
-fn with_null_shapes(shp: &[u8], nulls: &[usize], total: usize) -> Result<(Vec<u8>, Vec<u8>)> {
+/// Copies the records of `shp` (a `.shp` of the features with a geometry,
+/// numbered from 1) to `out`, with a null shape record (shape type 0) at each
+/// of the features `nulls` (increasing) of `total`, and writes its index to
+/// `index`: records renumbered, offsets and file lengths (in 16-bit words)
+/// written again; the bounding box is the shapes'.
+fn with_null_shapes<W: Write + Seek>(
+    mut shp: impl Read,
+    nulls: &[usize],
+    total: usize,
+    out: &mut W,
+    index: &mut W,
+) -> Result<()> {
     const HEADER: usize = 100;
-    let word = |b: &[u8], at: usize| -> Result<usize> {
-        let v: [u8; 4] = b
-            .get(at..at + 4)
-            .and_then(|s| s.try_into().ok())
-            .ok_or_else(|| anyhow!("a Shapefile record was cut short"))?;
-        usize::try_from(i32::from_be_bytes(v)).map_err(|_| anyhow!("a negative record length"))
-    };
-    let put = |out: &mut Vec<u8>, v: usize| -> Result<()> {
+    let cut = |_| anyhow!("a Shapefile record was cut short");
+    let word = |v: usize| -> Result<[u8; 4]> {
         let v = i32::try_from(v).map_err(|_| anyhow!("the Shapefile exceeds 2 GB"))?;
-        out.extend_from_slice(&v.to_be_bytes());
-        Ok(())
+        Ok(v.to_be_bytes())
     };
-    let mut out = shp.get(..HEADER).unwrap_or_default().to_vec();
-    let mut index = out.clone();
+    let mut header = [0u8; HEADER];
+    shp.read_exact(&mut header).map_err(cut)?;
+    out.write_all(&header)?;
+    index.write_all(&header)?;
     let (mut at, mut nulls) = (HEADER, nulls.iter().peekable());
+    let mut body = Vec::new();
     for number in 1..=total {
-        let start = out.len();
-        if nulls.peek() == Some(&&(number - 1)) {
+        let start = at;
+        let words = if nulls.peek() == Some(&&(number - 1)) {
             nulls.next();
-            put(&mut out, number)?;
-            put(&mut out, 2)?;
-            out.extend_from_slice(&0i32.to_le_bytes());
+            out.write_all(&word(number)?)?;
+            out.write_all(&word(2)?)?;
+            out.write_all(&0i32.to_le_bytes())?;
+            2
         } else {
-            let words = word(shp, at + 4)?;
-            put(&mut out, number)?;
-            put(&mut out, words)?;
-            let body = shp
-                .get(at + 8..at + 8 + 2 * words)
-                .ok_or_else(|| anyhow!("a Shapefile record was cut short"))?;
-            out.extend_from_slice(body);
-            at += 8 + 2 * words;
-        }
-        put(&mut index, start / 2)?;
-        put(&mut index, (out.len() - start - 8) / 2)?;
+            let mut head = [0u8; 8];
+            shp.read_exact(&mut head).map_err(cut)?;
+            let words = i32::from_be_bytes([head[4], head[5], head[6], head[7]]);
+            let words = usize::try_from(words).map_err(|_| anyhow!("a negative record length"))?;
+            body.resize(2 * words, 0);
+            shp.read_exact(&mut body).map_err(cut)?;
+            out.write_all(&word(number)?)?;
+            out.write_all(&word(words)?)?;
+            out.write_all(&body)?;
+            words
+        };
+        at += 8 + 2 * words;
+        index.write_all(&word(start / 2)?)?;
+        index.write_all(&word(words)?)?;
     }
-    for file in [&mut out, &mut index] {
-        let words =
-            i32::try_from(file.len() / 2).map_err(|_| anyhow!("the Shapefile exceeds 2 GB"))?;
-        if let Some(slot) = file.get_mut(24..28) {
-            slot.copy_from_slice(&words.to_be_bytes());
-        }
+    for (file, bytes) in [(out, at), (index, HEADER + 8 * total)] {
+        file.seek(SeekFrom::Start(24))?;
+        file.write_all(&word(bytes / 2)?)?;
+        file.seek(SeekFrom::End(0))?;
     }
-    Ok((out, index))
+    Ok(())
 }
 
 /// Writes `files` beside each other as `path` (the `.shp`) and its
@@ -617,10 +735,20 @@ pub fn save(path: &Path, files: &Files) -> Result<()> {
     for (ext, bytes) in files {
         let mut tmp = layer::staging_file(dir, "")
             .with_context(|| format!("creating a file in {}", dir.display()))?;
-        std::io::Write::write_all(&mut tmp, bytes)
+        tmp.write_all(bytes)
             .with_context(|| format!("writing {}", sibling(path, ext).display()))?;
         done.push((tmp, sibling(path, ext)));
     }
+    persist(path, done, files)
+}
+
+/// Renames every staging file of `done` into place, then removes a `.prj`
+/// or `.cpg` of an earlier layer at `path` that `files` does not hold.
+fn persist(
+    path: &Path,
+    done: Vec<(tempfile::NamedTempFile, PathBuf)>,
+    files: &Files,
+) -> Result<()> {
     for (tmp, dest) in done {
         tmp.persist(&dest)
             .map_err(|e| e.error)
@@ -968,7 +1096,8 @@ mod tests {
     fn features_without_geometry_are_null_shape_records() {
         let line =
             |x: f64| json!({"type": "LineString", "coordinates": [[x, 0.0], [x + 1.0, 2.0]]});
-        for nulls in [vec![0], vec![1], vec![2], vec![0, 2], vec![1, 2]] {
+        let dir = tempfile::tempdir().unwrap();
+        for nulls in [vec![], vec![0], vec![1], vec![2], vec![0, 2], vec![1, 2]] {
             let features: Vec<Value> = (0..3)
                 .map(|i| {
                     let g = if nulls.contains(&i) {
@@ -991,7 +1120,31 @@ mod tests {
             assert_eq!(shx.len(), 100 + 8 * 3);
             let words = |b: &[u8]| i32::from_be_bytes(b[24..28].try_into().unwrap()) as usize;
             assert_eq!((words(shp), words(shx)), (shp.len() / 2, shx.len() / 2));
+            // Written to files a record at a time: the same bytes, and no
+            // staging file left beside them.
+            let path = dir.path().join("t.shp");
+            write_file(&path, &input, None).unwrap();
+            for (ext, bytes) in &files {
+                assert_eq!(
+                    std::fs::read(sibling(&path, ext)).unwrap(),
+                    *bytes,
+                    "{ext}, nulls at {nulls:?}"
+                );
+            }
+            assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), files.len());
         }
+        // A refusal leaves nothing behind.
+        let mixed = fc(json!([
+            {"type": "Feature", "properties": {}, "geometry": line(0.0)},
+            {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [0, 0]}}
+        ]));
+        let err = write_file(&dir.path().join("u.shp"), &mixed, None).unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with(&format!("{}:", dir.path().join("u.shp").display())),
+            "{err}"
+        );
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 5);
         let none = fc(json!([{"type": "Feature", "properties": {}, "geometry": null}]));
         assert!(write(&none, None)
             .unwrap_err()
