@@ -1,9 +1,10 @@
-//! ESRI Shapefiles in and out: a layer's `.shp`, `.shx` and `.dbf` read into
-//! a GeoJSON FeatureCollection (attributes as properties, in the table's
-//! field order) that the smoothing and the point readers take, and written
-//! back from one, with the input's fields (names, types, widths) and its
-//! `.prj` kept. Written files go to staging files a record at a time and
-//! are renamed into place only when every one of them is complete.
+//! ESRI Shapefiles in and out: a layer's `.shp` and `.dbf` read a record at
+//! a time (its `.shx` checked by its length) into the layer's features
+//! (attributes as properties, in the table's field order) that the smoothing
+//! and the point readers take, and written back from them, with the input's
+//! fields (names, types, widths) and its `.prj` kept. Written files go to
+//! staging files a record at a time and are renamed into place only when
+//! every one of them is complete.
 //!
 //! Shapes map to GeoJSON as GDAL maps them: a Polyline of one part is a
 //! LineString, of several a MultiLineString; a Polygon's outer rings
@@ -69,6 +70,7 @@ fn sibling(shp: &Path, ext: &str) -> PathBuf {
 /// Reads the Shapefile whose `.shp` is `path`, with its `.shx` and `.dbf`
 /// (both required) and its `.prj` and `.cpg` when there are ([`read_parts`]
 /// says how the `.cpg` is used); no file may be larger than `max_bytes`.
+/// The `.shp` and the `.dbf` are read a record at a time, never held whole.
 ///
 /// # Errors
 ///
@@ -77,9 +79,8 @@ fn sibling(shp: &Path, ext: &str) -> PathBuf {
 /// shapes not, a Multipatch, a coordinate that is not finite (`x.shp: shape
 /// 4: ...`).
 pub fn read(path: &Path, max_bytes: u64) -> Result<Layer> {
-    use std::io::Read;
     let name = path.display().to_string();
-    let open = |p: &Path, what: &str| -> Result<Vec<u8>> {
+    let open = |p: &Path, what: &str| -> Result<(std::fs::File, u64)> {
         let file = std::fs::File::open(p).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound && what != "shp" {
                 anyhow!(
@@ -87,24 +88,30 @@ pub fn read(path: &Path, max_bytes: u64) -> Result<Layer> {
                     p.display()
                 )
             } else {
-                anyhow!("reading {}: {e}", p.display())
+                anyhow!("{}: {e}", p.display())
             }
         })?;
-        let mut bytes = Vec::new();
-        file.take(max_bytes.saturating_add(1))
-            .read_to_end(&mut bytes)
-            .with_context(|| format!("reading {}", p.display()))?;
-        if bytes.len() as u64 > max_bytes {
+        let len = file
+            .metadata()
+            .map_err(|e| anyhow!("{}: {e}", p.display()))?
+            .len();
+        if len > max_bytes {
             bail!(
                 "{}: larger than {max_bytes} bytes (--max-bytes); split the input or raise the limit",
                 p.display()
             );
         }
-        Ok(bytes)
+        Ok((file, len))
     };
-    let shp = open(path, "shp")?;
-    let shx = open(&sibling(path, "shx"), "shx")?;
-    let dbf = open(&sibling(path, "dbf"), "dbf")?;
+    let (shp, shp_len) = open(path, "shp")?;
+    let shx_path = sibling(path, "shx");
+    let (shx, shx_len) = open(&shx_path, "shx")?;
+    let (dbf, _) = open(&sibling(path, "dbf"), "dbf")?;
+    // The index is checked by its header and length: its offsets are not read.
+    let mut shx_head = Vec::with_capacity(4);
+    shx.take(4)
+        .read_to_end(&mut shx_head)
+        .map_err(|e| anyhow!("{}: {e}", shx_path.display()))?;
     let prj_path = sibling(path, "prj");
     let prj = match std::fs::read(&prj_path) {
         Ok(b) => Some(String::from_utf8_lossy(&b).trim().to_owned()),
@@ -115,7 +122,15 @@ pub fn read(path: &Path, max_bytes: u64) -> Result<Layer> {
         Ok(b) => Some(String::from_utf8_lossy(&b).trim().to_owned()),
         Err(_) => None,
     };
-    let mut layer = read_parts(&name, &shp, &shx, &dbf, cpg.as_deref())?;
+    let files = Parts {
+        name: &name,
+        shp: BufReader::with_capacity(1 << 16, shp),
+        shp_len,
+        shx_head: &shx_head,
+        shx_len,
+        dbf: BufReader::with_capacity(1 << 16, dbf),
+    };
+    let mut layer = files.read(cpg.as_deref())?;
     layer.schema.crs = prj.as_deref().map(Crs::from_wkt);
     Ok(layer)
 }
@@ -135,158 +150,252 @@ pub fn read_parts(
     dbf: &[u8],
     cpg: Option<&str>,
 ) -> Result<Layer> {
-    let bounds = check_records(name, shp)?;
-    let count = bounds.len();
-    let shx_name = sibling(Path::new(name), "shx").display().to_string();
-    if shx.len() != 100 + 8 * count || !shx.starts_with(&[0, 0, 0x27, 0x0a]) {
-        bail!("{shx_name}: not the index of {name} ({count} shapes)");
+    Parts {
+        name,
+        shp,
+        shp_len: shp.len() as u64,
+        shx_head: shx,
+        shx_len: shx.len() as u64,
+        dbf: Cursor::new(dbf),
     }
-    let dbf_name = sibling(Path::new(name), "dbf").display().to_string();
-    let mut builder = dbase::ReaderBuilder::new();
-    if let Some(code_page) = cpg.and_then(dbase::encoding::DynEncoding::from_name) {
-        builder = builder.with_encoding(code_page);
-    }
-    let mut table = builder
-        .build(Cursor::new(dbf))
-        .map_err(|e| anyhow!("{dbf_name}: not a dBASE table: {}", one_line(&e)))?;
-    let fields: Vec<Field> = table
-        .fields()
-        .iter()
-        .map(|f| Field {
-            key: f.name().to_owned(),
-            name: f.name().to_owned(),
-            kind: f.field_type(),
-            width: usize::from(f.length()),
-        })
-        .collect();
-    let neutral = table
-        .fields()
-        .iter()
-        .enumerate()
-        .map(|(i, f)| {
-            // A field descriptor's byte 17 holds its decimals.
-            let decimals = dbf.get(32 + 32 * i + 17).copied().map_or(0, u32::from);
-            let width = u32::from(f.length());
-            let kind = match f.field_type() {
-                FieldType::Numeric if decimals == 0 => FieldKind::Integer,
-                FieldType::Integer => FieldKind::Integer,
-                FieldType::Numeric | FieldType::Float | FieldType::Double | FieldType::Currency => {
-                    FieldKind::Real
-                }
-                FieldType::Logical => FieldKind::Boolean,
-                FieldType::Date => FieldKind::Date,
-                FieldType::DateTime => FieldKind::DateTime,
-                FieldType::Character | FieldType::Memo => FieldKind::Text,
-            };
-            layer::Field {
-                name: f.name().to_owned(),
-                kind,
-                width: Some(width),
-                decimals: Some(decimals),
-            }
-        })
-        .collect();
-    let records = table.header().num_records as usize;
-    if count != records {
-        bail!("{name}: {count} shapes but {records} records in {dbf_name}: the files do not belong together");
-    }
-    let mut features = Features::new(fields.iter().map(|f| f.name.clone()).collect());
-    let mut rows = table.iter_records();
-    for (i, &(start, end)) in bounds.iter().enumerate() {
-        // Each record on its own: the reader cannot run past it.
-        let size =
-            i32::try_from(end - start).map_err(|_| anyhow!("{name}: shape {i}: too large"))?;
-        let shape = <Shape as shapefile::ReadableShape>::read_from(
-            &mut Cursor::new(&shp[start..end]),
-            size,
-        )
-        .map_err(|e| anyhow!("{name}: shape {i}: {}", one_line(&e)))?;
-        let record = rows
-            .next()
-            .ok_or_else(|| anyhow!("{dbf_name}: record {i} is missing"))?
-            .map_err(|e| anyhow!("{dbf_name}: record {i}: {}", one_line(&e)))?;
-        let geometry = geometry(shape).map_err(|e| anyhow!("{name}: shape {i}: {e}"))?;
-        let mut properties = Map::new();
-        for f in &fields {
-            let v = record.get(&f.name).map_or(Value::Null, field_json);
-            properties.insert(f.name.clone(), v);
-        }
-        features.push(properties, geometry);
-    }
-    Ok(Layer {
-        features,
-        schema: Schema {
-            name: Path::new(name)
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-            fields: neutral,
-            crs: None,
-            dbf: Some(Dbf {
-                table: table.into_table_info(),
-                fields,
-            }),
-        },
-    })
+    .read(cpg)
 }
 
-/// Walks the records of a `.shp` and gives where each one's content lies,
-/// checking that each lies within the file and that the parts and points it
-/// declares fit in it (so that no reader allocates for more than the file
-/// holds).
-fn check_records(name: &str, shp: &[u8]) -> Result<Vec<(usize, usize)>> {
-    if shp.len() < 100 || !shp.starts_with(&[0, 0, 0x27, 0x0a]) {
-        bail!("{name}: not a Shapefile (no .shp header)");
+/// The header every `.shp` and `.shx` starts with.
+const MAGIC: [u8; 4] = [0, 0, 0x27, 0x0a];
+
+/// A Shapefile to read: its `.shp` as a stream of `shp_len` bytes, the
+/// start (at least four bytes, when there are) and length of its `.shx`, and
+/// its `.dbf`; errors start with `name`, the `.shp`'s.
+struct Parts<'a, S, D> {
+    name: &'a str,
+    shp: S,
+    shp_len: u64,
+    shx_head: &'a [u8],
+    shx_len: u64,
+    dbf: D,
+}
+
+impl<S: Read, D: Read + Seek> Parts<'_, S, D> {
+    /// The layer, a record of the `.shp` and of the `.dbf` at a time.
+    fn read(mut self, cpg: Option<&str>) -> Result<Layer> {
+        let name = self.name;
+        let shx_name = sibling(Path::new(name), "shx").display().to_string();
+        let dbf_name = sibling(Path::new(name), "dbf").display().to_string();
+        // The number of shapes the index holds, each in 8 bytes after its
+        // header.
+        let count = self
+            .shx_len
+            .checked_sub(100)
+            .filter(|b| b % 8 == 0 && self.shx_head.starts_with(&MAGIC))
+            .and_then(|b| usize::try_from(b / 8).ok())
+            .ok_or_else(|| anyhow!("{shx_name}: not a Shapefile index (no .shx header)"))?;
+        let mut shp_head = [0u8; 100];
+        if self.shp_len < 100
+            || self.shp.read_exact(&mut shp_head).is_err()
+            || !shp_head.starts_with(&MAGIC)
+        {
+            bail!("{name}: not a Shapefile (no .shp header)");
+        }
+        // A field descriptor's byte 17 holds its decimals: the table's
+        // header (its length in bytes 8 and 9) read first, then again by
+        // the table's reader.
+        let mut dbf_head = Vec::new();
+        let header_len = {
+            let mut start = [0u8; 10];
+            match self.dbf.read_exact(&mut start) {
+                Ok(()) => u64::from(u16::from_le_bytes([start[8], start[9]])),
+                Err(_) => 0,
+            }
+        };
+        self.dbf
+            .seek(SeekFrom::Start(0))
+            .and_then(|_| (&mut self.dbf).take(header_len).read_to_end(&mut dbf_head))
+            .and_then(|_| self.dbf.seek(SeekFrom::Start(0)))
+            .map_err(|e| anyhow!("{dbf_name}: {e}"))?;
+        let mut builder = dbase::ReaderBuilder::new();
+        if let Some(code_page) = cpg.and_then(dbase::encoding::DynEncoding::from_name) {
+            builder = builder.with_encoding(code_page);
+        }
+        let mut table = builder
+            .build(self.dbf)
+            .map_err(|e| anyhow!("{dbf_name}: not a dBASE table: {}", one_line(&e)))?;
+        let fields: Vec<Field> = table
+            .fields()
+            .iter()
+            .map(|f| Field {
+                key: f.name().to_owned(),
+                name: f.name().to_owned(),
+                kind: f.field_type(),
+                width: usize::from(f.length()),
+            })
+            .collect();
+        let neutral = table
+            .fields()
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                let decimals = dbf_head.get(32 + 32 * i + 17).copied().map_or(0, u32::from);
+                let width = u32::from(f.length());
+                let kind = match f.field_type() {
+                    FieldType::Numeric if decimals == 0 => FieldKind::Integer,
+                    FieldType::Integer => FieldKind::Integer,
+                    FieldType::Numeric
+                    | FieldType::Float
+                    | FieldType::Double
+                    | FieldType::Currency => FieldKind::Real,
+                    FieldType::Logical => FieldKind::Boolean,
+                    FieldType::Date => FieldKind::Date,
+                    FieldType::DateTime => FieldKind::DateTime,
+                    FieldType::Character | FieldType::Memo => FieldKind::Text,
+                };
+                layer::Field {
+                    name: f.name().to_owned(),
+                    kind,
+                    width: Some(width),
+                    decimals: Some(decimals),
+                }
+            })
+            .collect();
+        let records = table.header().num_records as usize;
+        if count != records {
+            bail!("{name}: {count} shapes but {records} records in {dbf_name}: the files do not belong together");
+        }
+        let mut features = Features::new(fields.iter().map(|f| f.name.clone()).collect());
+        let mut rows = table.iter_records();
+        let mut shapes = Records {
+            name,
+            shp: &mut self.shp,
+            at: 100,
+            len: self.shp_len,
+            content: Vec::new(),
+        };
+        let mut i = 0;
+        while let Some(content) = shapes.next(i)? {
+            if i == count {
+                bail!(
+                    "{shx_name}: not the index of {name}: it holds {count} shapes, the .shp more"
+                );
+            }
+            // Each record on its own: the reader cannot run past it.
+            let size = i32::try_from(content.len())
+                .map_err(|_| anyhow!("{name}: shape {i}: too large"))?;
+            let shape =
+                <Shape as shapefile::ReadableShape>::read_from(&mut Cursor::new(content), size)
+                    .map_err(|e| anyhow!("{name}: shape {i}: {}", one_line(&e)))?;
+            let record = rows
+                .next()
+                .ok_or_else(|| anyhow!("{dbf_name}: record {i} is missing"))?
+                .map_err(|e| anyhow!("{dbf_name}: record {i}: {}", one_line(&e)))?;
+            let geometry = geometry(shape).map_err(|e| anyhow!("{name}: shape {i}: {e}"))?;
+            let mut properties = Map::new();
+            for f in &fields {
+                let v = record.get(&f.name).map_or(Value::Null, field_json);
+                properties.insert(f.name.clone(), v);
+            }
+            features.push(properties, geometry);
+            i += 1;
+        }
+        if i != count {
+            bail!("{shx_name}: not the index of {name}: it holds {count} shapes, the .shp {i}");
+        }
+        Ok(Layer {
+            features,
+            schema: Schema {
+                name: Path::new(name)
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default(),
+                fields: neutral,
+                crs: None,
+                dbf: Some(Dbf {
+                    table: table.into_table_info(),
+                    fields,
+                }),
+            },
+        })
     }
-    let be = |at: usize| i32::from_be_bytes([shp[at], shp[at + 1], shp[at + 2], shp[at + 3]]);
-    let le = |at: usize| i32::from_le_bytes([shp[at], shp[at + 1], shp[at + 2], shp[at + 3]]);
-    let (mut at, mut n) = (100usize, 0usize);
-    let mut bounds = Vec::new();
-    while at < shp.len() {
+}
+
+/// The records of a `.shp` after its header, read one at a time into one
+/// buffer: each checked to lie within the file, with the parts and points it
+/// declares fitting in it (so that no reader allocates for more than the
+/// file holds).
+struct Records<'a, S> {
+    name: &'a str,
+    shp: &'a mut S,
+    /// Where the next record starts, and the file's length.
+    at: u64,
+    len: u64,
+    content: Vec<u8>,
+}
+
+impl<S: Read> Records<'_, S> {
+    /// The content of record `n`, the next one; `None` at the end.
+    fn next(&mut self, n: usize) -> Result<Option<&[u8]>> {
+        if self.at >= self.len {
+            return Ok(None);
+        }
+        let name = self.name;
         let bad = |what: &str| anyhow!("{name}: shape {n}: {what}");
-        if at + 8 > shp.len() {
+        let mut head = [0u8; 8];
+        if self.len - self.at < 8 || self.shp.read_exact(&mut head).is_err() {
             return Err(bad("the file ends inside its record header"));
         }
-        let words = usize::try_from(be(at + 4)).map_err(|_| bad("a negative record length"))?;
-        let (start, len) = (at + 8, 2 * words);
-        let end = start
-            .checked_add(len)
-            .filter(|&e| e <= shp.len())
-            .ok_or_else(|| bad("the record runs past the end of the file"))?;
-        if len >= 4 {
-            let count = |at: usize| usize::try_from(le(at)).map_err(|_| bad("a negative count"));
-            let need = match le(start) {
-                // Polylines, polygons and multipatches: parts, then points.
-                3 | 5 | 13 | 15 | 23 | 25 | 31 if len >= 44 => {
-                    let (parts, points) = (count(start + 36)?, count(start + 40)?);
-                    let need = 44u64 + 4 * parts as u64 + 16 * points as u64;
-                    if need <= len as u64 {
-                        // Each part starts within the points, in order.
-                        let mut prev = 0;
-                        for k in 0..parts {
-                            let first = count(start + 44 + 4 * k)?;
-                            if first < prev || first > points {
-                                return Err(bad("its parts do not index its points in order"));
-                            }
-                            prev = first;
-                        }
-                    }
-                    need
-                }
-                // Multipoints: points.
-                8 | 18 | 28 if len >= 40 => 40 + 16 * count(start + 36)? as u64,
-                3 | 5 | 13 | 15 | 23 | 25 | 31 | 8 | 18 | 28 => u64::MAX,
-                _ => 0,
-            };
-            if need > len as u64 {
-                return Err(bad("its parts and points do not fit in its record"));
-            }
+        let words = i32::from_be_bytes([head[4], head[5], head[6], head[7]]);
+        let words = u64::try_from(words).map_err(|_| bad("a negative record length"))?;
+        let len = 2 * words;
+        if len > self.len - self.at - 8 {
+            return Err(bad("the record runs past the end of the file"));
         }
-        bounds.push((start, end));
-        at = end;
-        n += 1;
+        let size = usize::try_from(len).map_err(|_| bad("too large"))?;
+        self.content.clear();
+        self.content.resize(size, 0);
+        if self.shp.read_exact(&mut self.content).is_err() {
+            return Err(bad("the record runs past the end of the file"));
+        }
+        self.at += 8 + len;
+        check_record(&self.content).map_err(bad)?;
+        Ok(Some(&self.content))
     }
-    Ok(bounds)
+}
+
+/// Checks that the parts and points a record's content declares fit in it,
+/// and that its parts index its points in order.
+fn check_record(rec: &[u8]) -> std::result::Result<(), &'static str> {
+    let len = rec.len();
+    if len < 4 {
+        return Ok(());
+    }
+    let le = |at: usize| i32::from_le_bytes([rec[at], rec[at + 1], rec[at + 2], rec[at + 3]]);
+    let count = |at: usize| usize::try_from(le(at)).map_err(|_| "a negative count");
+    let need = match le(0) {
+        // Polylines, polygons and multipatches: parts, then points.
+        3 | 5 | 13 | 15 | 23 | 25 | 31 if len >= 44 => {
+            let (parts, points) = (count(36)?, count(40)?);
+            let need = 44u64 + 4 * parts as u64 + 16 * points as u64;
+            if need <= len as u64 {
+                // Each part starts within the points, in order.
+                let mut prev = 0;
+                for k in 0..parts {
+                    let first = count(44 + 4 * k)?;
+                    if first < prev || first > points {
+                        return Err("its parts do not index its points in order");
+                    }
+                    prev = first;
+                }
+            }
+            need
+        }
+        // Multipoints: points.
+        8 | 18 | 28 if len >= 40 => 40 + 16 * count(36)? as u64,
+        3 | 5 | 13 | 15 | 23 | 25 | 31 | 8 | 18 | 28 => u64::MAX,
+        _ => 0,
+    };
+    if need > len as u64 {
+        return Err("its parts and points do not fit in its record");
+    }
+    Ok(())
 }
 
 /// A shape as a GeoJSON geometry (`null` for a null shape).
@@ -1222,6 +1331,70 @@ mod tests {
             assert!(e.is_err(), "a .shp cut to {cut} bytes was read");
         }
         assert!(read_parts("t.shp", shp, shx, &dbf[..20], None).is_err());
+    }
+
+    #[test]
+    fn files_read_a_record_at_a_time_as_their_bytes_read() {
+        // Many records of every kind of polygon, so that the readers' buffers
+        // turn over many times.
+        let features: Vec<Value> = (0..3000)
+            .map(|i| {
+                let x = f64::from(i) * 10.0;
+                let square = json!([[x, 0.0], [x, 4.0], [x + 4.0, 4.0], [x + 4.0, 0.0], [x, 0.0]]);
+                let hole = json!([[x + 1.0, 1.0], [x + 2.0, 1.0], [x + 2.0, 2.0], [x + 1.0, 2.0], [x + 1.0, 1.0]]);
+                let geometry = match i % 3 {
+                    0 => json!({"type": "Polygon", "coordinates": [square]}),
+                    1 => json!({"type": "Polygon", "coordinates": [square, hole]}),
+                    _ => Value::Null,
+                };
+                json!({"type": "Feature", "properties": {"n": i, "name": format!("f{i}")}, "geometry": geometry})
+            })
+            .collect();
+        let input = fc(Value::Array(features));
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.shp");
+        write_file(&path, &input, None).unwrap();
+        let bytes = |ext: &str| std::fs::read(dir.path().join(format!("t.{ext}"))).unwrap();
+        let (shp, shx, dbf) = (bytes("shp"), bytes("shx"), bytes("dbf"));
+        let from_files = read(&path, u64::MAX).unwrap();
+        let from_bytes = read_parts("t.shp", &shp, &shx, &dbf, None).unwrap();
+        assert_eq!(from_files.features, from_bytes.features);
+        assert_eq!(from_files.schema.fields, from_bytes.schema.fields);
+        assert_eq!(from_files.features.to_value(), input);
+        // A limit below any one file's size refuses it before reading.
+        let e = read(&path, 1000).unwrap_err().to_string();
+        assert!(e.contains("larger than 1000 bytes"), "{e}");
+        // A .shp cut anywhere inside its last record, on disk.
+        std::fs::write(&path, &shp[..shp.len() - 3]).unwrap();
+        let e = read(&path, u64::MAX).unwrap_err().to_string();
+        assert!(e.starts_with(&path.display().to_string()), "{e}");
+        assert!(
+            e.contains("shape 2999: the record runs past the end"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn an_index_of_another_count_is_named() {
+        let point = |x: f64| json!({"type": "Feature", "properties": {"n": x}, "geometry": {"type": "Point", "coordinates": [x, 2.0]}});
+        let files = |n: usize| write(&fc((0..n).map(|i| point(i as f64)).collect()), None).unwrap();
+        let (two, three) = (files(2), files(3));
+        // The .shp of three points with the index and table of two.
+        let e = read_parts("t.shp", &three[0].1, &two[1].1, &two[2].1, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("t.shx: not the index of t.shp: it holds 2 shapes"),
+            "{e}"
+        );
+        let e = read_parts("t.shp", &two[0].1, &three[1].1, &three[2].1, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("it holds 3 shapes, the .shp 2"), "{e}");
+        let e = read_parts("t.shp", &two[0].1, &two[1].1[..99], &two[2].1, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("t.shx: not a Shapefile index"), "{e}");
     }
 
     #[test]
