@@ -136,6 +136,53 @@ fn a_geojson_mosaic_keeps_every_shared_border() {
 }
 
 #[test]
+fn a_collection_reads_alike_from_its_file_standard_input_and_after_a_bom() {
+    let text = std::fs::read(fixture("mosaic.geojson")).unwrap();
+    let args = ["smooth", "--tolerance", "0.001"];
+    let from_file = ok(&[&args[..], &["mosaic.geojson"]].concat());
+    let o = run(&[&args[..], &["-"]].concat(), Some(&text));
+    assert_eq!(
+        (o.code, o.stdout.as_str()),
+        (0, from_file.as_str()),
+        "{}",
+        o.stderr
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let bom = dir.path().join("bom.geojson");
+    std::fs::write(&bom, [&b"\xEF\xBB\xBF"[..], &text].concat()).unwrap();
+    assert_eq!(
+        ok(&[&args[..], &[bom.to_str().unwrap()]].concat()),
+        from_file
+    );
+    // Declined from the file, read whole: the message names the line.
+    let bad = dir.path().join("bad.geojson");
+    // A byte of Latin-1 inside the first property's name.
+    let mut latin1 = text.clone();
+    let at = text
+        .windows(12)
+        .position(|w| w == b"\"properties\"")
+        .unwrap()
+        + 15;
+    latin1.splice(at..at, *b"\xE9");
+    let line = 1 + text[..at].iter().filter(|&&b| b == b'\n').count();
+    let column = at
+        - text[..at]
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1)
+        + 1;
+    std::fs::write(&bad, latin1).unwrap();
+    let name = bad.to_str().unwrap();
+    assert_data_error(
+        &[&args[..], &[name]].concat(),
+        None,
+        &[&format!(
+            "{name}:{line}: not valid UTF-8 (byte 0xE9 at column {column})"
+        )],
+    );
+}
+
+#[test]
 fn topojson_is_read_by_its_content_and_smoothed_on_its_arcs() {
     // mosaic.json is mosaic.geojson through topojson-server's geo2topo -q 1e5:
     // quantized, delta-encoded, with a transform, and named .json.

@@ -129,7 +129,24 @@ impl Collection {
     /// would refuse included).
     #[must_use]
     pub fn read(text: &str) -> Option<Collection> {
-        let mut de = serde_json::Deserializer::from_str(text);
+        Self::parse(serde_json::Deserializer::from_str(text))
+    }
+
+    /// Reads a FeatureCollection in the plane from `reader` as [`Collection::read`]
+    /// reads its text (a UTF-8 byte-order mark skipped), never holding the
+    /// text: only each feature's while it is read. `None` as for
+    /// [`Collection::read`], and where reading fails.
+    #[must_use]
+    pub fn read_from(mut reader: impl std::io::BufRead) -> Option<Collection> {
+        if reader.fill_buf().ok()?.starts_with(b"\xEF\xBB\xBF") {
+            reader.consume(3);
+        }
+        Self::parse(serde_json::Deserializer::from_reader(reader))
+    }
+
+    fn parse<'de, R: serde_json::de::Read<'de>>(
+        mut de: serde_json::Deserializer<R>,
+    ) -> Option<Collection> {
         let (mut members, items) = de.deserialize_map(Top).ok()?;
         de.end().ok()?;
         if members.get("type").and_then(Value::as_str) != Some("FeatureCollection") {
@@ -300,6 +317,19 @@ mod tests {
         let mut streamed = Vec::new();
         c.write_geojson(&mut streamed).unwrap();
         let streamed = (String::from_utf8(streamed).unwrap(), job.summary());
+        // Read from a reader (after a byte-order mark), a few bytes at a
+        // time: the same collection.
+        let mut job = Job::new(settings.clone());
+        let bytes = [b"\xEF\xBB\xBF", text.as_bytes()].concat();
+        let reader = std::io::BufReader::with_capacity(7, bytes.as_slice());
+        let mut c = job
+            .read_collection_from(reader)
+            .expect("read from a reader");
+        job.collection("t", &mut c).unwrap();
+        let mut from_reader = Vec::new();
+        c.write_geojson(&mut from_reader).unwrap();
+        let from_reader = (String::from_utf8(from_reader).unwrap(), job.summary());
+        assert_eq!(from_reader, streamed, "read from a reader");
         let mut job = Job::new(settings.clone());
         let out = job
             .document("t", serde_json::from_str(text).unwrap())
@@ -410,7 +440,18 @@ mod tests {
         let job = Job::new(settings(false));
         for text in declined {
             assert!(job.read_collection(&text).is_none(), "{text}");
+            assert!(
+                job.read_collection_from(text.as_bytes()).is_none(),
+                "{text}"
+            );
         }
+        // Text that is not UTF-8 in a string, from a reader.
+        let latin1 = doc.to_string().replace("\"a\"", "\"\u{e9}\"");
+        assert!(job.read_collection(&latin1).is_some());
+        let mut bytes = latin1.into_bytes();
+        let at = bytes.windows(2).position(|w| w == [0xC3, 0xA9]).unwrap();
+        bytes.splice(at..at + 2, [0xE9]);
+        assert!(job.read_collection_from(bytes.as_slice()).is_none());
         let mut topojson = settings(false);
         topojson.output = crate::smooth::job::Output::Topojson;
         assert!(Job::new(topojson)

@@ -264,6 +264,16 @@ impl Job {
         Collection::read(text)
     }
 
+    /// [`Job::read_collection`] from a reader ([`Collection::read_from`]),
+    /// the text never held whole.
+    #[must_use]
+    pub fn read_collection_from(&self, reader: impl std::io::BufRead) -> Option<Collection> {
+        if self.settings.output == Output::Topojson {
+            return None;
+        }
+        Collection::read_from(reader)
+    }
+
     /// Smooths a FeatureCollection read from `name` by
     /// [`Job::read_collection`] where it is: what [`Job::document`] gives
     /// for its text.
