@@ -140,28 +140,21 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             }
             _ => {
                 let max_bytes = job.settings().limits.max_bytes;
-                // A file within the limit is read a feature at a time from
-                // the file, its text never held; what declines is read whole
-                // below, which says what is wrong, as is standard input.
-                let opened = file
-                    .filter(|f| *f != Path::new("-"))
-                    .and_then(|p| std::fs::File::open(p).ok())
-                    .filter(|f| f.metadata().is_ok_and(|m| m.len() <= max_bytes));
-                let tried = opened.is_some();
-                let streamed = opened.and_then(|f| {
-                    job.read_collection_from(std::io::BufReader::with_capacity(1 << 16, f))
-                });
-                if let (Some(mut c), Some(path)) = (streamed, file) {
+                // A file is read a feature at a time from the file, its text
+                // never held; what declines is read whole below, which says
+                // what is wrong, and standard input is read whole.
+                let path = file.filter(|f| *f != Path::new("-"));
+                let streamed = path.and_then(|p| job.read_collection_file(p));
+                if let (Some(mut c), Some(path)) = (streamed, path) {
                     let name = path.display().to_string();
                     job.collection(&name, &mut c)?;
                     (Smoothed::Collection(c), None)
                 } else {
                     let (name, bytes) = input::read_source(file, max_bytes)?;
                     let text = input::utf8(&name, &bytes)?;
-                    let read = if tried {
-                        None
-                    } else {
-                        job.read_collection(text)
+                    let read = match path {
+                        Some(_) => None,
+                        None => job.read_collection(text),
                     };
                     if let Some(mut c) = read {
                         drop(bytes);

@@ -274,6 +274,19 @@ impl Job {
         Collection::read_from(reader)
     }
 
+    /// [`Job::read_collection_from`] the file at `path`, through a 64 KiB
+    /// buffer, when it opens and is within the settings' `max_bytes`;
+    /// `None` otherwise, for the whole text to be read and say what is wrong.
+    #[must_use]
+    pub fn read_collection_file(&self, path: &std::path::Path) -> Option<Collection> {
+        let file = std::fs::File::open(path).ok()?;
+        let size = file.metadata().ok()?.len();
+        if size > self.settings.limits.max_bytes {
+            return None;
+        }
+        self.read_collection_from(std::io::BufReader::with_capacity(1 << 16, file))
+    }
+
     /// Smooths a FeatureCollection read from `name` by
     /// [`Job::read_collection`] where it is: what [`Job::document`] gives
     /// for its text.
