@@ -1,25 +1,31 @@
-//! The positions of many arcs in one vector: a coverage has millions of
-//! short arcs, and a vector for each would cost more than its few positions.
+//! The positions of many arcs in a few large blocks: a coverage has
+//! millions of short arcs, and a vector for each would cost more than its
+//! few positions.
 
 use std::fmt;
 use std::ops::Index;
 
 use geo_types::Coord;
 
+use crate::offsets::Offsets;
+use crate::positions::Positions;
+
 /// Arcs, each a slice of positions, numbered from 0 in the order added
 /// ([`Topology::arcs`](crate::Topology::arcs), [`Smoothed::arcs`](crate::Smoothed::arcs)).
 ///
-/// All positions are held in one vector and each arc as its place in it,
-/// so an arc costs 12 bytes beyond its positions (a `Vec<Vec<Coord>>` costs
-/// 24 and an allocation each). `arcs[i]` is arc `i`'s positions; indexing
+/// The positions are held in blocks of a MiB or more, an arc's together,
+/// and each arc as its place in them, so an arc costs 8 bytes beyond its
+/// positions (12 once there are 2^32 positions in all; a `Vec<Vec<Coord>>`
+/// costs 24 and an allocation each), and adding arcs never copies those
+/// already held. `arcs[i]` is arc `i`'s positions; indexing
 /// past the last arc panics, as a slice's does ([`Arcs::get`] does not).
 /// Two `Arcs` are equal when they hold the same arcs, however the positions
 /// are laid out.
 #[derive(Clone, Default)]
 pub struct Arcs {
-    starts: Vec<usize>,
+    starts: Offsets,
     lens: Vec<u32>,
-    positions: Vec<Coord>,
+    positions: Positions,
 }
 
 impl Arcs {
@@ -29,13 +35,14 @@ impl Arcs {
         Arcs::default()
     }
 
-    /// No arcs yet, with room for `arcs` arcs of `positions` positions in all.
+    /// No arcs yet, with room for `arcs` arcs of `positions` positions in
+    /// all (in one block: more are added as needed).
     #[must_use]
     pub fn with_capacity(arcs: usize, positions: usize) -> Arcs {
         Arcs {
-            starts: Vec::with_capacity(arcs),
+            starts: Offsets::with_capacity(arcs),
             lens: Vec::with_capacity(arcs),
-            positions: Vec::with_capacity(positions),
+            positions: Positions::with_capacity(positions),
         }
     }
 
@@ -54,8 +61,8 @@ impl Arcs {
     /// Arc `i`'s positions, or `None` past the last arc.
     #[must_use]
     pub fn get(&self, i: usize) -> Option<&[Coord]> {
-        let start = *self.starts.get(i)?;
-        Some(&self.positions[start..start + self.lens[i] as usize])
+        let start = self.starts.checked(i)?;
+        Some(self.positions.get(start, self.lens[i] as usize))
     }
 
     /// The arcs in order.
@@ -73,10 +80,10 @@ impl Arcs {
     ///
     /// When the arc has more than `u32::MAX` positions.
     pub fn push(&mut self, arc: impl IntoIterator<Item = Coord>) {
-        let start = self.positions.len();
-        self.positions.extend(arc);
+        let mut n = 0usize;
+        let start = self.positions.push(arc.into_iter().inspect(|_| n += 1));
         self.starts.push(start);
-        self.lens.push(span(self.positions.len() - start));
+        self.lens.push(span(n));
     }
 
     /// Replaces arc `i`'s positions: in its place when they fit there, else
@@ -89,11 +96,13 @@ impl Arcs {
     pub fn set(&mut self, i: usize, arc: &[Coord]) {
         let n = span(arc.len());
         if n <= self.lens[i] {
-            let start = self.starts[i];
-            self.positions[start..start + arc.len()].copy_from_slice(arc);
+            let start = self.starts.get(i);
+            self.positions
+                .get_mut(start, arc.len())
+                .copy_from_slice(arc);
         } else {
-            self.starts[i] = self.positions.len();
-            self.positions.extend_from_slice(arc);
+            let start = self.positions.push_slice(arc);
+            self.starts.set(i, start);
         }
         self.lens[i] = n;
     }
@@ -114,8 +123,8 @@ impl Index<usize> for Arcs {
     type Output = [Coord];
 
     fn index(&self, i: usize) -> &[Coord] {
-        let start = self.starts[i];
-        &self.positions[start..start + self.lens[i] as usize]
+        self.positions
+            .get(self.starts.get(i), self.lens[i] as usize)
     }
 }
 

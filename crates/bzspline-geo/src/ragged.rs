@@ -6,21 +6,25 @@
 use std::fmt;
 use std::ops::{Index, IndexMut};
 
+use crate::offsets::Offsets;
+
 /// Rows of values of different lengths, numbered from 0 in the order added
 /// ([`Topology::polygons`](crate::Topology::polygons)): `rows[i]` is row
 /// `i`'s values (indexing past the last row panics, as a slice's does). A
-/// row costs 8 bytes beyond its values, where a `Vec<Vec<T>>` costs 24 and
-/// an allocation each.
+/// row costs 4 bytes beyond its values (8 once there are 2^32 values in
+/// all), where a `Vec<Vec<T>>` costs 24 and an allocation each.
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub struct Ragged<T> {
-    starts: Vec<usize>,
+    starts: Offsets,
     values: Vec<T>,
 }
 
 impl<T> Default for Ragged<T> {
     fn default() -> Self {
+        let mut starts = Offsets::default();
+        starts.push(0);
         Ragged {
-            starts: vec![0],
+            starts,
             values: Vec::new(),
         }
     }
@@ -30,7 +34,7 @@ impl<T> Ragged<T> {
     /// No rows yet, with room for `rows` rows and `values` values in all.
     #[must_use]
     pub fn with_capacity(rows: usize, values: usize) -> Self {
-        let mut starts = Vec::with_capacity(rows + 1);
+        let mut starts = Offsets::with_capacity(rows + 1);
         starts.push(0);
         Ragged {
             starts,
@@ -65,13 +69,13 @@ impl<T> Ragged<T> {
     /// Row `i`'s values, or `None` past the last row.
     #[must_use]
     pub fn get(&self, i: usize) -> Option<&[T]> {
-        let end = *self.starts.get(i + 1)?;
-        Some(&self.values[self.starts[i]..end])
+        let end = self.starts.checked(i + 1)?;
+        Some(&self.values[self.starts.get(i)..end])
     }
 
     /// The rows in order.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = &[T]> + '_ {
-        self.starts.windows(2).map(|w| &self.values[w[0]..w[1]])
+        (0..self.len()).map(|i| &self.values[self.starts.get(i)..self.starts.get(i + 1)])
     }
 
     /// Every value of every row, in order.
@@ -94,7 +98,7 @@ impl<T: Clone> Ragged<T> {
     /// Rows of `lengths` values each, every value `value`.
     #[must_use]
     pub fn filled(lengths: impl ExactSizeIterator<Item = usize>, value: T) -> Self {
-        let mut starts = Vec::with_capacity(lengths.len() + 1);
+        let mut starts = Offsets::with_capacity(lengths.len() + 1);
         starts.push(0);
         let mut total = 0;
         for n in lengths {
@@ -129,13 +133,13 @@ impl<T> Index<usize> for Ragged<T> {
     type Output = [T];
 
     fn index(&self, row: usize) -> &[T] {
-        &self.values[self.starts[row]..self.starts[row + 1]]
+        &self.values[self.starts.get(row)..self.starts.get(row + 1)]
     }
 }
 
 impl<T> IndexMut<usize> for Ragged<T> {
     fn index_mut(&mut self, row: usize) -> &mut [T] {
-        &mut self.values[self.starts[row]..self.starts[row + 1]]
+        &mut self.values[self.starts.get(row)..self.starts.get(row + 1)]
     }
 }
 
