@@ -196,8 +196,10 @@ impl Topology {
         drop(cross_in);
 
         let mut levels = start_levels(arcs, start);
-        // Every arc starts empty, so the first round lays the arcs out in order.
-        let mut out = Arcs::with_capacity(arcs.len(), arcs.iter().map(<[Coord]>::len).sum());
+        // Every arc starts empty, so the first round lays the arcs out in
+        // order, in blocks added as they fill (no room kept for as many
+        // positions as the input's: smoothing may make fewer or many more).
+        let mut out = Arcs::with_capacity(arcs.len(), 0);
         (0..arcs.len()).for_each(|_| out.push([]));
         let mut along = Along::new(arcs, &plans, opts, tolerance);
         let mut work = Smoothing::default();
@@ -310,26 +312,26 @@ impl Topology {
         levels: &Ragged<u8>,
         bump: &mut Vec<(usize, Seg)>,
     ) -> Result<(), Error> {
-        let mut suspects: Vec<usize> = (0..dirty.len())
-            .filter(|&a| dirty[a])
-            .flat_map(|a| rings.chains_of[a].iter().map(|&c| c as usize))
-            .filter(|&c| exact.get(c).copied().unwrap_or(exact.is_empty()))
-            .collect();
-        suspects.sort_unstable();
-        suspects.dedup();
-        let mut polys: Vec<usize> = Vec::new();
-        for &ci in &suspects {
+        // Marks rather than lists of indices: in the first round every arc
+        // is dirty, and a list would hold each chain once per arc it uses.
+        let mut suspect = vec![false; self.chains().len()];
+        for a in (0..dirty.len()).filter(|&a| dirty[a]) {
+            for &c in &rings.chains_of[a] {
+                suspect[c as usize] = exact.get(c as usize).copied().unwrap_or(exact.is_empty());
+            }
+        }
+        let mut in_play = vec![false; self.polygons().len()];
+        for ci in (0..suspect.len()).filter(|&ci| suspect[ci]) {
             let sign = rings.sign_in[ci];
             if sign != 0 && shoelace.ring(self, ci, cross_out).signum() != f64::from(sign) {
                 bump_chain(self, ci, along, levels, bump)?;
             }
             if let Some(p) = rings.polygon_of[ci] {
-                polys.push(p as usize);
+                in_play[p as usize] = true;
             }
         }
-        polys.sort_unstable();
-        polys.dedup();
-        for p in polys {
+        drop(suspect);
+        for p in (0..in_play.len()).filter(|&p| in_play[p]) {
             let members = &self.polygons()[p];
             let now = holes_inside(self, members, out);
             for (h, (&was, &is)) in rings.inside_in[p].iter().zip(&now).enumerate() {
@@ -405,8 +407,13 @@ impl Topology {
             let first_node = is_node(a[0]) || in_line[ai];
             let closed_curve = closed && !first_node && a.len() >= 4;
             if !closed_curve {
-                nodes.push(key(a[0]));
-                nodes.push(key(a[a.len() - 1]));
+                // Ends met by another arc are in `nodes` already: a list of
+                // every arc's two ends would be many times the nodes' size.
+                for end in [a[0], a[a.len() - 1]] {
+                    if count.get(&key(end)).is_none_or(|&n| n < 2) {
+                        nodes.push(key(end));
+                    }
+                }
             }
             let n = if closed { a.len() - 1 } else { a.len() };
             plans.fixed.push_row((0..n).map(|i| is_node(a[i])));
