@@ -5,6 +5,7 @@
 //! `lambda`, O(N) time and memory, the trace of the influence matrix included.
 
 mod cyclic;
+mod lanes;
 mod posterior;
 mod robust;
 mod system;
@@ -597,6 +598,32 @@ fn gcv_score(rss: f64, dof: f64, n: f64) -> f64 {
     }
 }
 
+/// `dim` coordinates' knot values of `n` knots each, to be filled.
+fn fit_knots(phis: &mut Vec<Vec<f64>>, dim: usize, n: usize) {
+    phis.resize_with(dim, Vec::new);
+    phis.iter_mut().for_each(|phi| phi.resize(n, 0.0));
+}
+
+/// The GCV score, in the data's units, of a fit of `problem` with the knot
+/// values `phis` and the trace `trace` (`None`: singular, and so infinite).
+fn gcv_of(p: &Problem<'_>, trace: Option<f64>, phis: &[Vec<f64>]) -> f64 {
+    let Some(trace) = trace else {
+        return f64::INFINITY;
+    };
+    let n = p.weights.len();
+    let mut rss = 0.0;
+    for ((scale, y), phi) in p.coords.iter().zip(phis) {
+        let s: f64 = (0..n).map(|i| p.weights[i] * (y[i] - phi[i]).powi(2)).sum();
+        rss += s * scale * scale;
+    }
+    let s = gcv_score(rss * p.mean_w / p.coords.len() as f64, trace, p.count);
+    if s.is_finite() {
+        s
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// The least number of points whose search for `lambda` is shared with a
 /// second thread (with the `rayon` feature): a score of 10,000 points takes
 /// about half a millisecond, far beyond what handing work to a thread costs.
@@ -612,6 +639,9 @@ struct Evaluator<'a, S> {
     system: S,
     /// Each coordinate's knot values.
     phis: Vec<Vec<f64>>,
+    /// Each coordinate's knot values of the second of two scores taken at
+    /// once.
+    phis2: Vec<Vec<f64>>,
     /// Scratch for the deviations.
     d: Vec<f64>,
 }
@@ -623,6 +653,7 @@ impl<'a, S: System + Send> Evaluator<'a, S> {
             make,
             system: make(),
             phis: Vec::new(),
+            phis2: Vec::new(),
             d: Vec::new(),
         }
     }
@@ -660,31 +691,34 @@ impl<'a, S: System + Send> Evaluator<'a, S> {
     /// system cannot be solved.
     fn score(&mut self, t: f64) -> f64 {
         let p = self.problem;
-        let n = p.weights.len();
         let lambda = exp10(t);
         if lambda < p.floor {
             return f64::INFINITY;
         }
         let ys: Vec<&[f64]> = p.coords.iter().map(|(_, y)| y.as_slice()).collect();
-        self.phis.resize_with(ys.len(), Vec::new);
-        self.phis.iter_mut().for_each(|phi| phi.resize(n, 0.0));
-        let Some(trace) = self
+        fit_knots(&mut self.phis, ys.len(), p.weights.len());
+        let trace = self
             .system
-            .evaluate(lambda, &ys, &mut self.phis, &mut self.d)
-        else {
-            return f64::INFINITY;
-        };
-        let mut rss = 0.0;
-        for ((scale, y), phi) in p.coords.iter().zip(&self.phis) {
-            let s: f64 = (0..n).map(|i| p.weights[i] * (y[i] - phi[i]).powi(2)).sum();
-            rss += s * scale * scale;
+            .evaluate(lambda, &ys, &mut self.phis, &mut self.d);
+        gcv_of(p, trace, &self.phis)
+    }
+
+    /// The scores of `ts[0]` and `ts[1]`, taken at once where the system
+    /// can ([`System::evaluate_two`]): the bits of [`Evaluator::score`] of
+    /// each.
+    fn score_two(&mut self, ts: [f64; 2]) -> [f64; 2] {
+        let p = self.problem;
+        let lambdas = ts.map(exp10);
+        if lambdas.iter().any(|&l| l < p.floor) {
+            return ts.map(|t| self.score(t));
         }
-        let s = gcv_score(rss * p.mean_w / p.coords.len() as f64, trace, p.count);
-        if s.is_finite() {
-            s
-        } else {
-            f64::INFINITY
-        }
+        let ys: Vec<&[f64]> = p.coords.iter().map(|(_, y)| y.as_slice()).collect();
+        fit_knots(&mut self.phis, ys.len(), p.weights.len());
+        fit_knots(&mut self.phis2, ys.len(), p.weights.len());
+        let [ta, tb] =
+            self.system
+                .evaluate_two(lambdas, &ys, [&mut self.phis, &mut self.phis2], &mut self.d);
+        [gcv_of(p, ta, &self.phis), gcv_of(p, tb, &self.phis2)]
     }
 
     /// The `lambda` (normalised) of least GCV score: a scan of
@@ -733,7 +767,11 @@ impl<'a, S: System + Send> Evaluator<'a, S> {
         let mut best = minima[0];
         let found = match minima[..] {
             [m0, m1, ..] => {
-                let (f0, f1) = self.pair(twin.as_mut(), |e| e.around(m0), |e| e.around(m1));
+                // Side by side on two threads, or scored two at a time on one.
+                let (f0, f1) = match twin.as_mut() {
+                    Some(twin) => self.pair(Some(twin), |e| e.around(m0), |e| e.around(m1)),
+                    None => self.around_two(m0, m1),
+                };
                 vec![f0, f1]
             }
             _ => vec![self.around(minima[0])],
@@ -746,85 +784,167 @@ impl<'a, S: System + Send> Evaluator<'a, S> {
         Ok(exp10(best.0))
     }
 
-    /// The scores of `ts` (in `log10 lambda`), each beside its `t`.
+    /// The scores of `ts` (in `log10 lambda`), each beside its `t`, two at
+    /// a time.
     fn scores(&mut self, ts: &[f64]) -> Vec<(f64, f64)> {
-        ts.iter().map(|&t| (t, self.score(t))).collect()
+        let mut out = Vec::with_capacity(ts.len());
+        for two in ts.chunks(2) {
+            match *two {
+                [a, b] => {
+                    let [fa, fb] = self.score_two([a, b]);
+                    out.extend([(a, fa), (b, fb)]);
+                }
+                _ => out.extend(two.iter().map(|&t| (t, self.score(t)))),
+            }
+        }
+        out
     }
 
     /// Brent's search within a decade either side of the scan's point `t`
     /// of score `s`.
     fn around(&mut self, (t, s): (f64, f64)) -> (f64, f64) {
-        self.brent(t - 1.0, t, s, t + 1.0)
+        let mut brent = Brent::new(t - 1.0, t, s, t + 1.0);
+        while let Some(u) = brent.next() {
+            brent.take(self.score(u));
+        }
+        brent.best()
     }
 
-    /// Brent's minimisation of the score on `[a, b]` (in `log10 lambda`)
-    /// from the point `x` of score `fx`, to a thousandth of a decade.
-    fn brent(&mut self, mut a: f64, x: f64, fx: f64, mut b: f64) -> (f64, f64) {
-        const GOLD: f64 = 0.381_966_011_250_105_1;
-        const TOL: f64 = 1e-3;
-        let (mut x, mut w, mut v) = (x, x, x);
-        let (mut fx, mut fw, mut fv) = (fx, fx, fx);
-        let (mut d, mut e) = (0.0f64, 0.0f64);
-        for _ in 0..60 {
-            let m = 0.5 * (a + b);
-            if (x - m).abs() <= 2.0 * TOL - 0.5 * (b - a) {
-                break;
-            }
-            let mut golden = true;
-            if e.abs() > TOL {
-                // A parabola through x, w, v.
-                let r = (x - w) * (fx - fv);
-                let q = (x - v) * (fx - fw);
-                let mut p = (x - v) * q - (x - w) * r;
-                let mut q = 2.0 * (q - r);
-                if q > 0.0 {
-                    p = -p;
+    /// [`Evaluator::around`] of `m0` and of `m1`, side by side: while both
+    /// searches go on, their next points are scored together.
+    fn around_two(&mut self, m0: (f64, f64), m1: (f64, f64)) -> ((f64, f64), (f64, f64)) {
+        let mut a = Brent::new(m0.0 - 1.0, m0.0, m0.1, m0.0 + 1.0);
+        let mut b = Brent::new(m1.0 - 1.0, m1.0, m1.1, m1.0 + 1.0);
+        loop {
+            match (a.next(), b.next()) {
+                (Some(u), Some(v)) => {
+                    let [fu, fv] = self.score_two([u, v]);
+                    a.take(fu);
+                    b.take(fv);
                 }
-                q = q.abs();
-                if p.abs() < (0.5 * q * e).abs() && p > q * (a - x) && p < q * (b - x) {
-                    e = d;
-                    d = p / q;
-                    let u = x + d;
-                    if u - a < 2.0 * TOL || b - u < 2.0 * TOL {
-                        d = if x < m { TOL } else { -TOL };
-                    }
-                    golden = false;
-                }
-            }
-            if golden {
-                e = if x < m { b - x } else { a - x };
-                d = GOLD * e;
-            }
-            let u = if d.abs() >= TOL {
-                x + d
-            } else {
-                x + TOL.copysign(d)
-            };
-            let fu = self.score(u);
-            if fu <= fx {
-                if u < x {
-                    b = x;
-                } else {
-                    a = x;
-                }
-                (v, w, x) = (w, x, u);
-                (fv, fw, fx) = (fw, fx, fu);
-            } else {
-                if u < x {
-                    a = u;
-                } else {
-                    b = u;
-                }
-                if fu <= fw || w == x {
-                    (v, w) = (w, u);
-                    (fv, fw) = (fw, fu);
-                } else if fu <= fv || v == x || v == w {
-                    v = u;
-                    fv = fu;
-                }
+                (Some(u), None) => a.take(self.score(u)),
+                (None, Some(v)) => b.take(self.score(v)),
+                (None, None) => return (a.best(), b.best()),
             }
         }
-        (x, fx)
+    }
+}
+
+/// Brent's minimisation of the score on `[a, b]` (in `log10 lambda`) from
+/// the point `x` of score `fx`, to a thousandth of a decade, a step at a
+/// time: [`Brent::next`] names the point to score, [`Brent::take`] takes its
+/// score, so that two searches can go side by side.
+struct Brent {
+    a: f64,
+    b: f64,
+    x: f64,
+    w: f64,
+    v: f64,
+    fx: f64,
+    fw: f64,
+    fv: f64,
+    d: f64,
+    e: f64,
+    /// The point named last.
+    u: f64,
+    steps: usize,
+}
+
+impl Brent {
+    const GOLD: f64 = 0.381_966_011_250_105_1;
+    const TOL: f64 = 1e-3;
+
+    fn new(a: f64, x: f64, fx: f64, b: f64) -> Brent {
+        Brent {
+            a,
+            b,
+            x,
+            w: x,
+            v: x,
+            fx,
+            fw: fx,
+            fv: fx,
+            d: 0.0,
+            e: 0.0,
+            u: x,
+            steps: 0,
+        }
+    }
+
+    /// The next point to score, or `None` when the search is done (at most
+    /// 60 steps).
+    fn next(&mut self) -> Option<f64> {
+        const TOL: f64 = Brent::TOL;
+        let (a, b, x) = (self.a, self.b, self.x);
+        let m = 0.5 * (a + b);
+        if self.steps >= 60 || (x - m).abs() <= 2.0 * TOL - 0.5 * (b - a) {
+            return None;
+        }
+        let mut golden = true;
+        if self.e.abs() > TOL {
+            // A parabola through x, w, v.
+            let (w, v, fx, fw, fv) = (self.w, self.v, self.fx, self.fw, self.fv);
+            let r = (x - w) * (fx - fv);
+            let q = (x - v) * (fx - fw);
+            let mut p = (x - v) * q - (x - w) * r;
+            let mut q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            }
+            q = q.abs();
+            if p.abs() < (0.5 * q * self.e).abs() && p > q * (a - x) && p < q * (b - x) {
+                self.e = self.d;
+                self.d = p / q;
+                let u = x + self.d;
+                if u - a < 2.0 * TOL || b - u < 2.0 * TOL {
+                    self.d = if x < m { TOL } else { -TOL };
+                }
+                golden = false;
+            }
+        }
+        if golden {
+            self.e = if x < m { b - x } else { a - x };
+            self.d = Brent::GOLD * self.e;
+        }
+        self.u = if self.d.abs() >= TOL {
+            x + self.d
+        } else {
+            x + TOL.copysign(self.d)
+        };
+        Some(self.u)
+    }
+
+    /// Takes the score `fu` of the point [`Brent::next`] named.
+    fn take(&mut self, fu: f64) {
+        let (u, x) = (self.u, self.x);
+        self.steps += 1;
+        if fu <= self.fx {
+            if u < x {
+                self.b = x;
+            } else {
+                self.a = x;
+            }
+            (self.v, self.w, self.x) = (self.w, x, u);
+            (self.fv, self.fw, self.fx) = (self.fw, self.fx, fu);
+        } else {
+            if u < x {
+                self.a = u;
+            } else {
+                self.b = u;
+            }
+            if fu <= self.fw || self.w == x {
+                (self.v, self.w) = (self.w, u);
+                (self.fv, self.fw) = (self.fw, fu);
+            } else if fu <= self.fv || self.v == x || self.v == self.w {
+                self.v = u;
+                self.fv = fu;
+            }
+        }
+    }
+
+    /// The least point found and its score.
+    fn best(&self) -> (f64, f64) {
+        (self.x, self.fx)
     }
 }
 

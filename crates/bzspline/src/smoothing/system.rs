@@ -21,56 +21,49 @@
 // Small fixed-size matrices read best indexed as they are written on paper.
 #![allow(clippy::needless_range_loop)]
 
+use super::lanes::{lane3, lane33, pair3, pair33, Lane, F2};
 use crate::method::{alpha_terms, neighbour_weights, through_row};
 
-pub(super) type M3 = [[f64; 3]; 3];
+/// A 3 by 3 block, of `f64` or of lanes ([`Lane`]).
+pub(super) type M3<T = f64> = [[T; 3]; 3];
 
-pub(super) fn mul(a: &M3, b: &M3) -> M3 {
-    let mut o = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            o[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
-        }
-    }
-    o
+pub(super) fn mul<T: Lane>(a: &M3<T>, b: &M3<T>) -> M3<T> {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j])
+    })
 }
 
 /// `a * b^T`.
-pub(super) fn mul_t(a: &M3, b: &M3) -> M3 {
-    let mut o = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            o[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2];
-        }
-    }
-    o
+pub(super) fn mul_t<T: Lane>(a: &M3<T>, b: &M3<T>) -> M3<T> {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2])
+    })
 }
 
 /// `a^T * b`.
-pub(super) fn t_mul(a: &M3, b: &M3) -> M3 {
-    let mut o = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            o[i][j] = a[0][i] * b[0][j] + a[1][i] * b[1][j] + a[2][i] * b[2][j];
-        }
-    }
-    o
+pub(super) fn t_mul<T: Lane>(a: &M3<T>, b: &M3<T>) -> M3<T> {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| a[0][i] * b[0][j] + a[1][i] * b[1][j] + a[2][i] * b[2][j])
+    })
 }
 
-pub(super) fn apply(a: &M3, v: &[f64; 3]) -> [f64; 3] {
-    let row = |r: &[f64; 3]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+#[inline(always)]
+pub(super) fn apply<T: Lane>(a: &M3<T>, v: &[T; 3]) -> [T; 3] {
+    let row = |r: &[T; 3]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
     [row(&a[0]), row(&a[1]), row(&a[2])]
 }
 
-pub(super) fn apply_t(a: &M3, v: &[f64; 3]) -> [f64; 3] {
+#[inline(always)]
+pub(super) fn apply_t<T: Lane>(a: &M3<T>, v: &[T; 3]) -> [T; 3] {
     let col = |j: usize| a[0][j] * v[0] + a[1][j] * v[1] + a[2][j] * v[2];
     [col(0), col(1), col(2)]
 }
 
 /// `B P` for a link block `B` (five entries, the others zero: see
 /// [`Grid::link`]) and any `P`.
-pub(super) fn link_mul(b: &M3, p: &M3) -> M3 {
-    let comb = |x: f64, r: &[f64; 3], y: f64, t: &[f64; 3]| {
+#[inline(always)]
+pub(super) fn link_mul<T: Lane>(b: &M3<T>, p: &M3<T>) -> M3<T> {
+    let comb = |x: T, r: &[T; 3], y: T, t: &[T; 3]| {
         [
             x * r[0] + y * t[0],
             x * r[1] + y * t[1],
@@ -78,7 +71,7 @@ pub(super) fn link_mul(b: &M3, p: &M3) -> M3 {
         ]
     };
     [
-        comb(b[0][2], &p[2], 0.0, &p[0]),
+        comb(b[0][2], &p[2], T::splat(0.0), &p[0]),
         comb(b[1][1], &p[1], b[1][2], &p[2]),
         comb(b[2][0], &p[0], b[2][1], &p[1]),
     ]
@@ -90,7 +83,7 @@ pub(super) fn link_mul(b: &M3, p: &M3) -> M3 {
 /// the five entries of `B`, the products with its zeros left out), the
 /// lower mirrors it.
 #[inline(always)]
-pub(super) fn pivot(mut own: M3, link: &M3, prev: &M3) -> M3 {
+pub(super) fn pivot<T: Lane>(mut own: M3<T>, link: &M3<T>, prev: &M3<T>) -> M3<T> {
     let (b02, b11, b12, b20, b21) = (link[0][2], link[1][1], link[1][2], link[2][0], link[2][1]);
     let p = prev;
     // Rows of B P (the entries the upper triangle uses).
@@ -119,7 +112,7 @@ pub(super) fn pivot(mut own: M3, link: &M3, prev: &M3) -> M3 {
 /// pivot's inverse, `(Z_{b+1} L, Z_b)` with `L = B_{b+1} S_b^-1` and
 /// `Z_b = S_b^-1 + L^T Z_{b+1} L`.
 #[inline(always)]
-fn inverse_block(link: &M3, inv: &M3, zm: &M3) -> (M3, M3) {
+fn inverse_block<T: Lane>(link: &M3<T>, inv: &M3<T>, zm: &M3<T>) -> (M3<T>, M3<T>) {
     let l = link_mul(link, inv);
     let zl = mul(zm, &l);
     let mut z = t_mul(&l, &zl);
@@ -177,19 +170,19 @@ fn invert(a: &mut [f64], n: usize, inv: &mut [f64]) -> bool {
 /// The inverse of a symmetric 3 by 3 matrix from its cofactors (each a 2 by
 /// 2 determinant, so a diagonal scaling of the matrix scales them alike and
 /// does not cost accuracy); where the determinant cancels, by
-/// [`invert3_pivoting`].
+/// [`invert3_pivoting`] (lane by lane for several lanes).
 #[inline(always)]
-pub(super) fn invert3(m: &M3) -> Option<M3> {
+pub(super) fn invert3<T: Pivoting>(m: &M3<T>) -> Option<M3<T>> {
     let [[a, b, c], [_, d, e], [_, _, f]] = *m;
     let c00 = d * f - e * e;
     let c01 = c * e - b * f;
     let c02 = b * e - c * d;
     let det = a * c00 + b * c01 + c * c02;
-    let size = (a * c00).abs() + (b * c01).abs() + (c * c02).abs();
-    if !(det.abs() > 1e-8 * size && det.is_finite()) {
-        return invert3_pivoting(m);
+    let size = T::abs(a * c00) + T::abs(b * c01) + T::abs(c * c02);
+    if !T::cofactors_hold(det, size) {
+        return T::pivoting(m);
     }
-    let r = 1.0 / det;
+    let r = T::splat(1.0) / det;
     let c11 = a * f - c * c;
     let c12 = b * c - a * e;
     let c22 = a * d - b * b;
@@ -198,6 +191,47 @@ pub(super) fn invert3(m: &M3) -> Option<M3> {
         [c01 * r, c11 * r, c12 * r],
         [c02 * r, c12 * r, c22 * r],
     ])
+}
+
+/// What [`invert3`] needs beyond arithmetic: the test of its cofactors and
+/// the pivoting inverse where they fail.
+pub(super) trait Pivoting: Lane {
+    fn abs(self) -> Self;
+    /// Whether the cofactors' determinant `det` stands clear of rounding
+    /// beside `size`, in every lane.
+    fn cofactors_hold(det: Self, size: Self) -> bool;
+    /// [`invert3_pivoting`], in every lane; `None` when any lane's fails.
+    fn pivoting(m: &M3<Self>) -> Option<M3<Self>>;
+}
+
+impl Pivoting for f64 {
+    #[inline(always)]
+    fn abs(self) -> f64 {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn cofactors_hold(det: f64, size: f64) -> bool {
+        det.abs() > 1e-8 * size && det.is_finite()
+    }
+    fn pivoting(m: &M3) -> Option<M3> {
+        invert3_pivoting(m)
+    }
+}
+
+impl Pivoting for F2 {
+    #[inline(always)]
+    fn abs(self) -> F2 {
+        F2(self.0.map(f64::abs))
+    }
+    #[inline(always)]
+    fn cofactors_hold(det: F2, size: F2) -> bool {
+        f64::cofactors_hold(det.0[0], size.0[0]) && f64::cofactors_hold(det.0[1], size.0[1])
+    }
+    #[cold]
+    fn pivoting(m: &M3<F2>) -> Option<M3<F2>> {
+        // Each lane as it goes alone: the cofactors where they hold.
+        Some(pair33(&invert3(&lane33(m, 0))?, &invert3(&lane33(m, 1))?))
+    }
 }
 
 /// The inverse of a 3 by 3 matrix by Gauss-Jordan with partial pivoting,
@@ -273,6 +307,22 @@ pub(crate) trait System {
     ) -> Option<f64> {
         evaluate_in_turn(self, lambda, ys, phis, d)
     }
+    /// [`System::evaluate`] of `lambdas[0]` into `phis[0]` and of
+    /// `lambdas[1]` into `phis[1]`, with the bits of each in turn (a
+    /// system may take both at once).
+    fn evaluate_two(
+        &mut self,
+        lambdas: [f64; 2],
+        ys: &[&[f64]],
+        phis: [&mut [Vec<f64>]; 2],
+        d: &mut Vec<f64>,
+    ) -> [Option<f64>; 2] {
+        let [pa, pb] = phis;
+        [
+            self.evaluate(lambdas[0], ys, pa, d),
+            self.evaluate(lambdas[1], ys, pb, d),
+        ]
+    }
 }
 
 /// [`System::evaluate`] by [`System::factor`], [`System::solve`] and
@@ -319,6 +369,29 @@ impl System for Factored<'_> {
             2 => self.evaluate_fused::<2>(lambda, ys, phis),
             3 => self.evaluate_fused::<3>(lambda, ys, phis),
             _ => evaluate_in_turn(self, lambda, ys, phis, d),
+        }
+    }
+    fn evaluate_two(
+        &mut self,
+        lambdas: [f64; 2],
+        ys: &[&[f64]],
+        phis: [&mut [Vec<f64>]; 2],
+        d: &mut Vec<f64>,
+    ) -> [Option<f64>; 2] {
+        let [pa, pb] = phis;
+        let both = match ys.len() {
+            1 => self.evaluate_pair::<1>(lambdas, ys, [&mut *pa, &mut *pb]),
+            2 => self.evaluate_pair::<2>(lambdas, ys, [&mut *pa, &mut *pb]),
+            3 => self.evaluate_pair::<3>(lambdas, ys, [&mut *pa, &mut *pb]),
+            _ => None,
+        };
+        match both {
+            Some([a, b]) => [Some(a), Some(b)],
+            // Singular for one of them (or many coordinates): each alone.
+            None => [
+                self.evaluate(lambdas[0], ys, pa, d),
+                self.evaluate(lambdas[1], ys, pb, d),
+            ],
         }
     }
 }
@@ -434,32 +507,35 @@ impl Grid {
     }
 
     /// The diagonal block of interior knot `k` (or of `phi_{N-1}`, padded,
-    /// for `k = N - 1`).
+    /// for `k = N - 1`), for one `lambda` or several side by side.
     #[inline(always)]
-    fn own(&self, k: usize, lambda: f64) -> M3 {
+    fn own<T: Lane>(&self, k: usize, lambda: T) -> M3<T> {
         let kn = &self.knots[k];
+        let (o, i) = (T::splat(0.0), T::splat(1.0));
         if k == self.n() - 1 {
-            return [[kn.w, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            return [[T::splat(kn.w), o, o], [o, i, o], [o, o, i]];
         }
+        let di = T::splat(kn.di);
         [
-            [kn.w, 0.0, 1.0],
-            [0.0, lambda * kn.q_diag, kn.di],
-            [1.0, kn.di, 0.0],
+            [T::splat(kn.w), o, i],
+            [o, lambda * T::splat(kn.q_diag), di],
+            [i, di, o],
         ]
     }
 
     /// `H[knot k, knot k-1]`: rows `(phi, d, m)` of knot `k` (or `phi_{N-1}`
     /// and padding for `k = N - 1`), columns those of knot `k - 1`.
     #[inline(always)]
-    fn link(&self, k: usize, lambda: f64) -> M3 {
+    fn link<T: Lane>(&self, k: usize, lambda: T) -> M3<T> {
         let kn = &self.knots[k];
+        let o = T::splat(0.0);
         if k == self.n() - 1 {
-            return [[0.0, 0.0, -kn.q_prev], [0.0; 3], [0.0; 3]];
+            return [[o, o, T::splat(-kn.q_prev)], [o; 3], [o; 3]];
         }
         [
-            [0.0, 0.0, -kn.q_prev],
-            [0.0, lambda * kn.q_off, kn.up_prev],
-            [-kn.p, kn.lo, 0.0],
+            [o, o, T::splat(-kn.q_prev)],
+            [o, lambda * T::splat(kn.q_off), T::splat(kn.up_prev)],
+            [T::splat(-kn.p), T::splat(kn.lo), o],
         ]
     }
 
@@ -501,70 +577,36 @@ impl Grid {
     }
 }
 
-/// The system factored for one `lambda` at a time: the inverse of the head's
-/// pivot block and of every later pivot block (the multipliers of the
-/// elimination are formed again where they are used). Factoring again for
-/// another `lambda` reuses the memory.
-pub(crate) struct Factored<'a> {
-    grid: &'a Grid,
+/// The head block factored for one `lambda`: its inverse, dense.
+#[derive(Default)]
+struct Head {
     lambda: f64,
-    head_inv: Vec<f64>,
-    /// Pivot inverses of knots `head + 1 ..= N - 1` (the last is `phi_{N-1}`'s).
-    inv: Vec<M3>,
-    /// The forward sweep's right-hand sides after the head, kept between
-    /// solves: block by block, each block's coordinates in turn.
-    z: Vec<[f64; 3]>,
-    /// The head's right-hand sides, one head-sized run a coordinate.
-    z0: Vec<f64>,
+    inv: Vec<f64>,
 }
 
-impl<'a> Factored<'a> {
-    /// The system of `grid`, not yet factored.
-    pub(crate) fn new(grid: &'a Grid) -> Self {
-        Factored {
-            grid,
-            lambda: f64::NAN,
-            head_inv: Vec::new(),
-            inv: Vec::with_capacity(grid.n() - 1 - grid.head),
-            z: Vec::new(),
-            z0: Vec::new(),
-        }
-    }
-
-    /// Factors the system for `lambda` (normalised units); `false` when a
-    /// pivot block is singular: the problem has no unique solution.
-    pub(crate) fn factor(&mut self, lambda: f64) -> bool {
-        let Some(prev) = self.factor_head(lambda) else {
-            return false;
-        };
-        self.forward::<0, true>([], [], prev)
-    }
-
-    /// Starts factoring for `lambda`: inverts the head block (the later
-    /// pivots are then formed by [`Factored::forward`]). Returns the head
-    /// inverse's block at its last knot, all that the first later pivot needs
+impl Head {
+    /// Inverts the head block of `grid` for `lambda`. Returns the inverse's
+    /// block at the head's last knot, all that the first later pivot needs
     /// of it (that block meets the head through its last knot only:
     /// `S = A - B (S_head^-1)_tail B^T`); `None` when the head is singular.
-    fn factor_head(&mut self, lambda: f64) -> Option<M3> {
-        let grid = self.grid;
+    fn factor(&mut self, grid: &Grid, lambda: f64) -> Option<M3> {
         self.lambda = lambda;
         let sz = grid.head_size();
         let mut a = grid.head_block(lambda);
-        self.head_inv.clear();
-        self.head_inv.resize(sz * sz, 0.0);
-        if !invert(&mut a, sz, &mut self.head_inv) {
+        self.inv.clear();
+        self.inv.resize(sz * sz, 0.0);
+        if !invert(&mut a, sz, &mut self.inv) {
             return None;
         }
         let tail = sz - 3;
-        let hi = &self.head_inv;
+        let hi = &self.inv;
         Some([0, 1, 2].map(|i| [0, 1, 2].map(|j| hi[(tail + i) * sz + tail + j])))
     }
 
     /// The forward sweep through the head for the data `y`: its right-hand
     /// side into `z0` (head-sized), and `S_head^-1 z0` at the head's last
     /// knot, which the next block needs.
-    fn forward_head(&self, y: &[f64], z0: &mut [f64]) -> [f64; 3] {
-        let g = self.grid;
+    fn forward(&self, g: &Grid, y: &[f64], z0: &mut [f64]) -> [f64; 3] {
         let sz = g.head_size();
         let tail = sz - 3;
         z0.fill(0.0);
@@ -574,7 +616,7 @@ impl<'a> Factored<'a> {
         }
         let mut s0z0 = [0.0; 3];
         for (i, v) in s0z0.iter_mut().enumerate() {
-            let row = &self.head_inv[(tail + i) * sz..(tail + i + 1) * sz];
+            let row = &self.inv[(tail + i) * sz..(tail + i + 1) * sz];
             *v = row.iter().zip(&*z0).map(|(a, b)| a * b).sum();
         }
         s0z0
@@ -584,14 +626,14 @@ impl<'a> Factored<'a> {
     /// `z0` (spent) and the first later block's solution `next`: the knot
     /// values of knots `0..=head` into `phi`, their deviations into `d` when
     /// asked for.
-    fn backward_head(
+    fn backward(
         &self,
+        g: &Grid,
         z0: &mut [f64],
         next: &[f64; 3],
         phi: &mut [f64],
         d: Option<&mut [f64]>,
     ) {
-        let g = self.grid;
         let sz = g.head_size();
         let tail = sz - 3;
         let bt = apply_t(&g.link(g.head + 1, self.lambda), next);
@@ -599,7 +641,7 @@ impl<'a> Factored<'a> {
             z0[tail + i] -= bt[i];
         }
         let x = |i: usize| -> f64 {
-            self.head_inv[i * sz..(i + 1) * sz]
+            self.inv[i * sz..(i + 1) * sz]
                 .iter()
                 .zip(&*z0)
                 .map(|(a, b)| a * b)
@@ -616,40 +658,70 @@ impl<'a> Factored<'a> {
         }
     }
 
-    /// Solves for the knot values `phi` and deviations `d` (both length N,
-    /// `d` zero at the ends) of the data `y`.
-    pub(crate) fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]) {
-        let n = self.grid.n();
-        let mut z0 = std::mem::take(&mut self.z0);
-        z0.resize(self.grid.head_size(), 0.0);
-        let sz = self.forward_head(y, &mut z0);
-        self.forward::<1, false>([y], [sz], [[0.0; 3]; 3]);
-        let (next, _) = self.backward::<1, false>(&mut [&mut *phi], Some(&mut *d));
-        self.backward_head(&mut z0, &next[0], phi, Some(d));
-        d[0] = 0.0;
-        d[n - 1] = 0.0;
-        self.z0 = z0;
+    /// The trace `tr` of the knots after the head, completed with the head's
+    /// share, given `zm`, the inverse's diagonal block of the first later
+    /// block.
+    fn trace(&self, g: &Grid, zm: &M3, mut tr: f64) -> f64 {
+        // L = B (rows of S_head^-1 at its last knot), 3 x size;
+        // (Z_head)_ii = (S_head^-1)_ii + l_i^T Z l_i for column l_i of L.
+        let sz = g.head_size();
+        let tail = sz - 3;
+        let b = g.link(g.head + 1, self.lambda);
+        let phis = std::iter::once(0).chain((1..=g.head).map(|k| 1 + 3 * (k - 1)));
+        let knot = |i: usize| if i == 0 { 0 } else { (i - 1) / 3 + 1 };
+        for i in phis {
+            let col: [f64; 3] = [0, 1, 2].map(|r| {
+                (0..3)
+                    .map(|c| b[r][c] * self.inv[(tail + c) * sz + i])
+                    .sum()
+            });
+            let zl = apply(zm, &col);
+            let quad: f64 = (0..3).map(|r| col[r] * zl[r]).sum();
+            tr += g.w(knot(i)) * (self.inv[i * sz + i] + quad);
+        }
+        tr
     }
+}
 
+/// The pivot inverses of the knots after the head and the forward sweep's
+/// right-hand sides there, block by block (each block's coordinates in
+/// turn), of one `lambda` or of several side by side.
+struct Sweeps<T> {
+    /// Pivot inverses of knots `head + 1 ..= N - 1` (the last is `phi_{N-1}`'s).
+    inv: Vec<M3<T>>,
+    z: Vec<[T; 3]>,
+}
+
+impl<T> Default for Sweeps<T> {
+    fn default() -> Self {
+        Sweeps {
+            inv: Vec::new(),
+            z: Vec::new(),
+        }
+    }
+}
+
+impl<T: Pivoting> Sweeps<T> {
     /// The forward sweep after the head for the data `ys`, `sz` holding each
-    /// one's `S_head^-1 z0` at the head's last knot ([`Factored::forward_head`]):
+    /// one's `S_head^-1 z0` at the head's last knot ([`Head::forward`]):
     /// the right-hand sides `z_b = r_b - B_b S_{b-1}^-1 z_{b-1}` into `z`.
     /// With `FACTOR` the pivot inverses are formed on the way (`prev` the
-    /// head inverse's block at its last knot, from [`Factored::factor_head`]),
-    /// else those kept are used. `false` when a pivot is singular.
+    /// head inverse's block at its last knot, from [`Head::factor`]), else
+    /// those kept are used. `false` when a pivot is singular.
     #[inline(always)]
     fn forward<const D: usize, const FACTOR: bool>(
         &mut self,
+        g: &Grid,
+        lambda: T,
         ys: [&[f64]; D],
-        mut sz: [[f64; 3]; D],
-        mut prev: M3,
+        mut sz: [[T; 3]; D],
+        mut prev: M3<T>,
     ) -> bool {
-        let g = self.grid;
-        let lambda = self.lambda;
         let (n, first) = (g.n(), g.head + 1);
-        self.z.resize(D * (n - first), [0.0; 3]);
+        let zero = T::splat(0.0);
+        self.z.resize(D * (n - first), [zero; 3]);
         if FACTOR {
-            self.inv.resize(n - first, [[0.0; 3]; 3]);
+            self.inv.resize(n - first, [[zero; 3]; 3]);
         }
         let ys = ys.map(|y| &y[..n]);
         for (b, inv) in self.inv.iter_mut().enumerate() {
@@ -668,7 +740,7 @@ impl<'a> Factored<'a> {
             let zs = &mut self.z[D * b..D * (b + 1)];
             for c in 0..D {
                 let lz = apply(&link, &sz[c]);
-                let zb = [g.w(k) * ys[c][k] - lz[0], -lz[1], -lz[2]];
+                let zb = [T::splat(g.w(k) * ys[c][k]) - lz[0], -lz[1], -lz[2]];
                 sz[c] = apply(&si, &zb);
                 zs[c] = zb;
             }
@@ -677,32 +749,41 @@ impl<'a> Factored<'a> {
     }
 
     /// The backward sweep after the head, from the right-hand sides in `z`:
-    /// `x_b = S_b^-1 (z_b - B_{b+1}^T x_{b+1})`, each coordinate's knot values
-    /// into `phis` (and the first one's deviations into `d` when given). With
-    /// `TRACE`, beside it the recurrence for the inverse's diagonal blocks,
-    /// `Z_b = S_b^-1 + L^T Z_{b+1} L` with `L = B_{b+1} S_b^-1`, summing the
-    /// trace of the knots after the head. Returns the first later block's
-    /// solutions (for [`Factored::backward_head`]), and its `Z` with that
-    /// sum (for [`Factored::trace_head`]).
+    /// `x_b = S_b^-1 (z_b - B_{b+1}^T x_{b+1})`, the knot values of
+    /// coordinate `c` in lane `l` into `phis[c * T::LANES + l]` (and the
+    /// first one's deviations into `d` when given). With `TRACE`, beside it
+    /// the recurrence for the inverse's diagonal blocks, `Z_b = S_b^-1 +
+    /// L^T Z_{b+1} L` with `L = B_{b+1} S_b^-1`, summing the trace of the
+    /// knots after the head. Returns the first later block's solutions (for
+    /// [`Head::backward`]), and its `Z` with that sum (for [`Head::trace`]).
     #[inline(always)]
     fn backward<const D: usize, const TRACE: bool>(
         &self,
-        phis: &mut [&mut [f64]; D],
+        g: &Grid,
+        lambda: T,
+        phis: &mut [&mut [f64]],
         mut d: Option<&mut [f64]>,
-    ) -> ([[f64; 3]; D], (M3, f64)) {
-        let g = self.grid;
-        let lambda = self.lambda;
+    ) -> ([[T; 3]; D], (M3<T>, T)) {
         let (n, first) = (g.n(), g.head + 1);
         let last = self.inv.len() - 1;
-        let mut next = [[0.0; 3]; D];
+        let mut next = [[T::splat(0.0); 3]; D];
+        let mut put = |c: usize, k: usize, v: T| {
+            for l in 0..T::LANES {
+                phis[c * T::LANES + l][k] = v.lane(l);
+            }
+        };
         // Knot N - 1: phi_{N-1} and padding.
         let inv = &self.inv[last];
         for c in 0..D {
             next[c] = apply(inv, &self.z[D * last + c]);
-            phis[c][n - 1] = next[c][0];
+            put(c, n - 1, next[c][0]);
         }
         let mut zm = *inv;
-        let mut tr = if TRACE { g.w(n - 1) * zm[0][0] } else { 0.0 };
+        let mut tr = if TRACE {
+            T::splat(g.w(n - 1)) * zm[0][0]
+        } else {
+            T::splat(0.0)
+        };
         for b in (0..last).rev() {
             let k = first + b;
             let inv = &self.inv[b];
@@ -714,17 +795,88 @@ impl<'a> Factored<'a> {
                     rhs[i] -= bt[i];
                 }
                 next[c] = apply(inv, &rhs);
-                phis[c][k] = next[c][0];
+                put(c, k, next[c][0]);
             }
             if let Some(d) = d.as_deref_mut() {
-                d[k] = next[0][1];
+                d[k] = next[0][1].lane(0);
             }
             if TRACE {
                 zm = inverse_block(&link, inv, &zm).1;
-                tr += g.w(k) * zm[0][0];
+                tr += T::splat(g.w(k)) * zm[0][0];
             }
         }
         (next, (zm, tr))
+    }
+}
+
+/// The system factored for one `lambda` at a time: the inverse of the head's
+/// pivot block and of every later pivot block (the multipliers of the
+/// elimination are formed again where they are used). Factoring again for
+/// another `lambda` reuses the memory.
+pub(crate) struct Factored<'a> {
+    grid: &'a Grid,
+    head: Head,
+    sweeps: Sweeps<f64>,
+    /// The head's right-hand sides, one head-sized run a coordinate.
+    z0: Vec<f64>,
+    /// What a score of two `lambda`s side by side needs beyond one's.
+    pair: Option<Box<Pair>>,
+}
+
+/// The second lane's head and right-hand sides, and both lanes' sweeps,
+/// of [`Factored::evaluate_pair`].
+#[derive(Default)]
+struct Pair {
+    head: Head,
+    z0: Vec<f64>,
+    sweeps: Sweeps<F2>,
+}
+
+impl<'a> Factored<'a> {
+    /// The system of `grid`, not yet factored.
+    pub(crate) fn new(grid: &'a Grid) -> Self {
+        Factored {
+            grid,
+            head: Head {
+                lambda: f64::NAN,
+                inv: Vec::new(),
+            },
+            sweeps: Sweeps {
+                inv: Vec::with_capacity(grid.n() - 1 - grid.head),
+                z: Vec::new(),
+            },
+            z0: Vec::new(),
+            pair: None,
+        }
+    }
+
+    /// Factors the system for `lambda` (normalised units); `false` when a
+    /// pivot block is singular: the problem has no unique solution.
+    pub(crate) fn factor(&mut self, lambda: f64) -> bool {
+        let Some(prev) = self.head.factor(self.grid, lambda) else {
+            return false;
+        };
+        self.sweeps
+            .forward::<0, true>(self.grid, lambda, [], [], prev)
+    }
+
+    /// Solves for the knot values `phi` and deviations `d` (both length N,
+    /// `d` zero at the ends) of the data `y`.
+    pub(crate) fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]) {
+        let (g, lambda) = (self.grid, self.head.lambda);
+        let n = g.n();
+        let mut z0 = std::mem::take(&mut self.z0);
+        z0.resize(g.head_size(), 0.0);
+        let sz = self.head.forward(g, y, &mut z0);
+        self.sweeps
+            .forward::<1, false>(g, lambda, [y], [sz], [[0.0; 3]; 3]);
+        let (next, _) =
+            self.sweeps
+                .backward::<1, false>(g, lambda, &mut [&mut *phi], Some(&mut *d));
+        self.head.backward(g, &mut z0, &next[0], phi, Some(d));
+        d[0] = 0.0;
+        d[n - 1] = 0.0;
+        self.z0 = z0;
     }
 
     /// [`System::evaluate`] for `D` coordinates in one pass forward and one
@@ -739,25 +891,89 @@ impl<'a> Factored<'a> {
         ys: &[&[f64]],
         phis: &mut [Vec<f64>],
     ) -> Option<f64> {
-        let size = self.grid.head_size();
+        let g = self.grid;
+        let size = g.head_size();
         let ys: [&[f64]; D] = std::array::from_fn(|c| ys[c]);
-        let prev = self.factor_head(lambda)?;
+        let prev = self.head.factor(g, lambda)?;
         let mut z0 = std::mem::take(&mut self.z0);
         z0.resize(size * D, 0.0);
         let mut heads = z0.chunks_exact_mut(size);
-        let sz = ys.map(|y| self.forward_head(y, heads.next().expect("a head a coordinate")));
-        let factored = self.forward::<D, true>(ys, sz, prev);
-        let mut phis = phis.iter_mut();
-        let mut phis = [(); D].map(|()| phis.next().expect("a coordinate").as_mut_slice());
+        let sz = ys.map(|y| {
+            self.head
+                .forward(g, y, heads.next().expect("a head a coordinate"))
+        });
+        let factored = self.sweeps.forward::<D, true>(g, lambda, ys, sz, prev);
+        let mut phis: Vec<&mut [f64]> = phis.iter_mut().map(Vec::as_mut_slice).collect();
         let trace = factored.then(|| {
-            let (next, (zm, tr)) = self.backward::<D, true>(&mut phis, None);
+            let (next, (zm, tr)) = self.sweeps.backward::<D, true>(g, lambda, &mut phis, None);
             for (c, z0) in z0.chunks_exact_mut(size).enumerate() {
-                self.backward_head(z0, &next[c], phis[c], None);
+                self.head.backward(g, z0, &next[c], phis[c], None);
             }
-            self.trace_head(&zm, tr)
+            self.head.trace(g, &zm, tr)
         });
         self.z0 = z0;
         trace
+    }
+
+    /// [`Factored::evaluate_fused`] for two `lambdas` at once, each in a
+    /// lane of [`F2`]: every score the bits it has alone, in about the
+    /// instructions of one. `None` when either is singular (then score each
+    /// alone). Leaves the system factored for neither.
+    fn evaluate_pair<const D: usize>(
+        &mut self,
+        lambdas: [f64; 2],
+        ys: &[&[f64]],
+        phis: [&mut [Vec<f64>]; 2],
+    ) -> Option<[f64; 2]> {
+        let g = self.grid;
+        let size = g.head_size();
+        let ys: [&[f64]; D] = std::array::from_fn(|c| ys[c]);
+        let pair = self.pair.get_or_insert_with(Box::default);
+        let prev = pair33(
+            &self.head.factor(g, lambdas[0])?,
+            &pair.head.factor(g, lambdas[1])?,
+        );
+        let (mut z0a, mut z0b) = (std::mem::take(&mut self.z0), std::mem::take(&mut pair.z0));
+        z0a.resize(size * D, 0.0);
+        z0b.resize(size * D, 0.0);
+        let (mut ha, mut hb) = (z0a.chunks_exact_mut(size), z0b.chunks_exact_mut(size));
+        let sz = ys.map(|y| {
+            let a = self
+                .head
+                .forward(g, y, ha.next().expect("a head a coordinate"));
+            let b = pair
+                .head
+                .forward(g, y, hb.next().expect("a head a coordinate"));
+            pair3(&a, &b)
+        });
+        let lambda = F2(lambdas);
+        let factored = pair.sweeps.forward::<D, true>(g, lambda, ys, sz, prev);
+        let [pa, pb] = phis;
+        let traces = factored.then(|| {
+            let mut outs: Vec<&mut [f64]> = Vec::with_capacity(2 * D);
+            for (a, b) in pa.iter_mut().zip(pb.iter_mut()) {
+                outs.push(a.as_mut_slice());
+                outs.push(b.as_mut_slice());
+            }
+            let (next, (zm, tr)) = pair.sweeps.backward::<D, true>(g, lambda, &mut outs, None);
+            for c in 0..D {
+                let (za, zb) = (
+                    &mut z0a[c * size..(c + 1) * size],
+                    &mut z0b[c * size..(c + 1) * size],
+                );
+                self.head
+                    .backward(g, za, &lane3(&next[c], 0), outs[2 * c], None);
+                pair.head
+                    .backward(g, zb, &lane3(&next[c], 1), outs[2 * c + 1], None);
+            }
+            [
+                self.head.trace(g, &lane33(&zm, 0), tr.lane(0)),
+                pair.head.trace(g, &lane33(&zm, 1), tr.lane(1)),
+            ]
+        });
+        self.z0 = z0a;
+        pair.z0 = z0b;
+        traces
     }
 
     /// The posterior covariance (over `sigma^2`) of each knot's value and
@@ -770,16 +986,17 @@ impl<'a> Factored<'a> {
     /// being block upper triangular: `Z_{b+1,b} = -Z_{b+1} L_{b+1,b}`.
     pub(crate) fn covariances(&self) -> Vec<[f64; 7]> {
         let g = self.grid;
+        let (lambda, head_inv, inv) = (self.head.lambda, &self.head.inv, &self.sweeps.inv);
         let n = g.n();
         let mut out = vec![[0.0; 7]; n];
-        let last = self.inv.len() - 1;
-        let mut zm = self.inv[last];
+        let last = inv.len() - 1;
+        let mut zm = inv[last];
         out[n - 1][0] = zm[0][0];
         for b in (0..last).rev() {
             let k = g.head + 1 + b;
             // Z_{k+1,k} = -Z_{k+1} L: rows knot k+1, columns knot k.
             let cross;
-            (cross, zm) = inverse_block(&g.link(k + 1, self.lambda), &self.inv[b], &zm);
+            (cross, zm) = inverse_block(&g.link(k + 1, lambda), &inv[b], &zm);
             out[k] = [
                 zm[0][0],
                 zm[0][1],
@@ -794,18 +1011,18 @@ impl<'a> Factored<'a> {
         // knot only), Z_head = S_head^-1 + L^T Z L and Z_{head+1,head} = -Z L.
         let sz = g.head_size();
         let tail = sz - 3;
-        let b = g.link(g.head + 1, self.lambda);
+        let b = g.link(g.head + 1, lambda);
         let lcol = |i: usize| -> [f64; 3] {
             [0, 1, 2].map(|r| {
                 (0..3)
-                    .map(|c| b[r][c] * self.head_inv[(tail + c) * sz + i])
+                    .map(|c| b[r][c] * head_inv[(tail + c) * sz + i])
                     .sum()
             })
         };
         let cols: Vec<[f64; 3]> = (0..sz).map(lcol).collect();
         let zl: Vec<[f64; 3]> = cols.iter().map(|c| apply(&zm, c)).collect();
         let z = |i: usize, j: usize| -> f64 {
-            self.head_inv[i * sz + j] + (0..3).map(|r| cols[i][r] * zl[j][r]).sum::<f64>()
+            head_inv[i * sz + j] + (0..3).map(|r| cols[i][r] * zl[j][r]).sum::<f64>()
         };
         // Positions of phi_k and d_k in the head (d_0 has none).
         let phi_at = |k: usize| if k == 0 { 0 } else { 1 + 3 * (k - 1) };
@@ -842,33 +1059,10 @@ impl<'a> Factored<'a> {
     /// Z_{b+1} L_{b+1}` with `L_{b+1} = B_{b+1} S_b^-1`, without forming any
     /// other part of it.
     pub(crate) fn trace(&self) -> f64 {
-        let (_, (zm, tr)) = self.backward::<0, true>(&mut [], None);
-        self.trace_head(&zm, tr)
-    }
-
-    /// The trace `tr` of the knots after the head, completed with the head's
-    /// share, given `zm`, the inverse's diagonal block of the first later
-    /// block.
-    fn trace_head(&self, zm: &M3, mut tr: f64) -> f64 {
-        let g = self.grid;
-        // L = B (rows of S_head^-1 at its last knot), 3 x size;
-        // (Z_head)_ii = (S_head^-1)_ii + l_i^T Z l_i for column l_i of L.
-        let sz = g.head_size();
-        let tail = sz - 3;
-        let b = g.link(g.head + 1, self.lambda);
-        let phis = std::iter::once(0).chain((1..=g.head).map(|k| 1 + 3 * (k - 1)));
-        let knot = |i: usize| if i == 0 { 0 } else { (i - 1) / 3 + 1 };
-        for i in phis {
-            let col: [f64; 3] = [0, 1, 2].map(|r| {
-                (0..3)
-                    .map(|c| b[r][c] * self.head_inv[(tail + c) * sz + i])
-                    .sum()
-            });
-            let zl = apply(zm, &col);
-            let quad: f64 = (0..3).map(|r| col[r] * zl[r]).sum();
-            tr += g.w(knot(i)) * (self.head_inv[i * sz + i] + quad);
-        }
-        tr
+        let (_, (zm, tr)) =
+            self.sweeps
+                .backward::<0, true>(self.grid, self.head.lambda, &mut [], None);
+        self.head.trace(self.grid, &zm, tr)
     }
 }
 
@@ -876,6 +1070,44 @@ impl<'a> Factored<'a> {
 mod tests {
     use super::*;
     use crate::testing::rng;
+
+    /// A random problem of `seed`: grids of random and many-decade widths,
+    /// random and extreme alphas, weights with zeros (heads longer than one
+    /// knot), one to four coordinates of data.
+    fn case(seed: u64) -> (Grid, Vec<Vec<f64>>) {
+        let mut next = rng(seed);
+        let n = 3 + (next() * 60.0) as usize + if seed.is_multiple_of(7) { 3000 } else { 0 };
+        let widths: Vec<f64> = (0..n - 1)
+            .map(|_| {
+                if seed % 3 == 1 {
+                    10f64.powf(-6.0 * next())
+                } else {
+                    0.5 + next()
+                }
+            })
+            .collect();
+        let span: f64 = widths.iter().sum();
+        let widths: Vec<f64> = widths.iter().map(|h| h / span).collect();
+        let alphas: Vec<f64> = (0..n - 1)
+            .map(|_| match seed % 4 {
+                0 => 1.0 / 3.0 + next() / 3.0,
+                1 => [1.0 / 3.0, 2.0 / 3.0][(next() * 2.0) as usize],
+                _ => 0.5,
+            })
+            .collect();
+        let zeros = (seed % 5) as usize;
+        let mut w: Vec<f64> = (0..n)
+            .map(|k| if k < zeros { 0.0 } else { 0.2 + next() })
+            .collect();
+        let mean = w.iter().sum::<f64>() / n as f64;
+        w.iter_mut().for_each(|v| *v /= mean);
+        let grid = Grid::new(&widths, &alphas, &w);
+        let dim = 1 + (seed % 4) as usize;
+        let ys: Vec<Vec<f64>> = (0..dim)
+            .map(|_| (0..n).map(|_| next() - 0.5).collect())
+            .collect();
+        (grid, ys)
+    }
 
     /// The fused evaluation gives the bits of factoring, solving and taking
     /// the trace in turn, for one to four coordinates, on grids of random
@@ -886,37 +1118,8 @@ mod tests {
     fn fused_evaluation_is_factor_solve_trace_bit_for_bit() {
         let mut cases = 0;
         for seed in 0..40u64 {
-            let mut next = rng(seed);
-            let n = 3 + (next() * 60.0) as usize + if seed % 7 == 0 { 3000 } else { 0 };
-            let widths: Vec<f64> = (0..n - 1)
-                .map(|_| {
-                    if seed % 3 == 1 {
-                        10f64.powf(-6.0 * next())
-                    } else {
-                        0.5 + next()
-                    }
-                })
-                .collect();
-            let span: f64 = widths.iter().sum();
-            let widths: Vec<f64> = widths.iter().map(|h| h / span).collect();
-            let alphas: Vec<f64> = (0..n - 1)
-                .map(|_| match seed % 4 {
-                    0 => 1.0 / 3.0 + next() / 3.0,
-                    1 => [1.0 / 3.0, 2.0 / 3.0][(next() * 2.0) as usize],
-                    _ => 0.5,
-                })
-                .collect();
-            let zeros = (seed % 5) as usize;
-            let mut w: Vec<f64> = (0..n)
-                .map(|k| if k < zeros { 0.0 } else { 0.2 + next() })
-                .collect();
-            let mean = w.iter().sum::<f64>() / n as f64;
-            w.iter_mut().for_each(|v| *v /= mean);
-            let grid = Grid::new(&widths, &alphas, &w);
-            let dim = 1 + (seed % 4) as usize;
-            let ys: Vec<Vec<f64>> = (0..dim)
-                .map(|_| (0..n).map(|_| next() - 0.5).collect())
-                .collect();
+            let (grid, ys) = case(seed);
+            let (n, dim) = (ys[0].len(), ys.len());
             let ys: Vec<&[f64]> = ys.iter().map(Vec::as_slice).collect();
             for t in [-12.0, -7.0, -3.5, -1.0, 0.0, 2.0, 6.0] {
                 let lambda = 10f64.powf(t);
@@ -952,5 +1155,49 @@ mod tests {
             }
         }
         assert!(cases > 400, "{cases} cases compared");
+    }
+
+    /// Two lambdas scored at once give each the bits of scoring it alone,
+    /// knot values and trace, or `None` alike, for every pair of lambdas
+    /// from interpolation to the straight line (the same one twice too).
+    #[test]
+    fn two_lambdas_at_once_are_each_alone_bit_for_bit() {
+        let ts = [-12.0, -7.0, -3.5, -1.0, 0.0, 2.0, 6.0];
+        let mut cases = 0;
+        for seed in 0..40u64 {
+            let (grid, ys) = case(seed);
+            let (n, dim) = (ys[0].len(), ys.len());
+            let ys: Vec<&[f64]> = ys.iter().map(Vec::as_slice).collect();
+            let mut two = Factored::new(&grid);
+            let mut d = Vec::new();
+            for (i, &ta) in ts.iter().enumerate() {
+                for &tb in &ts[i..] {
+                    let lambdas = [10f64.powf(ta), 10f64.powf(tb)];
+                    let mut pa = vec![vec![0.0; n]; dim];
+                    let mut pb = vec![vec![0.0; n]; dim];
+                    let got = two.evaluate_two(lambdas, &ys, [&mut pa, &mut pb], &mut d);
+                    for (l, (lambda, phis)) in lambdas.iter().zip([&pa, &pb]).enumerate() {
+                        let mut alone = Factored::new(&grid);
+                        let mut want = vec![vec![0.0; n]; dim];
+                        let t = System::evaluate(&mut alone, *lambda, &ys, &mut want, &mut d);
+                        let at = format!("seed {seed}, lambdas {lambdas:?}, lane {l}");
+                        assert_eq!(got[l].map(f64::to_bits), t.map(f64::to_bits), "{at}");
+                        if t.is_some() {
+                            for c in 0..dim {
+                                for k in 0..n {
+                                    assert_eq!(
+                                        phis[c][k].to_bits(),
+                                        want[c][k].to_bits(),
+                                        "{at}, {c}, {k}"
+                                    );
+                                }
+                            }
+                            cases += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(cases > 1500, "{cases} cases compared");
     }
 }
