@@ -2,7 +2,8 @@
 //! format by extension or content, as the command finds it), builds its
 //! coverage, smooths it at the default tolerance and assembles the smoothed
 //! geometries, printing after each step the resident memory and its peak so
-//! far (Linux's `VmRSS` and `VmHWM`), in MB.
+//! far (Linux's `VmRSS` and `VmHWM`), in MB. It allocates with mimalloc,
+//! as the command does.
 //!
 //! ```text
 //! cargo run --release -p bzspline-io --all-features --example layer_memory -- FILE
@@ -15,6 +16,9 @@ use std::process::ExitCode;
 
 use bzspline_geo::{Coverage, SmoothOptions};
 use bzspline_io::features::Shape;
+
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 /// `VmRSS` and `VmHWM` in MB (zeros where `/proc` is not there).
 fn memory() -> (u64, u64) {
