@@ -380,6 +380,8 @@ impl System for Factored<'_> {
     ) -> [Option<f64>; 2] {
         let [pa, pb] = phis;
         let both = match ys.len() {
+            // Without two-lane registers a pair costs what two scores do.
+            _ if !PAIRED => None,
             1 => self.evaluate_pair::<1>(lambdas, ys, [&mut *pa, &mut *pb]),
             2 => self.evaluate_pair::<2>(lambdas, ys, [&mut *pa, &mut *pb]),
             3 => self.evaluate_pair::<3>(lambdas, ys, [&mut *pa, &mut *pb]),
@@ -395,6 +397,15 @@ impl System for Factored<'_> {
         }
     }
 }
+
+/// Whether two scores are taken in one pass ([`Factored::evaluate_pair`]):
+/// where the target has registers of two doubles (SSE2, NEON, WebAssembly's
+/// SIMD). Elsewhere each is scored alone, with the same bits.
+const PAIRED: bool = cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+));
 
 /// The penalty `int S''^2` of each interval as a form in `(d_k, d_{k+1})`:
 /// `[Q00, Q01, Q11]` (§12). `S''` at the interval's ends in its local
