@@ -377,7 +377,7 @@ pub trait Source {
 
 /// The geometry types of GeoJSON (its `type` values after
 /// FeatureCollection and Feature).
-const GEOMETRY_TYPES: &[&str] = crate::input::GEOJSON_TYPES.split_at(2).1;
+pub(crate) const GEOMETRY_TYPES: &[&str] = crate::input::GEOJSON_TYPES.split_at(2).1;
 
 /// Whether any position of a GeoJSON geometry has z.
 #[must_use]

@@ -8,7 +8,12 @@
 use anyhow::{anyhow, bail, Result};
 use bzspline_geo::{ArcRef, Arcs, Chain, ChainKind, Topology};
 use geo_types::Coord;
+use serde::ser::{Serialize, SerializeMap, Serializer};
 use serde_json::{json, Map, Value};
+use std::borrow::Cow;
+use std::cell::Cell;
+
+use crate::features::{has_z, Source, GEOMETRY_TYPES, NULL};
 
 /// A TopoJSON document and its topology.
 pub struct TopoDoc {
@@ -125,6 +130,12 @@ pub fn read(name: &str, v: Value) -> Result<TopoDoc> {
     let (chains, polygons, origins) = (r.chains, r.polygons, r.origins);
     let topology =
         Topology::from_arcs(arcs, chains, polygons).map_err(|e| anyhow!("{name}: {e}"))?;
+    let mut root = root;
+    // Decoded into the topology: the arcs' JSON is let go of (the key keeps
+    // its place for the document written back).
+    if let Some(a) = root.get_mut("arcs") {
+        *a = Value::Null;
+    }
     Ok(TopoDoc {
         root,
         transform,
@@ -292,6 +303,52 @@ impl TopoDoc {
         Value::Object(root)
     }
 
+    /// Writes [`TopoDoc::to_topojson`] compact, its arcs a position at a
+    /// time: the same text as that value written whole.
+    ///
+    /// # Errors
+    ///
+    /// Write errors of `w`.
+    pub fn write_topojson(&self, arcs: &Arcs, mut w: impl std::io::Write) -> std::io::Result<()> {
+        let mut root = self.root.clone();
+        root.remove("transform");
+        root.remove("bbox");
+        root.insert("arcs".into(), Value::Null);
+        if self.transform.is_some() {
+            if let Some(Value::Object(objects)) = root.get_mut("objects") {
+                for o in objects.values_mut() {
+                    self.decode_points(o);
+                }
+            }
+        }
+        use crate::model::write_json_compact as json;
+        w.write_all(b"{")?;
+        for (i, (k, v)) in root.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            json(&mut w, k)?;
+            w.write_all(b":")?;
+            if k != "arcs" {
+                json(&mut w, v)?;
+                continue;
+            }
+            w.write_all(b"[")?;
+            for (j, a) in arcs.iter().enumerate() {
+                w.write_all(if j > 0 { b",[" } else { b"[" })?;
+                for (m, c) in a.iter().enumerate() {
+                    if m > 0 {
+                        w.write_all(b",")?;
+                    }
+                    json(&mut w, &[c.x, c.y])?;
+                }
+                w.write_all(b"]")?;
+            }
+            w.write_all(b"]")?;
+        }
+        w.write_all(b"}")
+    }
+
     fn decode_points(&self, g: &mut Value) {
         if let Some(Value::Array(gs)) = g.get_mut("geometries") {
             gs.iter_mut().for_each(|s| self.decode_points(s));
@@ -304,60 +361,76 @@ impl TopoDoc {
         }
     }
 
+    /// Chain `i`'s positions from `arcs`, as a GeoJSON line or ring: a ring
+    /// collapsed by quantization repeats its first until it has the 4
+    /// GeoJSON asks for, as topojson-client writes it.
+    fn chain_positions(&self, i: usize, arcs: &Arcs) -> Vec<Coord> {
+        let mut c = self.topology.chain_coords(i, arcs);
+        if self.topology.chains()[i].kind == ChainKind::Ring && !c.is_empty() {
+            while c.len() < 4 {
+                c.push(c[0]);
+            }
+        }
+        c
+    }
+
     /// GeoJSON features of every object (or only `object`), with the lines
     /// and rings assembled from `arcs`: a GeometryCollection object gives one
     /// feature per member, any other object one feature.
     pub fn to_geojson(&self, arcs: &Arcs, object: Option<&str>) -> Result<Value> {
-        let Some(Value::Object(objects)) = self.root.get("objects") else {
-            return Ok(json!({"type": "FeatureCollection", "features": []}));
-        };
-        if let Some(o) = object {
-            if !objects.contains_key(o) {
-                let names: Vec<&str> = objects.keys().map(String::as_str).collect();
-                bail!("no object {o:?} in the Topology (it has {names:?})");
+        let f = self.geojson_features(arcs, object)?;
+        let features: Vec<Value> = (0..f.members.len()).map(|i| f.feature(i)).collect();
+        Ok(json!({"type": "FeatureCollection", "features": features}))
+    }
+
+    /// The features of [`TopoDoc::to_geojson`], each made when it is asked
+    /// for ([`Source`]) or written ([`GeojsonFeatures::write_geojson`]), so
+    /// that their positions are never all held as JSON values.
+    ///
+    /// # Errors
+    ///
+    /// `object` names no object of the Topology.
+    pub fn geojson_features<'a>(
+        &'a self,
+        arcs: &'a Arcs,
+        object: Option<&str>,
+    ) -> Result<GeojsonFeatures<'a>> {
+        let mut members = Vec::new();
+        if let Some(Value::Object(objects)) = self.root.get("objects") {
+            if let Some(o) = object {
+                if !objects.contains_key(o) {
+                    let names: Vec<&str> = objects.keys().map(String::as_str).collect();
+                    bail!("no object {o:?} in the Topology (it has {names:?})");
+                }
             }
-        }
-        let mut next = 0usize;
-        let mut features = Vec::new();
-        for (oname, o) in objects {
-            let wanted = object.is_none_or(|w| w == oname);
-            let members: Vec<&Value> =
-                match (o.get("type").and_then(Value::as_str), o.get("geometries")) {
+            let mut next = 0usize;
+            for (oname, o) in objects {
+                let wanted = object.is_none_or(|w| w == oname);
+                let geometries = match (o.get("type").and_then(Value::as_str), o.get("geometries"))
+                {
                     (Some("GeometryCollection"), Some(Value::Array(gs))) => gs.iter().collect(),
                     _ => vec![o],
                 };
-            for g in members {
-                let geometry = self.geometry(g, arcs, &mut next);
-                if wanted {
-                    let mut f = Map::new();
-                    f.insert("type".into(), json!("Feature"));
-                    if let Some(id) = g.get("id") {
-                        f.insert("id".into(), id.clone());
+                for g in geometries {
+                    if wanted {
+                        members.push((g, next));
                     }
-                    f.insert(
-                        "properties".into(),
-                        g.get("properties").cloned().unwrap_or(json!({})),
-                    );
-                    f.insert("geometry".into(), geometry);
-                    features.push(Value::Object(f));
+                    next += chains_in(g);
                 }
             }
         }
-        Ok(json!({"type": "FeatureCollection", "features": features}))
+        Ok(GeojsonFeatures {
+            doc: self,
+            arcs,
+            members,
+        })
     }
 
     /// The GeoJSON geometry of a geometry object; `next` counts chains in the
     /// order [`read`] met them.
     fn geometry(&self, g: &Value, arcs: &Arcs, next: &mut usize) -> Value {
         let mut take = || {
-            let mut c = self.topology.chain_coords(*next, arcs);
-            // GeoJSON's rings have 4 or more positions: a ring collapsed by
-            // quantization repeats its first, as topojson-client writes it.
-            if self.topology.chains()[*next].kind == ChainKind::Ring && !c.is_empty() {
-                while c.len() < 4 {
-                    c.push(c[0]);
-                }
-            }
+            let c = self.chain_positions(*next, arcs);
             *next += 1;
             Value::Array(c.iter().map(|p| json!([p.x, p.y])).collect())
         };
@@ -397,6 +470,260 @@ impl TopoDoc {
                 json!({"type": "GeometryCollection", "geometries": gs})
             }
             _ => Value::Null,
+        }
+    }
+}
+
+/// How many chains [`TopoDoc::geometry`] takes for the geometry object `g`.
+fn chains_in(g: &Value) -> usize {
+    let count = |v: Option<&Value>| v.and_then(Value::as_array).map_or(0, Vec::len);
+    let a = g.get("arcs");
+    match g.get("type").and_then(Value::as_str) {
+        Some("LineString") => 1,
+        Some("MultiLineString" | "Polygon") => count(a),
+        Some("MultiPolygon") => a
+            .and_then(Value::as_array)
+            .map_or(0, |ps| ps.iter().map(|p| count(Some(p))).sum()),
+        Some("GeometryCollection") => g
+            .get("geometries")
+            .and_then(Value::as_array)
+            .map_or(0, |gs| gs.iter().map(chains_in).sum()),
+        _ => 0,
+    }
+}
+
+/// The GeoJSON features of a Topology's objects with the lines and rings
+/// assembled from given arcs ([`TopoDoc::geojson_features`]), one at a time.
+pub struct GeojsonFeatures<'a> {
+    doc: &'a TopoDoc,
+    arcs: &'a Arcs,
+    /// Each feature's geometry object and its first chain.
+    members: Vec<(&'a Value, usize)>,
+}
+
+impl GeojsonFeatures<'_> {
+    /// Feature `i`, as [`TopoDoc::to_geojson`] gives it.
+    #[must_use]
+    pub fn feature(&self, i: usize) -> Value {
+        let (g, _) = self.members[i];
+        let mut f = Map::new();
+        f.insert("type".into(), json!("Feature"));
+        if let Some(id) = g.get("id") {
+            f.insert("id".into(), id.clone());
+        }
+        f.insert(
+            "properties".into(),
+            g.get("properties").cloned().unwrap_or(json!({})),
+        );
+        f.insert("geometry".into(), self.geometry_of(i));
+        Value::Object(f)
+    }
+
+    fn geometry_of(&self, i: usize) -> Value {
+        let (g, mut next) = self.members[i];
+        self.doc.geometry(g, self.arcs, &mut next)
+    }
+
+    /// Writes the FeatureCollection of [`TopoDoc::to_geojson`], compact,
+    /// a feature at a time: the same text as that value written whole.
+    ///
+    /// # Errors
+    ///
+    /// Write errors of `w`.
+    pub fn write_geojson(&self, mut w: impl std::io::Write) -> std::io::Result<()> {
+        w.write_all(br#"{"type":"FeatureCollection","features":["#)?;
+        for i in 0..self.members.len() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            let (g, first) = self.members[i];
+            let out = FeatureOut {
+                g,
+                geometry: GeometryOut {
+                    doc: self.doc,
+                    arcs: self.arcs,
+                    g,
+                    next: &Cell::new(first),
+                },
+            };
+            crate::model::write_json_compact(&mut w, &out)?;
+        }
+        w.write_all(b"]}")
+    }
+}
+
+/// Feature `g` as [`GeojsonFeatures::feature`] makes it, its geometry
+/// written a chain at a time.
+struct FeatureOut<'a> {
+    g: &'a Value,
+    geometry: GeometryOut<'a>,
+}
+
+impl Serialize for FeatureOut<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let id = self.g.get("id");
+        let mut m = s.serialize_map(Some(3 + usize::from(id.is_some())))?;
+        m.serialize_entry("type", "Feature")?;
+        if let Some(id) = id {
+            m.serialize_entry("id", id)?;
+        }
+        match self.g.get("properties") {
+            Some(p) => m.serialize_entry("properties", p)?,
+            None => m.serialize_entry("properties", &Map::new())?,
+        }
+        m.serialize_entry("geometry", &self.geometry)?;
+        m.end()
+    }
+}
+
+/// The GeoJSON geometry of geometry object `g` as [`TopoDoc::geometry`]
+/// makes it, written a chain at a time from `next` on.
+struct GeometryOut<'a> {
+    doc: &'a TopoDoc,
+    arcs: &'a Arcs,
+    g: &'a Value,
+    next: &'a Cell<usize>,
+}
+
+/// `n` chains from `next` on, or (with `polygons`) a list of them for each.
+struct ChainsOut<'a> {
+    doc: &'a TopoDoc,
+    arcs: &'a Arcs,
+    next: &'a Cell<usize>,
+    n: usize,
+    polygons: Option<&'a [Value]>,
+}
+
+/// The chain at `next`.
+struct ChainOut<'a>(&'a ChainsOut<'a>);
+
+impl Serialize for ChainOut<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let ChainsOut {
+            doc, arcs, next, ..
+        } = self.0;
+        let c = doc.chain_positions(next.get(), arcs);
+        next.set(next.get() + 1);
+        s.collect_seq(c.iter().map(|p| [p.x, p.y]))
+    }
+}
+
+impl Serialize for ChainsOut<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let count = |v: &Value| v.as_array().map_or(0, Vec::len);
+        match self.polygons {
+            Some(ps) => s.collect_seq(ps.iter().map(|p| ChainsOut {
+                n: count(p),
+                polygons: None,
+                ..*self
+            })),
+            None => s.collect_seq((0..self.n).map(|_| ChainOut(self))),
+        }
+    }
+}
+
+impl Serialize for GeometryOut<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let (doc, arcs, g, next) = (self.doc, self.arcs, self.g, self.next);
+        let a = g
+            .get("arcs")
+            .and_then(Value::as_array)
+            .map_or(&[][..], Vec::as_slice);
+        let chains = ChainsOut {
+            doc,
+            arcs,
+            next,
+            n: a.len(),
+            polygons: None,
+        };
+        let ty = g.get("type").and_then(Value::as_str);
+        let Some(
+            t @ ("LineString" | "MultiLineString" | "Polygon" | "MultiPolygon"
+            | "GeometryCollection"),
+        ) = ty
+        else {
+            // Points, and what has no geometry, as the value made whole.
+            let mut n = next.get();
+            return doc.geometry(g, arcs, &mut n).serialize(s);
+        };
+        let mut m = s.serialize_map(Some(2))?;
+        m.serialize_entry("type", t)?;
+        match t {
+            "LineString" => m.serialize_entry("coordinates", &ChainOut(&chains))?,
+            "MultiLineString" | "Polygon" => m.serialize_entry("coordinates", &chains)?,
+            "MultiPolygon" => m.serialize_entry(
+                "coordinates",
+                &ChainsOut {
+                    polygons: Some(a),
+                    ..chains
+                },
+            )?,
+            _ => m.serialize_entry(
+                "geometries",
+                &MembersOut {
+                    doc,
+                    arcs,
+                    next,
+                    gs: g
+                        .get("geometries")
+                        .and_then(Value::as_array)
+                        .map_or(&[][..], Vec::as_slice),
+                },
+            )?,
+        }
+        m.end()
+    }
+}
+
+/// The members of a GeometryCollection, written in turn.
+struct MembersOut<'a> {
+    doc: &'a TopoDoc,
+    arcs: &'a Arcs,
+    next: &'a Cell<usize>,
+    gs: &'a [Value],
+}
+
+impl Serialize for MembersOut<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.gs.iter().map(|g| GeometryOut {
+            doc: self.doc,
+            arcs: self.arcs,
+            g,
+            next: self.next,
+        }))
+    }
+}
+
+impl Source for GeojsonFeatures<'_> {
+    fn count(&self) -> usize {
+        self.members.len()
+    }
+    fn geometry(&self, i: usize) -> Cow<'_, Value> {
+        Cow::Owned(self.geometry_of(i))
+    }
+    fn property(&self, i: usize, name: &str) -> Cow<'_, Value> {
+        let p = self.members[i].0.get("properties");
+        Cow::Borrowed(p.and_then(|p| p.get(name)).unwrap_or(&NULL))
+    }
+    fn properties(&self, i: usize) -> Cow<'_, Map<String, Value>> {
+        match self.members[i]
+            .0
+            .get("properties")
+            .and_then(Value::as_object)
+        {
+            Some(m) => Cow::Borrowed(m),
+            None => Cow::Owned(Map::new()),
+        }
+    }
+    fn geometry_type(&self, i: usize) -> Option<&'static str> {
+        let t = self.members[i].0.get("type").and_then(Value::as_str)?;
+        GEOMETRY_TYPES.iter().copied().find(|k| *k == t)
+    }
+    fn has_z(&self, i: usize) -> bool {
+        // Arcs are in the plane: only points can carry a z.
+        match self.members[i].0.get("type").and_then(Value::as_str) {
+            Some("Point" | "MultiPoint" | "GeometryCollection") => has_z(&self.geometry_of(i)),
+            _ => false,
         }
     }
 }
@@ -489,6 +816,78 @@ mod tests {
         assert!(
             e.contains(r#"object "b\nc": unknown geometry type "Li\neString""#),
             "{e}"
+        );
+    }
+
+    /// The features and the Topology written a feature (or a position) at a
+    /// time are the text of the values made whole, and the features a
+    /// layer writer asks for are those values' features, for every kind of
+    /// geometry object (nested collections, points decoded from a
+    /// transform, a ring collapsed to three positions, a null geometry).
+    #[test]
+    fn written_as_they_go_the_outputs_are_the_whole_values() {
+        let v: Value = serde_json::from_str(
+            r#"{"type":"Topology","bbox":[0,0,10,10],"foreign":{"k":[1,2]},
+                "transform":{"scale":[0.5,2],"translate":[1,-1]},
+                "objects":{
+                  "coll":{"type":"GeometryCollection","geometries":[
+                    {"type":"Polygon","arcs":[[0]],"id":"a","properties":{"name":"A","n":1}},
+                    {"type":"MultiPolygon","arcs":[[[1]],[[2]]],"id":7},
+                    {"type":"LineString","arcs":[3],"properties":null},
+                    {"type":"MultiLineString","arcs":[[3],[-4]],"bbox":[0,0,1,1]},
+                    {"type":"Point","coordinates":[1,2,5],"properties":{"name":"P"}},
+                    {"type":"MultiPoint","coordinates":[[1,2],[3,4]]},
+                    {"type":null,"id":"nothing"},
+                    {"type":"GeometryCollection","geometries":[
+                      {"type":"LineString","arcs":[3]},{"type":"Point","coordinates":[0,1]}]}
+                  ]},
+                  "line":{"type":"LineString","arcs":[-4],"properties":{"name":"L"}}
+                },
+                "arcs":[[[0,0],[1,0],[0,1],[-1,-1]],[[5,5],[1,0],[0,1],[-1,-1]],
+                        [[8,8],[1,0],[-1,0]],[[0,5],[2,2],[1,-3]]]}"#,
+        )
+        .unwrap();
+        let d = read("t.json", v).unwrap();
+        // Smoothed arcs stand in: every position moved.
+        let arcs: Arcs = d
+            .topology
+            .arcs()
+            .iter()
+            .map(|a| {
+                a.iter().map(|c| Coord {
+                    x: c.x * 1.5 + 0.25,
+                    y: c.y / 3.0,
+                })
+            })
+            .collect();
+        let text = |f: &dyn Fn(&mut Vec<u8>) -> std::io::Result<()>| {
+            let mut out = Vec::new();
+            f(&mut out).unwrap();
+            String::from_utf8(out).unwrap()
+        };
+        for object in [None, Some("coll"), Some("line")] {
+            let whole = d.to_geojson(&arcs, object).unwrap();
+            let f = d.geojson_features(&arcs, object).unwrap();
+            assert_eq!(
+                text(&|w| f.write_geojson(w)),
+                text(&|w| crate::model::write_json_compact(w, &whole)),
+                "{object:?}"
+            );
+            let want: &dyn Source = &whole;
+            assert_eq!(Source::count(&f), want.count());
+            for i in 0..want.count() {
+                assert_eq!(f.geometry(i), want.geometry(i), "{object:?} {i}");
+                assert_eq!(f.properties(i), want.properties(i), "{object:?} {i}");
+                assert_eq!(f.property(i, "name"), want.property(i, "name"));
+                assert_eq!(f.geometry_type(i), want.geometry_type(i), "{i}");
+                assert_eq!(f.has_z(i), want.has_z(i), "{i}");
+            }
+        }
+        assert_eq!(Source::count(&d.geojson_features(&arcs, None).unwrap()), 9);
+        assert!(d.geojson_features(&arcs, Some("nope")).is_err());
+        assert_eq!(
+            text(&|w| d.write_topojson(&arcs, w)),
+            text(&|w| crate::model::write_json_compact(w, &d.to_topojson(&arcs)))
         );
     }
 

@@ -11,6 +11,7 @@ use geojson::{Feature, GeoJson, Geometry, GeometryValue, Position};
 use serde_json::Value;
 
 use super::collection::Collection;
+use super::document::{Document, SmoothedTopology};
 use super::{chains, coverage, default_tolerance, each_position, independent, positions};
 use crate::distance::{Distance, Space, Unit};
 use crate::features::{Features, Shape};
@@ -186,11 +187,22 @@ impl Job {
     /// `name: ...` for a document that is not GeoJSON or TopoJSON, `name:
     /// feature i, ...: ...` for a geometry that cannot be smoothed.
     pub fn document(&mut self, name: &str, value: Value) -> Result<Value> {
+        self.smooth_document(name, value)?.into_value()
+    }
+
+    /// As [`Job::document`], giving a TopoJSON Topology smoothed on its own
+    /// arcs as the Topology and its arcs, to be written a feature at a time
+    /// ([`SmoothedTopology::write`]) rather than as one JSON value.
+    ///
+    /// # Errors
+    ///
+    /// As [`Job::document`].
+    pub fn smooth_document(&mut self, name: &str, value: Value) -> Result<Document> {
         if topojson::is_topology(&value) {
             self.topology(name, value)
         } else {
             let doc = self.checked(name, value)?;
-            self.geojson(doc, name, true)
+            self.geojson(doc, name, true).map(Document::Value)
         }
     }
 
@@ -515,7 +527,7 @@ impl Job {
 
     /// Smooths a TopoJSON Topology on its own arcs (or, with a snap distance
     /// or ring by ring, as the GeoJSON of its objects).
-    fn topology(&mut self, name: &str, value: Value) -> Result<Value> {
+    fn topology(&mut self, name: &str, value: Value) -> Result<Document> {
         let topo = topojson::read(name, value)?;
         let object = self.settings.object.clone();
         if self.settings.independent || self.settings.snap.is_some() {
@@ -523,7 +535,7 @@ impl Job {
                 .to_geojson(topo.topology.arcs(), object.as_deref())
                 .map_err(|e| anyhow!("{name}: {e}"))?;
             let doc = self.checked(name, fc)?;
-            return self.geojson(doc, name, true);
+            return self.geojson(doc, name, true).map(Document::Value);
         }
         let (lib, _) = self.resolved(name, || {
             let mut b = [
@@ -543,12 +555,18 @@ impl Job {
             .map_err(|e| anyhow!("{name}: {}", topo.describe(&e)))?;
         self.features += topo.features;
         self.total += &s.stats;
-        match self.settings.output {
-            Output::Topojson => Ok(topo.to_topojson(&s.arcs)),
-            _ => topo
-                .to_geojson(&s.arcs, object.as_deref())
-                .map_err(|e| anyhow!("{name}: {e}")),
+        let out = SmoothedTopology {
+            doc: topo,
+            arcs: s.arcs,
+            object,
+            output: self.settings.output,
+            name: name.to_owned(),
+        };
+        if out.output != Output::Topojson {
+            // An object that is not there is named now, not when written.
+            out.features()?;
         }
+        Ok(Document::Topology(Box::new(out)))
     }
 
     /// The summary `bzspline smooth` prints on standard error.

@@ -8,6 +8,7 @@
 
 pub mod collection;
 pub mod coverage;
+pub mod document;
 pub mod independent;
 pub mod job;
 
