@@ -9,6 +9,7 @@
 //! whose positions carry z are smoothed ring by ring. Newline-delimited GeoJSON is streamed, a coverage per line; a
 //! table of points (or `--example`) is one LineString.
 
+use bzspline_io::smooth::document::{Document, SmoothedTopology};
 use bzspline_io::smooth::job::{Job, Output, Settings};
 
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
@@ -164,7 +165,11 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                         let value: Value = serde_json::from_str(text)
                             .map_err(|e| anyhow!("{name}:{}: invalid JSON: {e}", e.line()))?;
                         drop(bytes);
-                        (Smoothed::Document(job.document(&name, value)?), None)
+                        let out = match job.smooth_document(&name, value)? {
+                            Document::Value(v) => Smoothed::Document(v),
+                            Document::Topology(t) => Smoothed::Topology(t),
+                        };
+                        (out, None)
                     }
                 }
             }
@@ -179,6 +184,9 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
             (Some(path), Smoothed::Collection(c)) => {
                 files::write(path, output, c, None)?;
             }
+            (Some(path), Smoothed::Topology(t)) => {
+                files::write(path, output, &t.features()?, None)?;
+            }
             (None, Smoothed::Document(doc)) => {
                 let mut sink = Sink::create(out_path)?;
                 write_line(&mut sink, doc)?;
@@ -190,6 +198,12 @@ pub fn run(a: &SmoothArgs) -> Result<()> {
                     .write_geojson(&mut sink)
                     .and_then(|()| sink.write_all(b"\n"))
                     .context("writing output")?;
+                sink.finish()?;
+            }
+            (None, Smoothed::Topology(t)) => {
+                let mut sink = Sink::create(out_path)?;
+                t.write(&mut sink).context("writing output")?;
+                sink.write_all(b"\n").context("writing output")?;
                 sink.finish()?;
             }
             (None, Smoothed::Collection(c)) => {
@@ -227,6 +241,8 @@ enum Smoothed {
     Document(Value),
     Layer(bzspline_io::features::Features),
     Collection(bzspline_io::smooth::collection::Collection),
+    /// A TopoJSON Topology smoothed on its own arcs, written from them.
+    Topology(Box<SmoothedTopology>),
 }
 
 /// Smooths newline-delimited GeoJSON one line at a time (RFC 8142 record
