@@ -317,12 +317,22 @@ pub(crate) trait System {
         phis: [&mut [Vec<f64>]; 2],
         d: &mut Vec<f64>,
     ) -> [Option<f64>; 2] {
-        let [pa, pb] = phis;
-        [
-            self.evaluate(lambdas[0], ys, pa, d),
-            self.evaluate(lambdas[1], ys, pb, d),
-        ]
+        evaluate_apart(self, lambdas, ys, phis, d)
     }
+}
+
+/// [`System::evaluate_two`] by [`System::evaluate`] of each in turn.
+fn evaluate_apart<S: System + ?Sized>(
+    system: &mut S,
+    lambdas: [f64; 2],
+    ys: &[&[f64]],
+    [pa, pb]: [&mut [Vec<f64>]; 2],
+    d: &mut Vec<f64>,
+) -> [Option<f64>; 2] {
+    [
+        system.evaluate(lambdas[0], ys, pa, d),
+        system.evaluate(lambdas[1], ys, pb, d),
+    ]
 }
 
 /// [`System::evaluate`] by [`System::factor`], [`System::solve`] and
@@ -390,10 +400,7 @@ impl System for Factored<'_> {
         match both {
             Some([a, b]) => [Some(a), Some(b)],
             // Singular for one of them (or many coordinates): each alone.
-            None => [
-                self.evaluate(lambdas[0], ys, pa, d),
-                self.evaluate(lambdas[1], ys, pb, d),
-            ],
+            None => evaluate_apart(self, lambdas, ys, [pa, pb], d),
         }
     }
 }
