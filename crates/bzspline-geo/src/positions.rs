@@ -123,6 +123,10 @@ impl Positions {
     /// The `len` positions from `address`.
     #[inline]
     pub(crate) fn get(&self, address: usize, len: usize) -> &[Coord] {
+        // An empty arc's address may be the end of a full block.
+        if len == 0 {
+            return &[];
+        }
         let b = self.slots[address >> SHIFT] as usize;
         let place = address - (self.first[b] << SHIFT);
         &self.blocks[b][place..place + len]
@@ -131,6 +135,9 @@ impl Positions {
     /// The `len` positions from `address`, to change.
     #[inline]
     pub(crate) fn get_mut(&mut self, address: usize, len: usize) -> &mut [Coord] {
+        if len == 0 {
+            return &mut [];
+        }
         let b = self.slots[address >> SHIFT] as usize;
         let place = address - (self.first[b] << SHIFT);
         &mut self.blocks[b][place..place + len]
@@ -180,6 +187,13 @@ mod tests {
         p.get_mut(*at, 1)[0] = c(0);
         assert_eq!(p.get(*at, 1)[0], c(0));
         assert_eq!(p.get(*at + 1, arc.len() - 1), &arc[1..]);
+        // An empty arc after a full block, and one filling a block exactly.
+        let mut q = Positions::with_capacity(SLOT);
+        let full: Vec<Coord> = (0..SLOT).map(c).collect();
+        let at = q.push_slice(&full);
+        let (e1, e2) = (q.push([]), q.push_slice(&[]));
+        assert_eq!(q.get(at, SLOT), &full[..]);
+        assert!(q.get(e1, 0).is_empty() && q.get_mut(e2, 0).is_empty());
         let room: usize = p.blocks.iter().map(Vec::capacity).sum();
         let used: usize = p.blocks.iter().map(Vec::len).sum();
         assert_eq!(used, total);
