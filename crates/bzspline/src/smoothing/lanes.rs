@@ -24,6 +24,10 @@ pub(super) trait Lane:
     fn splat(v: f64) -> Self;
     /// Lane `i`.
     fn lane(self, i: usize) -> f64;
+    /// The lanes from the first `LANES` values of `s`.
+    fn load(s: &[f64]) -> Self;
+    /// The lanes into the first `LANES` values of `s`.
+    fn store(self, s: &mut [f64]);
 }
 
 impl Lane for f64 {
@@ -35,6 +39,14 @@ impl Lane for f64 {
     #[inline(always)]
     fn lane(self, _: usize) -> f64 {
         self
+    }
+    #[inline(always)]
+    fn load(s: &[f64]) -> f64 {
+        s[0]
+    }
+    #[inline(always)]
+    fn store(self, s: &mut [f64]) {
+        s[0] = self;
     }
 }
 
@@ -52,6 +64,14 @@ impl Lane for F2 {
     #[inline(always)]
     fn lane(self, i: usize) -> f64 {
         self.0[i]
+    }
+    #[inline(always)]
+    fn load(s: &[f64]) -> F2 {
+        F2([s[0], s[1]])
+    }
+    #[inline(always)]
+    fn store(self, s: &mut [f64]) {
+        s[..2].copy_from_slice(&self.0);
     }
 }
 

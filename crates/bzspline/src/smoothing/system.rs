@@ -703,23 +703,48 @@ impl Head {
 
 /// The pivot inverses of the knots after the head and the forward sweep's
 /// right-hand sides there, block by block (each block's coordinates in
-/// turn), of one `lambda` or of several side by side.
-struct Sweeps<T> {
-    /// Pivot inverses of knots `head + 1 ..= N - 1` (the last is `phi_{N-1}`'s).
-    inv: Vec<M3<T>>,
-    z: Vec<[T; 3]>,
+/// turn), of one `lambda` or of several side by side, their lanes
+/// interleaved: one set of buffers serves scores taken alone and in pairs,
+/// grown to the larger and never shrunk.
+#[derive(Default)]
+struct Sweeps {
+    inv: Vec<f64>,
+    z: Vec<f64>,
 }
 
-impl<T> Default for Sweeps<T> {
-    fn default() -> Self {
-        Sweeps {
-            inv: Vec::new(),
-            z: Vec::new(),
-        }
+/// A block of lanes from its place in a buffer of [`Sweeps`].
+#[inline(always)]
+fn load3<T: Lane>(s: &[f64]) -> [T; 3] {
+    std::array::from_fn(|i| T::load(&s[i * T::LANES..(i + 1) * T::LANES]))
+}
+
+#[inline(always)]
+fn store3<T: Lane>(v: &[T; 3], s: &mut [f64]) {
+    for (x, s) in v.iter().zip(s.chunks_exact_mut(T::LANES)) {
+        x.store(s);
     }
 }
 
-impl<T: Pivoting> Sweeps<T> {
+#[inline(always)]
+fn load33<T: Lane>(s: &[f64]) -> M3<T> {
+    std::array::from_fn(|i| load3(&s[3 * i * T::LANES..3 * (i + 1) * T::LANES]))
+}
+
+#[inline(always)]
+fn store33<T: Lane>(m: &M3<T>, s: &mut [f64]) {
+    for (r, s) in m.iter().zip(s.chunks_exact_mut(3 * T::LANES)) {
+        store3(r, s);
+    }
+}
+
+/// `v` grown to `n` values (never shrunk: its room serves every width).
+fn at_least(v: &mut Vec<f64>, n: usize) {
+    if v.len() < n {
+        v.resize(n, 0.0);
+    }
+}
+
+impl Sweeps {
     /// The forward sweep after the head for the data `ys`, `sz` holding each
     /// one's `S_head^-1 z0` at the head's last knot ([`Head::forward`]):
     /// the right-hand sides `z_b = r_b - B_b S_{b-1}^-1 z_{b-1}` into `z`.
@@ -727,7 +752,7 @@ impl<T: Pivoting> Sweeps<T> {
     /// head inverse's block at its last knot, from [`Head::factor`]), else
     /// those kept are used. `false` when a pivot is singular.
     #[inline(always)]
-    fn forward<const D: usize, const FACTOR: bool>(
+    fn forward<T: Pivoting, const D: usize, const FACTOR: bool>(
         &mut self,
         g: &Grid,
         lambda: T,
@@ -736,31 +761,33 @@ impl<T: Pivoting> Sweeps<T> {
         mut prev: M3<T>,
     ) -> bool {
         let (n, first) = (g.n(), g.head + 1);
-        let zero = T::splat(0.0);
-        self.z.resize(D * (n - first), [zero; 3]);
+        let (bi, bz) = (9 * T::LANES, 3 * T::LANES);
+        let blocks = n - first;
+        at_least(&mut self.z, D * blocks * bz);
         if FACTOR {
-            self.inv.resize(n - first, [[zero; 3]; 3]);
+            at_least(&mut self.inv, blocks * bi);
         }
         let ys = ys.map(|y| &y[..n]);
-        for (b, inv) in self.inv.iter_mut().enumerate() {
+        for b in 0..blocks {
             let k = first + b;
             let link = g.link(k, lambda);
+            let inv = &mut self.inv[b * bi..(b + 1) * bi];
             let si = if FACTOR {
                 let Some(si) = invert3(&pivot(g.own(k, lambda), &link, &prev)) else {
                     return false;
                 };
-                *inv = si;
+                store33(&si, inv);
                 prev = si;
                 si
             } else {
-                *inv
+                load33(inv)
             };
-            let zs = &mut self.z[D * b..D * (b + 1)];
+            let zs = &mut self.z[D * b * bz..D * (b + 1) * bz];
             for c in 0..D {
                 let lz = apply(&link, &sz[c]);
                 let zb = [T::splat(g.w(k) * ys[c][k]) - lz[0], -lz[1], -lz[2]];
                 sz[c] = apply(&si, &zb);
-                zs[c] = zb;
+                store3(&zb, &mut zs[c * bz..(c + 1) * bz]);
             }
         }
         true
@@ -775,7 +802,7 @@ impl<T: Pivoting> Sweeps<T> {
     /// knots after the head. Returns the first later block's solutions (for
     /// [`Head::backward`]), and its `Z` with that sum (for [`Head::trace`]).
     #[inline(always)]
-    fn backward<const D: usize, const TRACE: bool>(
+    fn backward<T: Pivoting, const D: usize, const TRACE: bool>(
         &self,
         g: &Grid,
         lambda: T,
@@ -783,7 +810,10 @@ impl<T: Pivoting> Sweeps<T> {
         mut d: Option<&mut [f64]>,
     ) -> ([[T; 3]; D], (M3<T>, T)) {
         let (n, first) = (g.n(), g.head + 1);
-        let last = self.inv.len() - 1;
+        let (bi, bz) = (9 * T::LANES, 3 * T::LANES);
+        let last = n - first - 1;
+        let inv_at = |b: usize| load33::<T>(&self.inv[b * bi..(b + 1) * bi]);
+        let z_at = |b: usize, c: usize| load3::<T>(&self.z[(D * b + c) * bz..(D * b + c + 1) * bz]);
         let mut next = [[T::splat(0.0); 3]; D];
         let mut put = |c: usize, k: usize, v: T| {
             for l in 0..T::LANES {
@@ -791,12 +821,12 @@ impl<T: Pivoting> Sweeps<T> {
             }
         };
         // Knot N - 1: phi_{N-1} and padding.
-        let inv = &self.inv[last];
+        let inv = inv_at(last);
         for c in 0..D {
-            next[c] = apply(inv, &self.z[D * last + c]);
+            next[c] = apply(&inv, &z_at(last, c));
             put(c, n - 1, next[c][0]);
         }
-        let mut zm = *inv;
+        let mut zm = inv;
         let mut tr = if TRACE {
             T::splat(g.w(n - 1)) * zm[0][0]
         } else {
@@ -804,22 +834,22 @@ impl<T: Pivoting> Sweeps<T> {
         };
         for b in (0..last).rev() {
             let k = first + b;
-            let inv = &self.inv[b];
+            let inv = inv_at(b);
             let link = g.link(k + 1, lambda);
             for c in 0..D {
-                let mut rhs = self.z[D * b + c];
+                let mut rhs = z_at(b, c);
                 let bt = apply_t(&link, &next[c]);
                 for i in 0..3 {
                     rhs[i] -= bt[i];
                 }
-                next[c] = apply(inv, &rhs);
+                next[c] = apply(&inv, &rhs);
                 put(c, k, next[c][0]);
             }
             if let Some(d) = d.as_deref_mut() {
                 d[k] = next[0][1].lane(0);
             }
             if TRACE {
-                zm = inverse_block(&link, inv, &zm).1;
+                zm = inverse_block(&link, &inv, &zm).1;
                 tr += T::splat(g.w(k)) * zm[0][0];
             }
         }
@@ -834,20 +864,20 @@ impl<T: Pivoting> Sweeps<T> {
 pub(crate) struct Factored<'a> {
     grid: &'a Grid,
     head: Head,
-    sweeps: Sweeps<f64>,
+    /// The sweeps of scores taken alone and in pairs.
+    sweeps: Sweeps,
     /// The head's right-hand sides, one head-sized run a coordinate.
     z0: Vec<f64>,
     /// What a score of two `lambda`s side by side needs beyond one's.
     pair: Option<Box<Pair>>,
 }
 
-/// The second lane's head and right-hand sides, and both lanes' sweeps,
-/// of [`Factored::evaluate_pair`].
+/// The second lane's head and right-hand sides, of
+/// [`Factored::evaluate_pair`].
 #[derive(Default)]
 struct Pair {
     head: Head,
     z0: Vec<f64>,
-    sweeps: Sweeps<F2>,
 }
 
 impl<'a> Factored<'a> {
@@ -859,10 +889,7 @@ impl<'a> Factored<'a> {
                 lambda: f64::NAN,
                 inv: Vec::new(),
             },
-            sweeps: Sweeps {
-                inv: Vec::with_capacity(grid.n() - 1 - grid.head),
-                z: Vec::new(),
-            },
+            sweeps: Sweeps::default(),
             z0: Vec::new(),
             pair: None,
         }
@@ -875,7 +902,7 @@ impl<'a> Factored<'a> {
             return false;
         };
         self.sweeps
-            .forward::<0, true>(self.grid, lambda, [], [], prev)
+            .forward::<f64, 0, true>(self.grid, lambda, [], [], prev)
     }
 
     /// Solves for the knot values `phi` and deviations `d` (both length N,
@@ -887,10 +914,10 @@ impl<'a> Factored<'a> {
         z0.resize(g.head_size(), 0.0);
         let sz = self.head.forward(g, y, &mut z0);
         self.sweeps
-            .forward::<1, false>(g, lambda, [y], [sz], [[0.0; 3]; 3]);
+            .forward::<f64, 1, false>(g, lambda, [y], [sz], [[0.0; 3]; 3]);
         let (next, _) =
             self.sweeps
-                .backward::<1, false>(g, lambda, &mut [&mut *phi], Some(&mut *d));
+                .backward::<f64, 1, false>(g, lambda, &mut [&mut *phi], Some(&mut *d));
         self.head.backward(g, &mut z0, &next[0], phi, Some(d));
         d[0] = 0.0;
         d[n - 1] = 0.0;
@@ -920,10 +947,12 @@ impl<'a> Factored<'a> {
             self.head
                 .forward(g, y, heads.next().expect("a head a coordinate"))
         });
-        let factored = self.sweeps.forward::<D, true>(g, lambda, ys, sz, prev);
+        let factored = self.sweeps.forward::<f64, D, true>(g, lambda, ys, sz, prev);
         let mut phis: Vec<&mut [f64]> = phis.iter_mut().map(Vec::as_mut_slice).collect();
         let trace = factored.then(|| {
-            let (next, (zm, tr)) = self.sweeps.backward::<D, true>(g, lambda, &mut phis, None);
+            let (next, (zm, tr)) = self
+                .sweeps
+                .backward::<f64, D, true>(g, lambda, &mut phis, None);
             for (c, z0) in z0.chunks_exact_mut(size).enumerate() {
                 self.head.backward(g, z0, &next[c], phis[c], None);
             }
@@ -965,7 +994,7 @@ impl<'a> Factored<'a> {
             pair3(&a, &b)
         });
         let lambda = F2(lambdas);
-        let factored = pair.sweeps.forward::<D, true>(g, lambda, ys, sz, prev);
+        let factored = self.sweeps.forward::<F2, D, true>(g, lambda, ys, sz, prev);
         let [pa, pb] = phis;
         let traces = factored.then(|| {
             let mut outs: Vec<&mut [f64]> = Vec::with_capacity(2 * D);
@@ -973,7 +1002,9 @@ impl<'a> Factored<'a> {
                 outs.push(a.as_mut_slice());
                 outs.push(b.as_mut_slice());
             }
-            let (next, (zm, tr)) = pair.sweeps.backward::<D, true>(g, lambda, &mut outs, None);
+            let (next, (zm, tr)) = self
+                .sweeps
+                .backward::<F2, D, true>(g, lambda, &mut outs, None);
             for c in 0..D {
                 let (za, zb) = (
                     &mut z0a[c * size..(c + 1) * size],
@@ -1004,17 +1035,18 @@ impl<'a> Factored<'a> {
     /// being block upper triangular: `Z_{b+1,b} = -Z_{b+1} L_{b+1,b}`.
     pub(crate) fn covariances(&self) -> Vec<[f64; 7]> {
         let g = self.grid;
-        let (lambda, head_inv, inv) = (self.head.lambda, &self.head.inv, &self.sweeps.inv);
+        let (lambda, head_inv) = (self.head.lambda, &self.head.inv);
+        let inv = |b: usize| load33::<f64>(&self.sweeps.inv[9 * b..9 * (b + 1)]);
         let n = g.n();
         let mut out = vec![[0.0; 7]; n];
-        let last = inv.len() - 1;
-        let mut zm = inv[last];
+        let last = n - g.head - 2;
+        let mut zm = inv(last);
         out[n - 1][0] = zm[0][0];
         for b in (0..last).rev() {
             let k = g.head + 1 + b;
             // Z_{k+1,k} = -Z_{k+1} L: rows knot k+1, columns knot k.
             let cross;
-            (cross, zm) = inverse_block(&g.link(k + 1, lambda), &inv[b], &zm);
+            (cross, zm) = inverse_block(&g.link(k + 1, lambda), &inv(b), &zm);
             out[k] = [
                 zm[0][0],
                 zm[0][1],
@@ -1079,7 +1111,7 @@ impl<'a> Factored<'a> {
     pub(crate) fn trace(&self) -> f64 {
         let (_, (zm, tr)) =
             self.sweeps
-                .backward::<0, true>(self.grid, self.head.lambda, &mut [], None);
+                .backward::<f64, 0, true>(self.grid, self.head.lambda, &mut [], None);
         self.head.trace(self.grid, &zm, tr)
     }
 }
