@@ -429,45 +429,25 @@ impl TopoDoc {
     /// The GeoJSON geometry of a geometry object; `next` counts chains in the
     /// order [`read`] met them.
     fn geometry(&self, g: &Value, arcs: &Arcs, next: &mut usize) -> Value {
-        let mut take = || {
-            let c = self.chain_positions(*next, arcs);
-            *next += 1;
-            Value::Array(c.iter().map(|p| json!([p.x, p.y])).collect())
+        let at = Cell::new(*next);
+        let out = GeometryOut {
+            doc: self,
+            arcs,
+            g,
+            next: &at,
         };
-        let count = |v: Option<&Value>| v.and_then(Value::as_array).map_or(0, Vec::len);
-        let ty = g.get("type").and_then(Value::as_str);
-        let a = g.get("arcs");
-        match ty {
-            Some("Point" | "MultiPoint") => {
+        // Into a value: string keys and numbers only, which cannot fail.
+        let v = serde_json::to_value(out).unwrap_or(Value::Null);
+        *next = at.get();
+        v
+    }
+
+    /// The geometry of an object with no arcs: a Point or MultiPoint
+    /// decoded, anything else null.
+    fn arcless_geometry(&self, g: &Value) -> Value {
+        match g.get("type").and_then(Value::as_str) {
+            ty @ Some("Point" | "MultiPoint") => {
                 json!({"type": ty, "coordinates": self.points(g).unwrap_or(json!([]))})
-            }
-            Some("LineString") => json!({"type": "LineString", "coordinates": take()}),
-            Some("MultiLineString") => {
-                let ls: Vec<Value> = (0..count(a)).map(|_| take()).collect();
-                json!({"type": "MultiLineString", "coordinates": ls})
-            }
-            Some("Polygon") => {
-                let rings: Vec<Value> = (0..count(a)).map(|_| take()).collect();
-                json!({"type": "Polygon", "coordinates": rings})
-            }
-            Some("MultiPolygon") => {
-                let polys: Vec<Value> = a
-                    .and_then(Value::as_array)
-                    .map(|ps| {
-                        ps.iter()
-                            .map(|p| Value::Array((0..count(Some(p))).map(|_| take()).collect()))
-                            .collect()
-                    })
-                    .unwrap_or_default();
-                json!({"type": "MultiPolygon", "coordinates": polys})
-            }
-            Some("GeometryCollection") => {
-                let gs: Vec<Value> = g
-                    .get("geometries")
-                    .and_then(Value::as_array)
-                    .map(|gs| gs.iter().map(|s| self.geometry(s, arcs, next)).collect())
-                    .unwrap_or_default();
-                json!({"type": "GeometryCollection", "geometries": gs})
             }
             _ => Value::Null,
         }
@@ -576,8 +556,9 @@ impl Serialize for FeatureOut<'_> {
     }
 }
 
-/// The GeoJSON geometry of geometry object `g` as [`TopoDoc::geometry`]
-/// makes it, written a chain at a time from `next` on.
+/// The GeoJSON geometry of geometry object `g`, its lines and rings the
+/// chains from `next` on, written a chain at a time (and, through
+/// [`TopoDoc::geometry`], made into a value).
 struct GeometryOut<'a> {
     doc: &'a TopoDoc,
     arcs: &'a Arcs,
@@ -642,9 +623,7 @@ impl Serialize for GeometryOut<'_> {
             | "GeometryCollection"),
         ) = ty
         else {
-            // Points, and what has no geometry, as the value made whole.
-            let mut n = next.get();
-            return doc.geometry(g, arcs, &mut n).serialize(s);
+            return doc.arcless_geometry(g).serialize(s);
         };
         let mut m = s.serialize_map(Some(2))?;
         m.serialize_entry("type", t)?;
