@@ -485,18 +485,23 @@ impl GeojsonFeatures<'_> {
     /// Feature `i`, as [`TopoDoc::to_geojson`] gives it.
     #[must_use]
     pub fn feature(&self, i: usize) -> Value {
-        let (g, _) = self.members[i];
-        let mut f = Map::new();
-        f.insert("type".into(), json!("Feature"));
-        if let Some(id) = g.get("id") {
-            f.insert("id".into(), id.clone());
+        let at = Cell::new(self.members[i].1);
+        // Into a value: string keys and numbers only, which cannot fail.
+        serde_json::to_value(self.out(i, &at)).unwrap_or(Value::Null)
+    }
+
+    /// Feature `i` to write, its chains counted in `at`.
+    fn out<'b>(&'b self, i: usize, at: &'b Cell<usize>) -> FeatureOut<'b> {
+        let g = self.members[i].0;
+        FeatureOut {
+            g,
+            geometry: GeometryOut {
+                doc: self.doc,
+                arcs: self.arcs,
+                g,
+                next: at,
+            },
         }
-        f.insert(
-            "properties".into(),
-            g.get("properties").cloned().unwrap_or(json!({})),
-        );
-        f.insert("geometry".into(), self.geometry_of(i));
-        Value::Object(f)
     }
 
     fn geometry_of(&self, i: usize) -> Value {
@@ -516,24 +521,15 @@ impl GeojsonFeatures<'_> {
             if i > 0 {
                 w.write_all(b",")?;
             }
-            let (g, first) = self.members[i];
-            let out = FeatureOut {
-                g,
-                geometry: GeometryOut {
-                    doc: self.doc,
-                    arcs: self.arcs,
-                    g,
-                    next: &Cell::new(first),
-                },
-            };
-            crate::model::write_json_compact(&mut w, &out)?;
+            let at = Cell::new(self.members[i].1);
+            crate::model::write_json_compact(&mut w, &self.out(i, &at))?;
         }
         w.write_all(b"]}")
     }
 }
 
-/// Feature `g` as [`GeojsonFeatures::feature`] makes it, its geometry
-/// written a chain at a time.
+/// A feature of geometry object `g`: type, id, properties and its
+/// geometry written a chain at a time.
 struct FeatureOut<'a> {
     g: &'a Value,
     geometry: GeometryOut<'a>,
