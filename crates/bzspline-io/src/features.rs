@@ -12,6 +12,10 @@ use geo_types::{
 };
 use serde_json::{json, Map, Value};
 
+use values::Values;
+
+mod values;
+
 /// A feature's geometry. Each kind is boxed, so that a feature whose
 /// geometry has been taken (to be smoothed) keeps 16 bytes of it, not 72.
 #[derive(Clone, Debug, PartialEq)]
@@ -164,69 +168,16 @@ pub fn geometry_value(g: &Geometry) -> Value {
     json!({"type": kind, "coordinates": coordinates})
 }
 
-/// A field's value held compactly: 24 bytes where a JSON value takes 72,
-/// and [`Cell::to_value`] gives back the value it was made of.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Cell {
-    /// `null`.
-    Null,
-    /// `true` or `false`.
-    Bool(bool),
-    /// A whole number within `i64`.
-    Int(i64),
-    /// Any other number.
-    Float(f64),
-    /// A string.
-    Text(Box<str>),
-    /// Any other value (an array, an object, a whole number past `i64`).
-    Json(Box<Value>),
-}
-
-impl Cell {
-    /// The cell of `v`.
-    #[must_use]
-    pub fn of(v: &Value) -> Cell {
-        match v {
-            Value::Null => Cell::Null,
-            Value::Bool(b) => Cell::Bool(*b),
-            Value::Number(n) => match (n.as_i64(), n.as_f64()) {
-                (Some(i), _) => Cell::Int(i),
-                (None, Some(f)) if n.is_f64() => Cell::Float(f),
-                _ => Cell::Json(Box::new(v.clone())),
-            },
-            Value::String(t) => Cell::Text(t.as_str().into()),
-            _ => Cell::Json(Box::new(v.clone())),
-        }
-    }
-
-    /// The value the cell was made of.
-    #[must_use]
-    pub fn to_value(&self) -> Value {
-        match self {
-            Cell::Null => Value::Null,
-            Cell::Bool(b) => Value::Bool(*b),
-            Cell::Int(i) => Value::from(*i),
-            Cell::Float(f) => Value::from(*f),
-            Cell::Text(t) => Value::String(t.to_string()),
-            Cell::Json(v) => (**v).clone(),
-        }
-    }
-}
-
-/// One feature: its field values in the schema's order and its geometry.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Record {
-    /// The values, one for each of the schema's fields (null for none).
-    pub values: Box<[Cell]>,
-    /// The geometry.
-    pub shape: Shape,
-}
-
-/// A layer's features, in order, with the names of their fields.
+/// A layer's features, in order, with the names of their fields: each
+/// feature's geometry and its field values in the schema's order (a
+/// feature lacking a field holds null for it).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Features {
     names: Vec<String>,
-    records: Vec<Record>,
+    count: usize,
+    /// One a feature, or none while they are taken ([`Features::take_shapes`]).
+    shapes: Vec<Shape>,
+    values: Values,
 }
 
 impl Features {
@@ -235,23 +186,25 @@ impl Features {
     pub fn new(names: Vec<String>) -> Features {
         Features {
             names,
-            records: Vec::new(),
+            ..Features::default()
         }
+    }
+
+    /// Room for `n` more features.
+    pub fn reserve(&mut self, n: usize) {
+        self.shapes.reserve_exact(n);
+        self.values.reserve(n.saturating_mul(self.names.len()));
     }
 
     /// Adds a feature: its properties (each field's value taken by name,
     /// `null` for a field it lacks, the one value for fields of one name;
     /// others dropped) and its GeoJSON geometry (or `null`).
     pub fn push(&mut self, properties: Map<String, Value>, geometry: Value) {
-        let values = self
-            .names
-            .iter()
-            .map(|n| properties.get(n).map_or(Cell::Null, Cell::of))
-            .collect();
-        self.records.push(Record {
-            values,
-            shape: Shape::from_value(geometry),
-        });
+        for n in &self.names {
+            self.values.push(properties.get(n).unwrap_or(&NULL));
+        }
+        self.shapes.push(Shape::from_value(geometry));
+        self.count += 1;
     }
 
     /// The features of a GeoJSON FeatureCollection (a Feature or geometry
@@ -270,13 +223,13 @@ impl Features {
     /// The number of features.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.records.len()
+        self.count
     }
 
     /// Whether there are none.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.records.is_empty()
+        self.count == 0
     }
 
     /// The fields' names.
@@ -285,32 +238,49 @@ impl Features {
         &self.names
     }
 
-    /// The features.
+    /// Feature `i`'s geometry ([`Shape::Null`] while they are taken).
     #[must_use]
-    pub fn records(&self) -> &[Record] {
-        &self.records
+    pub fn shape(&self, i: usize) -> &Shape {
+        self.shapes.get(i).unwrap_or(&Shape::Null)
     }
 
-    /// The features, to change.
-    pub fn records_mut(&mut self) -> &mut [Record] {
-        &mut self.records
+    /// Takes every feature's geometry, in order, leaving the features none
+    /// until [`Features::put_shapes`] gives them back (so that a layer's
+    /// geometries can be smoothed without a second vector of them).
+    #[must_use]
+    pub fn take_shapes(&mut self) -> Vec<Shape> {
+        let mut shapes = std::mem::take(&mut self.shapes);
+        shapes.resize(self.count, Shape::Null);
+        shapes
+    }
+
+    /// Gives the features their geometries back, one each in order.
+    ///
+    /// # Panics
+    ///
+    /// When `shapes` is not one a feature.
+    pub fn put_shapes(&mut self, shapes: Vec<Shape>) {
+        assert_eq!(shapes.len(), self.count, "one shape a feature");
+        self.shapes = shapes;
     }
 
     /// Whether every geometry lies in the plane (or there is none).
     #[must_use]
     pub fn is_plane(&self) -> bool {
-        self.records
-            .iter()
-            .all(|r| !matches!(r.shape, Shape::Json(_)))
+        self.shapes.iter().all(|s| !matches!(s, Shape::Json(_)))
+    }
+
+    /// Feature `i`'s value of field `k`.
+    fn value(&self, i: usize, k: usize) -> Value {
+        self.values.get(i * self.names.len() + k)
     }
 
     /// Feature `i`'s properties.
     #[must_use]
     pub fn properties(&self, i: usize) -> Map<String, Value> {
-        self.names
-            .iter()
-            .cloned()
-            .zip(self.records[i].values.iter().map(Cell::to_value))
+        assert!(i < self.count, "feature {i} of {}", self.count);
+        (0..self.names.len())
+            .map(|k| (self.names[k].clone(), self.value(i, k)))
             .collect()
     }
 
@@ -338,7 +308,7 @@ impl Features {
             }
             let f = json!({
                 "type": "Feature",
-                "geometry": self.records[i].shape.to_value(),
+                "geometry": self.shape(i).to_value(),
                 "properties": self.properties(i),
             });
             crate::model::write_json_compact(&mut w, &f)?;
@@ -432,15 +402,15 @@ impl Source for Features {
         self.len()
     }
     fn geometry(&self, i: usize) -> Cow<'_, Value> {
-        match &self.records[i].shape {
+        match self.shape(i) {
             Shape::Json(v) => Cow::Borrowed(&**v),
             s => Cow::Owned(s.to_value()),
         }
     }
     fn property(&self, i: usize, name: &str) -> Cow<'_, Value> {
-        let k = self.names.iter().position(|n| n == name);
-        match k.and_then(|k| self.records[i].values.get(k)) {
-            Some(c) => Cow::Owned(c.to_value()),
+        assert!(i < self.count, "feature {i} of {}", self.count);
+        match self.names.iter().position(|n| n == name) {
+            Some(k) => Cow::Owned(self.value(i, k)),
             None => Cow::Borrowed(&NULL),
         }
     }
@@ -448,7 +418,7 @@ impl Source for Features {
         Cow::Owned(Features::properties(self, i))
     }
     fn geometry_type(&self, i: usize) -> Option<&'static str> {
-        match &self.records[i].shape {
+        match self.shape(i) {
             Shape::Null => None,
             Shape::Plane(g) => Some(plane_type(g)),
             Shape::Json(v) => {
@@ -458,7 +428,7 @@ impl Source for Features {
         }
     }
     fn has_z(&self, i: usize) -> bool {
-        match &self.records[i].shape {
+        match self.shape(i) {
             Shape::Json(v) => has_z(v),
             _ => false,
         }
@@ -494,42 +464,6 @@ pub fn of_collection(fc: &Value) -> Option<&dyn Source> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn cells_give_back_their_values_and_text() {
-        let values = [
-            json!(null),
-            json!(true),
-            json!(false),
-            json!(0),
-            json!(-7),
-            json!(i64::MIN),
-            json!(i64::MAX),
-            json!(i64::MAX as u64 + 1),
-            json!(u64::MAX),
-            json!(5.0),
-            json!(-0.0),
-            json!(0.1),
-            json!(1e300),
-            json!(-2.5e-310),
-            json!(""),
-            json!("Zürich \"quoted\""),
-            json!([1, "a", null]),
-            json!({"b": 1, "a": [2.5]}),
-        ];
-        for v in values {
-            let back = Cell::of(&v).to_value();
-            assert_eq!(back, v);
-            assert_eq!(back.to_string(), v.to_string(), "{v}");
-        }
-        assert_eq!(
-            Cell::of(&json!(u64::MAX)),
-            Cell::Json(Box::new(json!(u64::MAX)))
-        );
-        assert_eq!(Cell::of(&json!(3)), Cell::Int(3));
-        assert_eq!(Cell::of(&json!(3.0)), Cell::Float(3.0));
-        assert!(std::mem::size_of::<Cell>() <= 24);
-    }
 
     #[test]
     fn plane_geometries_give_back_their_geojson() {

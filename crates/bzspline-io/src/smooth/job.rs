@@ -241,26 +241,27 @@ impl Job {
     fn plane(&mut self, name: &str, features: &mut Features, space: Space) -> Result<()> {
         self.features += features.len();
         let (lib, snap) = self.resolved(name, || space)?;
-        let records = features.records_mut();
+        let shapes = features.take_shapes();
         let empty =
             || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
-        let had: Vec<bool> = records
-            .iter()
-            .map(|r| !matches!(r.shape, Shape::Null))
-            .collect();
-        let geoms: Vec<geo_types::Geometry<f64>> = records
-            .iter_mut()
-            .map(|r| match std::mem::replace(&mut r.shape, Shape::Null) {
+        let had: Vec<bool> = shapes.iter().map(|s| !matches!(s, Shape::Null)).collect();
+        let geoms: Vec<geo_types::Geometry<f64>> = shapes
+            .into_iter()
+            .map(|s| match s {
                 Shape::Plane(g) => *g,
                 _ => empty(),
             })
             .collect();
         let out = self.smooth_geometries(name, geoms, &lib, snap)?;
-        for ((r, g), had) in records.iter_mut().zip(out).zip(had) {
-            if had {
-                r.shape = Shape::Plane(Box::new(g));
-            }
-        }
+        let shapes = out
+            .into_iter()
+            .zip(had)
+            .map(|(g, had)| match had {
+                true => Shape::Plane(Box::new(g)),
+                false => Shape::Null,
+            })
+            .collect();
+        features.put_shapes(shapes);
         Ok(())
     }
 
