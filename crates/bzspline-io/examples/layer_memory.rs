@@ -57,9 +57,9 @@ fn main() -> ExitCode {
     step("reading");
     let geometries: Vec<geo_types::Geometry<f64>> = layer
         .features
-        .records_mut()
-        .iter_mut()
-        .filter_map(|r| match std::mem::replace(&mut r.shape, Shape::Null) {
+        .take_shapes()
+        .into_iter()
+        .filter_map(|s| match s {
             Shape::Plane(g) => Some(*g),
             _ => None,
         })
