@@ -270,8 +270,8 @@ impl Coverage {
     }
 
     /// As [`Coverage::assemble`], letting go of the coverage on the way: its
-    /// own arcs before the geometries are put together, each chain's arcs
-    /// and each shape's points once they are used. For the last step of smoothing a large
+    /// own arcs before the geometries are put together, each shape's points
+    /// once they are used. For the last step of smoothing a large
     /// coverage, whose peak then holds the smoothed arcs and geometries but
     /// no longer the input's positions.
     ///
@@ -281,12 +281,14 @@ impl Coverage {
     #[must_use]
     pub fn into_geometries(self, arcs: &Arcs) -> Vec<Geometry<f64>> {
         let Coverage { shapes, topology } = self;
-        let mut chains = topology.into_chains().into_iter();
+        // The chains are held together (5 bytes each beyond their arc
+        // references), let go of once every geometry is put together.
+        let chains = topology.into_chains();
+        let mut chains = chains.iter();
         let mut take = || {
-            // Each chain's arcs are let go of once it is put together.
             chains
                 .next()
-                .map_or_else(Vec::new, |c| crate::topology::chain_coords(&c, arcs))
+                .map_or_else(Vec::new, |c| crate::topology::chain_coords(c, arcs))
         };
         shapes.into_iter().map(|g| rebuild(&g, &mut take)).collect()
     }

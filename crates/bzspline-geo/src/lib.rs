@@ -75,6 +75,7 @@
 //! between two original edges were in the input and are left as they are.
 
 mod arcs;
+mod chains;
 mod coverage;
 mod crossings;
 mod error;
@@ -94,6 +95,7 @@ mod smoothing;
 mod topology;
 
 pub use arcs::{Arcs, ArcsIter};
+pub use chains::{Chain, Chains, ChainsIter};
 pub use coverage::{coverage_chains, Coverage, CoverageBuilder, Location};
 pub use error::Error;
 pub use line::smooth_line;
@@ -105,4 +107,4 @@ pub use options::{
 pub use ragged::Ragged;
 pub use smooth::{Smoothed, Stats, MAX_LEVEL};
 pub use smoothing::Smooth;
-pub use topology::{snap, snap_in, ArcRef, Chain, ChainKind, Topology};
+pub use topology::{snap, snap_in, ArcRef, ChainKind, Topology};

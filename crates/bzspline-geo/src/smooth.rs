@@ -293,7 +293,7 @@ impl Topology {
         }
         let mut j = vec![false; n];
         for (c, _) in self.chains().iter().zip(exact).filter(|(_, &e)| e) {
-            for r in &c.arcs {
+            for r in c.arcs {
                 j[r.index()] = true;
             }
         }
@@ -374,7 +374,7 @@ impl Topology {
         let mut in_line = vec![false; arcs.len()];
         let mut min_out = vec![2u8; arcs.len()];
         for c in self.chains() {
-            for r in &c.arcs {
+            for r in c.arcs {
                 if c.kind == ChainKind::Line {
                     in_line[r.index()] = true;
                 }
@@ -450,7 +450,7 @@ fn bump_chain(
     levels: &Ragged<u8>,
     bump: &mut Vec<(usize, Seg)>,
 ) -> Result<(), Error> {
-    for r in &t.chains()[ci].arcs {
+    for r in t.chain(ci).arcs {
         for s in along.segs(r.index(), levels)? {
             if !s.original {
                 bump.push((r.index(), *s));

@@ -11,6 +11,7 @@ use rstar::primitives::GeomWithData;
 use rstar::RTree;
 
 use crate::arcs::Arcs;
+use crate::chains::{Chain, Chains};
 use crate::error::Error;
 pub use crate::graph::ChainKind;
 use crate::graph::{junctions, key, Paths};
@@ -60,20 +61,11 @@ impl ArcRef {
     }
 }
 
-/// A line or ring as the arcs it runs along, in order.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Chain {
-    /// Line or ring.
-    pub kind: ChainKind,
-    /// The arcs, each joined to the next at a shared end position.
-    pub arcs: Vec<ArcRef>,
-}
-
 /// Arcs, the lines and rings made of them, and which rings form a polygon.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Topology {
     arcs: Arcs,
-    chains: Vec<Chain>,
+    chains: Chains,
     polygons: Ragged<usize>,
     nodes: Nodes,
 }
@@ -138,13 +130,13 @@ impl Topology {
         }
         // Each path is let go of once cut, as the chains are in `Paths::of`.
         let mut b = Builder::new(&points);
-        let mut out_chains = Vec::with_capacity(paths.len());
+        let mut out_chains = Chains::with_capacity(paths.len(), 0);
         for (kind, path) in paths {
             let arcs = match kind {
                 ChainKind::Line => b.cut_line(&path, &junction),
                 ChainKind::Ring => b.cut_ring(&path, &junction),
             };
-            out_chains.push(Chain { kind, arcs });
+            out_chains.push(kind, arcs);
         }
         let arcs = b.arcs();
         Topology {
@@ -167,11 +159,11 @@ impl Topology {
     /// finite; [`Error::Polygon`] as for [`Topology::from_chains`].
     pub fn from_arcs(
         arcs: Vec<Vec<Coord>>,
-        chains: Vec<Chain>,
+        chains: Chains,
         polygons: Vec<Vec<usize>>,
     ) -> Result<Topology, Error> {
         let polygons = Ragged::from(polygons);
-        check_polygons(chains.len(), &polygons, |i| chains[i].kind)?;
+        check_polygons(chains.len(), &polygons, |i| chains.kinds()[i])?;
         let total = arcs.iter().map(Vec::len).sum();
         let mut kept = Arcs::with_capacity(arcs.len(), total);
         for (ai, mut a) in arcs.into_iter().enumerate() {
@@ -212,7 +204,7 @@ impl Topology {
     }
 
     /// The chains, the rest let go of ([`crate::Coverage::into_geometries`]).
-    pub(crate) fn into_chains(self) -> Vec<Chain> {
+    pub(crate) fn into_chains(self) -> Chains {
         self.chains
     }
 
@@ -224,8 +216,21 @@ impl Topology {
 
     /// The lines and rings, in the order given.
     #[must_use]
-    pub fn chains(&self) -> &[Chain] {
+    pub fn chains(&self) -> &Chains {
         &self.chains
+    }
+
+    /// Chain `i`.
+    ///
+    /// # Panics
+    ///
+    /// When `i` is past the last chain.
+    #[must_use]
+    pub fn chain(&self, i: usize) -> Chain<'_> {
+        match self.chains.get(i) {
+            Some(c) => c,
+            None => panic!("chain {i} of {}", self.chains.len()),
+        }
     }
 
     /// Each polygon's rings (indices into [`Topology::chains`]), shell first.
@@ -252,10 +257,8 @@ impl Topology {
     #[must_use]
     pub fn uses(&self) -> Vec<u32> {
         let mut uses = vec![0u32; self.arcs.len()];
-        for c in &self.chains {
-            for r in &c.arcs {
-                uses[r.index()] += 1;
-            }
+        for r in self.chains.refs() {
+            uses[r.index()] += 1;
         }
         uses
     }
@@ -270,7 +273,7 @@ impl Topology {
     /// When `i` is not a chain's index or `arcs` is shorter than the arcs.
     #[must_use]
     pub fn chain_coords(&self, i: usize, arcs: &Arcs) -> Vec<Coord> {
-        chain_coords(&self.chains[i], arcs)
+        chain_coords(self.chain(i), arcs)
     }
 }
 
@@ -291,7 +294,7 @@ fn check_polygons(
 }
 
 /// The positions of `chain` put together from `arcs` ([`Topology::chain_coords`]).
-pub(crate) fn chain_coords(chain: &Chain, arcs: &Arcs) -> Vec<Coord> {
+pub(crate) fn chain_coords(chain: Chain<'_>, arcs: &Arcs) -> Vec<Coord> {
     // Consecutive arcs share their joint, and a ring's last arc ends at
     // its first position: the count when every joint is one position
     // (a vector grown by doubling would hold a third more on average).
@@ -300,7 +303,7 @@ pub(crate) fn chain_coords(chain: &Chain, arcs: &Arcs) -> Vec<Coord> {
         .saturating_sub(chain.arcs.len().saturating_sub(1));
     let least = if chain.kind == ChainKind::Ring { 4 } else { 0 };
     let mut out: Vec<Coord> = Vec::with_capacity(joined.max(least));
-    for r in &chain.arcs {
+    for r in chain.arcs {
         let arc = &arcs[r.index()];
         let mut push = |c: Coord| {
             if out.last().map(|&l| key(l)) != Some(key(c)) {
@@ -804,7 +807,7 @@ mod tests {
         ];
         let t = Topology::from_chains(&chains, vec![vec![0, 1], vec![2]]).unwrap();
         assert_eq!(t.arcs().len(), 2);
-        assert_eq!(t.chains()[1].arcs[0].arc, t.chains()[2].arcs[0].arc);
+        assert_eq!(t.chain(1).arcs[0].arc, t.chain(2).arcs[0].arc);
         let h = t.chain_coords(1, t.arcs());
         let i = t.chain_coords(2, t.arcs());
         // Same positions, opposite directions, as given.
@@ -826,7 +829,7 @@ mod tests {
         let t = Topology::from_chains(&chains, vec![vec![0]]).unwrap();
         // The ring is cut at (1, 1), where the line ends; a ring with one
         // junction is one arc from that junction round to it.
-        let ring = &t.chains()[0];
+        let ring = t.chain(0);
         let a = &t.arcs()[ring.arcs[0].index()];
         assert_eq!(ring.arcs.len(), 1);
         assert_eq!(a[0], c(1.0, 1.0));
@@ -870,10 +873,11 @@ mod tests {
         );
         let e = Topology::from_arcs(
             vec![vec![c(0.0, 0.0), c(1.0, 0.0)]],
-            vec![Chain {
-                kind: ChainKind::Line,
-                arcs: vec![ArcRef::from_topojson(-3)],
-            }],
+            {
+                let mut chains = Chains::new();
+                chains.push(ChainKind::Line, [ArcRef::from_topojson(-3)]);
+                chains
+            },
             vec![],
         );
         assert_eq!(

@@ -6,7 +6,7 @@
 //! Specification: <https://github.com/topojson/topojson-specification>.
 
 use anyhow::{anyhow, bail, Result};
-use bzspline_geo::{ArcRef, Arcs, Chain, ChainKind, Topology};
+use bzspline_geo::{ArcRef, Arcs, ChainKind, Chains, Topology};
 use geo_types::Coord;
 use serde::ser::{Serialize, SerializeMap, Serializer};
 use serde_json::{json, Map, Value};
@@ -112,7 +112,7 @@ pub fn read(name: &str, v: Value) -> Result<TopoDoc> {
     let mut r = Reader {
         name,
         arcs: &arcs,
-        chains: Vec::new(),
+        chains: Chains::new(),
         polygons: Vec::new(),
         origins: Vec::new(),
     };
@@ -148,7 +148,7 @@ pub fn read(name: &str, v: Value) -> Result<TopoDoc> {
 struct Reader<'a> {
     name: &'a str,
     arcs: &'a [Vec<Coord>],
-    chains: Vec<Chain>,
+    chains: Chains,
     polygons: Vec<Vec<usize>>,
     origins: Vec<String>,
 }
@@ -178,7 +178,7 @@ impl Reader<'_> {
 
     fn chain(&mut self, kind: ChainKind, v: &Value, at: String) -> Result<usize> {
         let arcs = self.refs(v, &at)?;
-        self.chains.push(Chain { kind, arcs });
+        self.chains.push(kind, arcs);
         self.origins.push(at);
         Ok(self.chains.len() - 1)
     }
@@ -366,7 +366,7 @@ impl TopoDoc {
     /// GeoJSON asks for, as topojson-client writes it.
     fn chain_positions(&self, i: usize, arcs: &Arcs) -> Vec<Coord> {
         let mut c = self.topology.chain_coords(i, arcs);
-        if self.topology.chains()[i].kind == ChainKind::Ring && !c.is_empty() {
+        if self.topology.chain(i).kind == ChainKind::Ring && !c.is_empty() {
             while c.len() < 4 {
                 c.push(c[0]);
             }
@@ -714,7 +714,7 @@ pub fn from_features(
 ) -> Value {
     let mut next = 0usize;
     let mut refs = || -> Value {
-        let c = &topology.chains()[next];
+        let c = topology.chain(next);
         next += 1;
         Value::Array(c.arcs.iter().map(|r| json!(r.to_topojson())).collect())
     };

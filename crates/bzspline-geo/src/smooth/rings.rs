@@ -27,7 +27,7 @@ impl RingFacts {
         let mut chains_of = Ragged::filled(uses.iter().map(|&u| u as usize), 0u32);
         let mut filled = vec![0usize; uses.len()];
         for (ci, c) in t.chains().iter().enumerate() {
-            for r in &c.arcs {
+            for r in c.arcs {
                 chains_of[r.index()][filled[r.index()]] = ci as u32;
                 filled[r.index()] += 1;
             }
@@ -39,7 +39,7 @@ impl RingFacts {
             }
         }
         let sign_in = (0..t.chains().len())
-            .map(|ci| match t.chains()[ci].kind {
+            .map(|ci| match t.chain(ci).kind {
                 ChainKind::Ring => shoelace.ring(t, ci, cross_in).signum() as i8,
                 ChainKind::Line => 0,
             })
@@ -124,7 +124,7 @@ impl Shoelace {
 
     /// The signed area of ring `ci` (positive counter-clockwise).
     pub(super) fn ring(&self, t: &Topology, ci: usize, cross: &[f64]) -> f64 {
-        t.chains()[ci]
+        t.chain(ci)
             .arcs
             .iter()
             .map(|r| {
