@@ -5,6 +5,7 @@ use geo_types::{Coord, Geometry, GeometryCollection, Line, LineString, MultiLine
 use geo_types::{MultiPolygon, Polygon};
 
 use crate::arcs::Arcs;
+use crate::assembled::Assembled;
 use crate::error::Error;
 use crate::levels::Levels;
 use crate::nodes::Nodes;
@@ -65,7 +66,7 @@ pub struct Coverage {
 /// [`rebuild`] puts them back into, in 24 bytes where a geo-types
 /// `Geometry` takes 56.
 #[derive(Clone, Debug)]
-enum Shape {
+pub(crate) enum Shape {
     /// A Point or MultiPoint, as given.
     Kept(Box<Geometry<f64>>),
     /// A Line, whose ends stand in when its line has none.
@@ -293,6 +294,26 @@ impl Coverage {
         shapes.into_iter().map(|g| rebuild(&g, &mut take)).collect()
     }
 
+    /// The geometries put together from `arcs` one at a time when asked
+    /// for ([`Assembled::get`] gives what [`Coverage::assemble`] gives),
+    /// the coverage's own positions let go of: for writing a large
+    /// coverage's smoothed geometries without holding them all at once.
+    ///
+    /// # Panics
+    ///
+    /// When `arcs` has fewer arcs than the topology.
+    #[must_use]
+    pub fn into_assembled(self, arcs: Arcs) -> Assembled {
+        let Coverage { shapes, topology } = self;
+        assert!(
+            arcs.len() >= topology.arcs().len(),
+            "{} arcs for a topology of {}",
+            arcs.len(),
+            topology.arcs().len()
+        );
+        Assembled::new(shapes, topology.into_chains(), arcs)
+    }
+
     /// Where an error's chain (or, for an arc's error, the first chain that
     /// uses the arc) comes from.
     #[must_use]
@@ -451,7 +472,18 @@ fn take_rings(p: &mut Polygon<f64>) -> Vec<Vec<Coord>> {
 
 /// The geometry of shape `s` with each line and ring, in the order
 /// [`visit`] met them, from `take`.
-fn rebuild(s: &Shape, take: &mut dyn FnMut() -> Vec<Coord>) -> Geometry<f64> {
+/// How many lines and rings of the coverage's chains shape `s` takes.
+pub(crate) fn chains_in(s: &Shape) -> usize {
+    match s {
+        Shape::Kept(_) => 0,
+        Shape::Line(_) | Shape::LineString => 1,
+        Shape::MultiLineString(n) | Shape::Polygon(n) => *n,
+        Shape::MultiPolygon(rings) => rings.iter().sum(),
+        Shape::Collection(c) => c.iter().map(chains_in).sum(),
+    }
+}
+
+pub(crate) fn rebuild(s: &Shape, take: &mut dyn FnMut() -> Vec<Coord>) -> Geometry<f64> {
     let polygon = |rings: usize, take: &mut dyn FnMut() -> Vec<Coord>| {
         let shell = LineString(take());
         let holes = (1..rings).map(|_| LineString(take())).collect();
@@ -591,6 +623,10 @@ mod tests {
         let arcs = coverage.topology().arcs().clone();
         let kept = coverage.assemble(&arcs);
         assert_eq!(kept.len(), given.len());
+        let assembled = coverage.clone().into_assembled(arcs.clone());
+        assert_eq!(assembled.len(), kept.len());
+        assert_eq!(assembled.iter().collect::<Vec<_>>(), kept);
+        assert_eq!(assembled.get(kept.len() - 1), kept[kept.len() - 1]);
         assert_eq!(coverage.into_geometries(&arcs), kept);
     }
 }

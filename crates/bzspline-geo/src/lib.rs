@@ -75,6 +75,7 @@
 //! between two original edges were in the input and are left as they are.
 
 mod arcs;
+mod assembled;
 mod chains;
 mod coverage;
 mod crossings;
@@ -95,6 +96,7 @@ mod smoothing;
 mod topology;
 
 pub use arcs::{Arcs, ArcsIter};
+pub use assembled::Assembled;
 pub use chains::{Chain, Chains, ChainsIter};
 pub use coverage::{coverage_chains, Coverage, CoverageBuilder, Location};
 pub use error::Error;

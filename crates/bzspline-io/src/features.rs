@@ -6,6 +6,7 @@
 
 use std::borrow::Cow;
 
+use bzspline_geo::Assembled;
 use geo_types::{
     Coord, Geometry, GeometryCollection, LineString, MultiLineString, MultiPoint, MultiPolygon,
     Point, Polygon,
@@ -170,14 +171,28 @@ pub fn geometry_value(g: &Geometry) -> Value {
 
 /// A layer's features, in order, with the names of their fields: each
 /// feature's geometry and its field values in the schema's order (a
-/// feature lacking a field holds null for it).
-#[derive(Clone, Debug, Default, PartialEq)]
+/// feature lacking a field holds null for it). Two are equal when they
+/// have the same fields, values and geometries, however these are held.
+#[derive(Clone, Debug, Default)]
 pub struct Features {
     names: Vec<String>,
     count: usize,
-    /// One a feature, or none while they are taken ([`Features::take_shapes`]).
+    /// One a feature, or none while they are taken ([`Features::take_shapes`])
+    /// or once smoothed as a coverage ([`Features::put_assembled`]).
     shapes: Vec<Shape>,
+    /// The geometries smoothed as a coverage, and whether each feature had
+    /// one.
+    assembled: Option<(Assembled, Vec<bool>)>,
     values: Values,
+}
+
+impl PartialEq for Features {
+    fn eq(&self, other: &Features) -> bool {
+        self.names == other.names
+            && self.count == other.count
+            && self.values == other.values
+            && (0..self.count).all(|i| self.shape(i) == other.shape(i))
+    }
 }
 
 impl Features {
@@ -238,10 +253,14 @@ impl Features {
         &self.names
     }
 
-    /// Feature `i`'s geometry ([`Shape::Null`] while they are taken).
-    #[must_use]
-    pub fn shape(&self, i: usize) -> &Shape {
-        self.shapes.get(i).unwrap_or(&Shape::Null)
+    /// Feature `i`'s geometry ([`Shape::Null`] while they are taken), that
+    /// of the features smoothed as a coverage put together.
+    fn shape(&self, i: usize) -> Cow<'_, Shape> {
+        match &self.assembled {
+            Some((a, had)) if had[i] => Cow::Owned(Shape::Plane(Box::new(a.get(i)))),
+            Some(_) => Cow::Owned(Shape::Null),
+            None => Cow::Borrowed(self.shapes.get(i).unwrap_or(&Shape::Null)),
+        }
     }
 
     /// Takes every feature's geometry, in order, leaving the features none
@@ -249,7 +268,15 @@ impl Features {
     /// geometries can be smoothed without a second vector of them).
     #[must_use]
     pub fn take_shapes(&mut self) -> Vec<Shape> {
-        let mut shapes = std::mem::take(&mut self.shapes);
+        let mut shapes = match self.assembled.take() {
+            Some((a, had)) => (0..self.count)
+                .map(|i| match had[i] {
+                    true => Shape::Plane(Box::new(a.get(i))),
+                    false => Shape::Null,
+                })
+                .collect(),
+            None => std::mem::take(&mut self.shapes),
+        };
         shapes.resize(self.count, Shape::Null);
         shapes
     }
@@ -262,12 +289,27 @@ impl Features {
     pub fn put_shapes(&mut self, shapes: Vec<Shape>) {
         assert_eq!(shapes.len(), self.count, "one shape a feature");
         self.shapes = shapes;
+        self.assembled = None;
+    }
+
+    /// Gives the features their geometries back smoothed as a coverage,
+    /// each put together when it is read ([`Source::geometry`]): feature
+    /// `i`'s is `assembled`'s `i`, or none where `had[i]` is false.
+    ///
+    /// # Panics
+    ///
+    /// When `assembled` or `had` is not one a feature.
+    pub fn put_assembled(&mut self, assembled: Assembled, had: Vec<bool>) {
+        assert_eq!(assembled.len(), self.count, "one geometry a feature");
+        assert_eq!(had.len(), self.count, "one mark a feature");
+        self.shapes = Vec::new();
+        self.assembled = Some((assembled, had));
     }
 
     /// Whether every geometry lies in the plane (or there is none).
     #[must_use]
     pub fn is_plane(&self) -> bool {
-        self.shapes.iter().all(|s| !matches!(s, Shape::Json(_)))
+        self.assembled.is_some() || self.shapes.iter().all(|s| !matches!(s, Shape::Json(_)))
     }
 
     /// Feature `i`'s value of field `k`.
@@ -403,7 +445,7 @@ impl Source for Features {
     }
     fn geometry(&self, i: usize) -> Cow<'_, Value> {
         match self.shape(i) {
-            Shape::Json(v) => Cow::Borrowed(&**v),
+            Cow::Borrowed(Shape::Json(v)) => Cow::Borrowed(&**v),
             s => Cow::Owned(s.to_value()),
         }
     }
@@ -418,7 +460,7 @@ impl Source for Features {
         Cow::Owned(Features::properties(self, i))
     }
     fn geometry_type(&self, i: usize) -> Option<&'static str> {
-        match self.shape(i) {
+        match &*self.shape(i) {
             Shape::Null => None,
             Shape::Plane(g) => Some(plane_type(g)),
             Shape::Json(v) => {
@@ -428,7 +470,7 @@ impl Source for Features {
         }
     }
     fn has_z(&self, i: usize) -> bool {
-        match self.shape(i) {
+        match &*self.shape(i) {
             Shape::Json(v) => has_z(v),
             _ => false,
         }

@@ -3,7 +3,7 @@
 //! into the same features, with properties, ids and foreign members kept.
 
 use anyhow::{anyhow, Result};
-use bzspline_geo::{Arcs, Coverage, SmoothOptions, Stats};
+use bzspline_geo::{Arcs, Assembled, Coverage, SmoothOptions, Stats};
 use geojson::{GeoJson, Geometry, GeometryValue};
 use serde_json::Value;
 
@@ -152,6 +152,24 @@ pub fn smooth_into_geometries(
 ) -> Result<(Vec<geo_types::Geometry<f64>>, Stats)> {
     let (coverage, s) = smooth_coverage(geoms, opts, snap, where_, place)?;
     Ok((coverage.into_geometries(&s.arcs), s.stats))
+}
+
+/// The smoothed geometries of [`smooth_together`], each put together when
+/// asked for ([`Assembled`]), and what smoothing did: for writing a large
+/// layer without holding all its smoothed geometries at once.
+///
+/// # Errors
+///
+/// As [`smooth_together`].
+pub fn smooth_into_assembled(
+    geoms: Vec<geo_types::Geometry<f64>>,
+    opts: &SmoothOptions,
+    snap: Option<f64>,
+    where_: &str,
+    place: &dyn Fn(usize) -> String,
+) -> Result<(Assembled, Stats)> {
+    let (coverage, s) = smooth_coverage(geoms, opts, snap, where_, place)?;
+    Ok((coverage.into_assembled(s.arcs), s.stats))
 }
 
 /// The coverage of `geoms` and its smoothing.

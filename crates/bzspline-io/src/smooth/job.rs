@@ -252,16 +252,26 @@ impl Job {
                 _ => empty(),
             })
             .collect();
-        let out = self.smooth_geometries(name, geoms, &lib, snap)?;
-        let shapes = out
-            .into_iter()
-            .zip(had)
-            .map(|(g, had)| match had {
-                true => Shape::Plane(Box::new(g)),
-                false => Shape::Null,
-            })
-            .collect();
-        features.put_shapes(shapes);
+        if self.settings.independent {
+            let out = self.smooth_geometries(name, geoms, &lib, snap)?;
+            let shapes = out
+                .into_iter()
+                .zip(had)
+                .map(|(g, had)| match had {
+                    true => Shape::Plane(Box::new(g)),
+                    false => Shape::Null,
+                })
+                .collect();
+            features.put_shapes(shapes);
+        } else {
+            // Each smoothed geometry is put together as it is written.
+            let place = |i: usize| format!("{name}: feature {i}");
+            coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
+            let (assembled, stats) =
+                coverage::smooth_into_assembled(geoms, &lib, snap, name, &place)?;
+            self.total += &stats;
+            features.put_assembled(assembled, had);
+        }
         Ok(())
     }
 
