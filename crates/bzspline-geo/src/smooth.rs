@@ -19,7 +19,7 @@ mod rings;
 use crate::ragged::Ragged;
 pub(crate) use arc::turning_degrees;
 use arc::{is_closed, smooth_arc, Along, Plans, Seg, Smoothing};
-use rings::{holes_inside, RingFacts, Shoelace};
+use rings::{holes_inside, RingFacts, Shoelace, NO_POLYGON};
 
 /// The most times a leg is halved to resolve a conflict (into `2^MAX_LEVEL`
 /// parts); one more conflict keeps the leg as the original edge.
@@ -314,20 +314,22 @@ impl Topology {
     ) -> Result<(), Error> {
         // Marks rather than lists of indices: in the first round every arc
         // is dirty, and a list would hold each chain once per arc it uses.
-        let mut suspect = vec![false; self.chains().len()];
-        for a in (0..dirty.len()).filter(|&a| dirty[a]) {
-            for &c in &rings.chains_of[a] {
-                suspect[c as usize] = exact.get(c as usize).copied().unwrap_or(exact.is_empty());
-            }
-        }
+        // Found by a pass over the chains' references, which costs less
+        // than a round's smoothing and needs no table from arcs to chains.
+        let suspect: Vec<bool> = (self.chains().iter().enumerate())
+            .map(|(ci, c)| {
+                exact.get(ci).copied().unwrap_or(exact.is_empty())
+                    && c.arcs.iter().any(|r| dirty[r.index()])
+            })
+            .collect();
         let mut in_play = vec![false; self.polygons().len()];
         for ci in (0..suspect.len()).filter(|&ci| suspect[ci]) {
             let sign = rings.sign_in[ci];
             if sign != 0 && shoelace.ring(self, ci, cross_out).signum() != f64::from(sign) {
                 bump_chain(self, ci, along, levels, bump)?;
             }
-            if let Some(p) = rings.polygon_of[ci] {
-                in_play[p as usize] = true;
+            if rings.polygon_of[ci] != NO_POLYGON {
+                in_play[rings.polygon_of[ci] as usize] = true;
             }
         }
         drop(suspect);

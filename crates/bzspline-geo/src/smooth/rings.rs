@@ -8,12 +8,13 @@ use crate::arcs::Arcs;
 use crate::ragged::Ragged;
 use crate::topology::{ChainKind, Topology};
 
+/// A ring of no polygon (a line's chain) in [`RingFacts::polygon_of`].
+pub(super) const NO_POLYGON: u32 = u32::MAX;
+
 /// What the input says about its rings, for the checks after smoothing.
 pub(super) struct RingFacts {
-    /// The chains that use each arc.
-    pub(super) chains_of: Ragged<u32>,
-    /// The polygon each ring belongs to.
-    pub(super) polygon_of: Vec<Option<u32>>,
+    /// The polygon each ring belongs to ([`NO_POLYGON`] for none).
+    pub(super) polygon_of: Vec<u32>,
     /// Each ring's winding in the input: the sign of its shoelace sum, as
     /// `f64::signum` gives it (0 for a line).
     pub(super) sign_in: Vec<i8>,
@@ -23,19 +24,10 @@ pub(super) struct RingFacts {
 
 impl RingFacts {
     pub(super) fn of(t: &Topology, shoelace: &Shoelace, cross_in: &[f64]) -> RingFacts {
-        let uses = t.uses();
-        let mut chains_of = Ragged::filled(uses.iter().map(|&u| u as usize), 0u32);
-        let mut filled = vec![0usize; uses.len()];
-        for (ci, c) in t.chains().iter().enumerate() {
-            for r in c.arcs {
-                chains_of[r.index()][filled[r.index()]] = ci as u32;
-                filled[r.index()] += 1;
-            }
-        }
-        let mut polygon_of: Vec<Option<u32>> = vec![None; t.chains().len()];
+        let mut polygon_of = vec![NO_POLYGON; t.chains().len()];
         for (pi, p) in t.polygons().iter().enumerate() {
             for &c in p {
-                polygon_of[c] = Some(pi as u32);
+                polygon_of[c] = u32::try_from(pi).expect("fewer than 2^32 - 1 polygons");
             }
         }
         let sign_in = (0..t.chains().len())
@@ -50,7 +42,6 @@ impl RingFacts {
             inside_in.push_row(holes_inside(t, p, t.arcs()));
         }
         RingFacts {
-            chains_of,
             polygon_of,
             sign_in,
             inside_in,

@@ -18,6 +18,8 @@ use serde::de::{self, DeserializeSeed, MapAccess, SeqAccess, Visitor};
 use serde::Deserializer;
 use serde_json::{Map, Value};
 
+use bzspline_geo::Assembled;
+
 use crate::features::{Source, NULL};
 
 /// One feature: geojson's as compact JSON, its geometry's coordinates
@@ -36,6 +38,9 @@ pub struct Collection {
     /// The collection without features (its bbox and foreign members).
     head: FeatureCollection,
     items: Vec<Item>,
+    /// The geometries smoothed as one coverage, each put together when the
+    /// feature is written ([`Collection::put_assembled`]).
+    assembled: Option<Assembled>,
     /// Every feature's properties, read from its text the first time a
     /// writer of another format asks for one ([`Source`]).
     properties: OnceLock<Vec<Map<String, Value>>>,
@@ -157,6 +162,7 @@ impl Collection {
         Some(Collection {
             head,
             items,
+            assembled: None,
             properties: OnceLock::new(),
         })
     }
@@ -178,9 +184,15 @@ impl Collection {
     pub fn take_geometries(&mut self) -> Vec<geo_types::Geometry<f64>> {
         let empty =
             || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
+        let assembled = self.assembled.take();
         self.items
             .iter_mut()
-            .map(|i| i.shape.take().unwrap_or_else(empty))
+            .enumerate()
+            .map(|(k, i)| match &assembled {
+                Some(a) if i.geometry => a.get(k),
+                Some(_) => empty(),
+                None => i.shape.take().unwrap_or_else(empty),
+            })
             .collect()
     }
 
@@ -194,6 +206,21 @@ impl Collection {
         }
     }
 
+    /// Puts the geometries smoothed as one coverage back, one for each
+    /// feature in order, each put together when the feature is written:
+    /// those of features without geometry are dropped.
+    ///
+    /// # Panics
+    ///
+    /// When `assembled` is not one geometry a feature.
+    pub fn put_assembled(&mut self, assembled: Assembled) {
+        assert_eq!(assembled.len(), self.len(), "one geometry a feature");
+        for item in &mut self.items {
+            item.shape = None;
+        }
+        self.assembled = Some(assembled);
+    }
+
     /// Feature `i` as the document's path gives it: read again from its
     /// text, its geometry's coordinates put back and the geometry's bbox
     /// (no longer tight) dropped (while its geometry is taken out to be
@@ -201,7 +228,14 @@ impl Collection {
     fn feature(&self, i: usize) -> serde_json::Result<Feature> {
         let item = &self.items[i];
         let mut f: Feature = serde_json::from_str(&item.rest)?;
-        if let (Some(g), Some(shape)) = (f.geometry.as_mut(), item.shape.as_ref()) {
+        let assembled = match &self.assembled {
+            Some(a) if item.geometry => Some(a.get(i)),
+            _ => None,
+        };
+        if let (Some(g), Some(shape)) = (
+            f.geometry.as_mut(),
+            assembled.as_ref().or(item.shape.as_ref()),
+        ) {
             g.value = GeometryValue::from(shape);
             g.bbox = None;
         }

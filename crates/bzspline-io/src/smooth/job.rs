@@ -253,7 +253,7 @@ impl Job {
             })
             .collect();
         if self.settings.independent {
-            let out = self.smooth_geometries(name, geoms, &lib, snap)?;
+            let out = self.smooth_each(name, geoms, &lib)?;
             let shapes = out
                 .into_iter()
                 .zip(had)
@@ -264,11 +264,7 @@ impl Job {
                 .collect();
             features.put_shapes(shapes);
         } else {
-            // Each smoothed geometry is put together as it is written.
-            let place = |i: usize| format!("{name}: feature {i}");
-            coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
-            let (assembled, stats) =
-                coverage::smooth_into_assembled(geoms, &lib, snap, name, &place)?;
+            let (assembled, stats) = self.smooth_assembled(name, geoms, &lib, snap)?;
             self.total += &stats;
             features.put_assembled(assembled, had);
         }
@@ -323,29 +319,44 @@ impl Job {
         let (lib, snap) = self.resolved(name, || {
             Space::of_lonlat_bounds(coverage::bounds(&geoms), "it")
         })?;
-        let out = self.smooth_geometries(name, geoms, &lib, snap)?;
-        c.put_geometries(out);
+        if self.settings.independent {
+            let out = self.smooth_each(name, geoms, &lib)?;
+            c.put_geometries(out);
+        } else {
+            let (assembled, stats) = self.smooth_assembled(name, geoms, &lib, snap)?;
+            self.total += &stats;
+            c.put_assembled(assembled);
+        }
         Ok(())
     }
 
-    /// Smooths geometries in the plane, geometry i feature i of `name`, as
-    /// one coverage or each on its own, adding to the totals.
-    fn smooth_geometries(
+    /// Smooths geometries in the plane, geometry i feature i of `name`,
+    /// each on its own (`--independent`), adding to the totals.
+    fn smooth_each(
         &mut self,
         name: &str,
         geoms: Vec<geo_types::Geometry<f64>>,
         lib: &SmoothOptions,
-        snap: Option<f64>,
     ) -> Result<Vec<geo_types::Geometry<f64>>> {
         let place = |i: usize| format!("{name}: feature {i}");
         coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
-        let (out, stats) = if self.settings.independent {
-            coverage::smooth_apart(geoms, lib, name, &place)?
-        } else {
-            coverage::smooth_into_geometries(geoms, lib, snap, name, &place)?
-        };
+        let (out, stats) = coverage::smooth_apart(geoms, lib, name, &place)?;
         self.total += &stats;
         Ok(out)
+    }
+
+    /// Smooths geometries in the plane as one coverage, geometry i feature
+    /// i of `name`, each smoothed geometry put together as it is written.
+    fn smooth_assembled(
+        &self,
+        name: &str,
+        geoms: Vec<geo_types::Geometry<f64>>,
+        lib: &SmoothOptions,
+        snap: Option<f64>,
+    ) -> Result<(bzspline_geo::Assembled, Stats)> {
+        let place = |i: usize| format!("{name}: feature {i}");
+        coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
+        coverage::smooth_into_assembled(geoms, lib, snap, name, &place)
     }
 
     /// The options and snap distance for data in `space` (found by `space`
