@@ -1,7 +1,7 @@
 //! The topology of a coverage: its lines and rings cut into arcs (the
 //! crate docs say how arcs are found).
 
-use std::hash::BuildHasher;
+use std::hash::{BuildHasher, Hash, Hasher};
 
 use hashbrown::HashTable;
 use rustc_hash::{FxBuildHasher, FxHashMap};
@@ -342,75 +342,36 @@ pub(crate) fn chain_coords(chain: Chain<'_>, arcs: &Arcs) -> Vec<Coord> {
 struct Builder<'a> {
     /// Each position, by id (compared by [`key`]).
     points: &'a [Coord],
-    /// The arcs found so far.
-    arcs: ArcIds,
-    /// The arcs by what they hold ([`ArcIds::found_by`]).
+    /// The arcs found so far, as their positions (a closed arc ends on its
+    /// first position again): held as the topology holds them, with no
+    /// list of ids beside them.
+    arcs: Arcs,
+    /// Whether each arc is a ring without junctions (a closed arc).
+    closed: Vec<bool>,
+    /// The arcs by what they hold ([`Builder::found_by`]).
     index: HashTable<u32>,
     /// The arc being looked up, in its canonical form.
     scratch: Vec<u32>,
 }
 
-/// Arcs as the ids of their positions, one arc after another.
-struct ArcIds {
-    /// Every arc's ids (a closed arc ends on its first id again).
-    ids: Vec<u32>,
-    /// Where each arc's ids start in `ids`, and where the last one ends.
-    starts: Vec<usize>,
-    /// Whether each arc is a ring without junctions (a closed arc).
-    closed: Vec<bool>,
-}
-
-impl Default for ArcIds {
-    fn default() -> Self {
-        ArcIds {
-            ids: Vec::new(),
-            starts: vec![0],
-            closed: Vec::new(),
-        }
+/// The hash an arc is found by: whether it is closed, and the bits of its
+/// positions (without a closed arc's closing repeat).
+fn arc_hash(closed: bool, keys: impl ExactSizeIterator<Item = (u64, u64)>) -> u64 {
+    let mut h = FxBuildHasher.build_hasher();
+    closed.hash(&mut h);
+    keys.len().hash(&mut h);
+    for k in keys {
+        k.hash(&mut h);
     }
-}
-
-impl ArcIds {
-    /// Arc `a`'s ids as it is found by: an open arc's all, a closed arc's
-    /// without the closing repeat.
-    fn found_by(&self, a: usize) -> &[u32] {
-        let ids = &self.ids[self.starts[a]..self.starts[a + 1]];
-        if self.closed[a] {
-            &ids[..ids.len() - 1]
-        } else {
-            ids
-        }
-    }
-
-    /// The hash arc `a` is found by.
-    fn hash(&self, a: usize) -> u64 {
-        arc_hash(self.closed[a], self.found_by(a))
-    }
-
-    /// Adds an arc of `ids` (closed: ending on its first id again).
-    fn push(&mut self, ids: &[u32], closed: bool) -> usize {
-        let a = self.closed.len();
-        self.ids.extend_from_slice(ids);
-        if closed {
-            self.ids.push(ids[0]);
-        }
-        self.starts.push(self.ids.len());
-        self.closed.push(closed);
-        a
-    }
-}
-
-/// The hash of an arc: whether it is closed, its ids (without a closed
-/// arc's closing repeat).
-fn arc_hash(closed: bool, ids: &[u32]) -> u64 {
-    FxBuildHasher.hash_one((closed, ids))
+    h.finish()
 }
 
 impl<'a> Builder<'a> {
     fn new(points: &'a [Coord]) -> Builder<'a> {
         Builder {
             points,
-            arcs: ArcIds::default(),
+            arcs: Arcs::new(),
+            closed: Vec::new(),
             index: HashTable::new(),
             scratch: Vec::new(),
         }
@@ -423,23 +384,46 @@ impl<'a> Builder<'a> {
 
     /// The arc `scratch` (closed or not), stored when it is new.
     fn find_or_add(&mut self, closed: bool) -> u32 {
-        let hash = arc_hash(closed, &self.scratch);
         let Builder {
+            points,
             arcs,
+            closed: closed_arcs,
             index,
             scratch,
-            ..
         } = self;
+        let hash = arc_hash(closed, scratch.iter().map(|&i| key(points[i as usize])));
+        let found_by = |a: usize| {
+            let p = &arcs[a];
+            if closed_arcs[a] {
+                &p[..p.len() - 1]
+            } else {
+                p
+            }
+        };
         let found = index.find(hash, |&a| {
-            arcs.closed[a as usize] == closed && arcs.found_by(a as usize) == &scratch[..]
+            closed_arcs[a as usize] == closed && {
+                let p = found_by(a as usize);
+                p.len() == scratch.len()
+                    && p.iter()
+                        .zip(scratch.iter())
+                        .all(|(&c, &i)| key(c) == key(points[i as usize]))
+            }
         });
         if let Some(&a) = found {
             return a;
         }
         // Arcs are counted in u32, as positions are: more would take over
         // 2^32 segments.
-        let a = arcs.push(scratch, closed) as u32;
-        index.insert_unique(hash, a, |&b| arcs.hash(b as usize));
+        let a = arcs.len() as u32;
+        let ring = closed.then(|| points[scratch[0] as usize]);
+        arcs.push(scratch.iter().map(|&i| points[i as usize]).chain(ring));
+        closed_arcs.push(closed);
+        index.insert_unique(hash, a, |&b| {
+            let b = b as usize;
+            let p = &arcs[b];
+            let p = if closed_arcs[b] { &p[..p.len() - 1] } else { p };
+            arc_hash(closed_arcs[b], p.iter().map(|&c| key(c)))
+        });
         a
     }
 
@@ -519,14 +503,8 @@ impl<'a> Builder<'a> {
     }
 
     /// The arcs' positions.
-    fn arcs(&self) -> Arcs {
-        let points = self.points;
-        let ArcIds { ids, starts, .. } = &self.arcs;
-        let mut arcs = Arcs::with_capacity(starts.len().saturating_sub(1), ids.len());
-        for w in starts.windows(2) {
-            arcs.push(ids[w[0]..w[1]].iter().map(|&id| points[id as usize]));
-        }
-        arcs
+    fn arcs(self) -> Arcs {
+        self.arcs
     }
 }
 
