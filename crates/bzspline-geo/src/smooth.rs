@@ -3,7 +3,9 @@
 //! [`arc`], the checks of rings in [`rings`].
 
 use geo_types::{Coord, Rect};
-use rustc_hash::{FxHashMap, FxHashSet};
+use std::hash::BuildHasher;
+
+use rustc_hash::{FxBuildHasher, FxHashMap, FxHashSet};
 
 use crate::arcs::Arcs;
 use crate::crossings::{Lines, SegId};
@@ -365,14 +367,14 @@ impl Topology {
     /// sorted, each once: half the bytes of a hash set).
     fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Plans, Vec<(u64, u64)>) {
         let arcs = self.arcs();
-        // How often each position occurs over all arcs (a closed arc's end once).
-        let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
-        for a in arcs {
-            let distinct = if is_closed(a) { &a[..a.len() - 1] } else { a };
-            for &c in distinct {
-                *count.entry(key(c)).or_insert(0) += 1;
-            }
-        }
+        // The positions that occur twice or more over all arcs (a closed
+        // arc's end once), sorted.
+        let shared = shared_positions(arcs);
+        // Looked up for every position: a table, let go of with the plans
+        // made (a binary search of the sorted keys would miss the cache at
+        // every step).
+        let table: FxHashSet<(u64, u64)> = shared.iter().copied().collect();
+        let is_shared = |c: Coord| table.contains(&key(c));
         let mut in_line = vec![false; arcs.len()];
         let mut min_out = vec![2u8; arcs.len()];
         for c in self.chains() {
@@ -389,16 +391,11 @@ impl Topology {
                 min_out[r.index()] = min_out[r.index()].max(want.min(len));
             }
         }
-        let mut nodes: Vec<(u64, u64)> = count
-            .iter()
-            .filter(|&(_, &n)| n >= 2)
-            .map(|(&k, _)| k)
-            .collect();
+        // The nodes beyond the shared positions.
+        let mut nodes: Vec<(u64, u64)> = Vec::new();
         // A node: met by two arcs here, or by the whole coverage's (given).
         let given = self.nodes();
-        let is_node = |c: Coord| {
-            count.get(&key(c)).is_some_and(|&n| n >= 2) || (!given.is_empty() && given.contains(c))
-        };
+        let is_node = |c: Coord| is_shared(c) || (!given.is_empty() && given.contains(c));
         let mut plans = Plans {
             closed_curve: Vec::with_capacity(arcs.len()),
             fixed: Ragged::with_capacity(arcs.len(), arcs.iter().map(<[Coord]>::len).sum()),
@@ -412,7 +409,7 @@ impl Topology {
                 // Ends met by another arc are in `nodes` already: a list of
                 // every arc's two ends would be many times the nodes' size.
                 for end in [a[0], a[a.len() - 1]] {
-                    if count.get(&key(end)).is_none_or(|&n| n < 2) {
+                    if !is_shared(end) {
                         nodes.push(key(end));
                     }
                 }
@@ -436,12 +433,47 @@ impl Topology {
                 }
             }
         }
-        drop(count);
-        nodes.sort_unstable();
-        nodes.dedup();
-        nodes.shrink_to_fit();
-        (plans, nodes)
+        drop(table);
+        let mut shared = shared;
+        shared.extend(nodes);
+        shared.sort_unstable();
+        shared.dedup();
+        shared.shrink_to_fit();
+        (plans, shared)
     }
+}
+
+/// Positions per pass of [`shared_positions`]: its table of counts holds
+/// about this many keys at a time.
+const COUNTED_PER_PASS: usize = 1 << 20;
+
+/// The keys of the positions that occur twice or more over all arcs (a
+/// closed arc's end once), sorted. Counted in as many passes as it takes
+/// for each pass's table to hold about [`COUNTED_PER_PASS`] positions, each
+/// pass the positions whose hash falls in its share: a table of every
+/// position of a large coverage at once would take more than the arcs.
+fn shared_positions(arcs: &Arcs) -> Vec<(u64, u64)> {
+    let total: usize = arcs.iter().map(<[Coord]>::len).sum();
+    let passes = total.div_ceil(COUNTED_PER_PASS).max(1) as u64;
+    // The pass a key is counted in, from its hash's upper bits: the table
+    // places keys by the lower bits, which must stay spread.
+    let pass_of = |k: (u64, u64)| (FxBuildHasher.hash_one(k) >> 32) % passes;
+    let mut shared = Vec::new();
+    let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
+    for pass in 0..passes {
+        count.clear();
+        for a in arcs {
+            let distinct = if is_closed(a) { &a[..a.len() - 1] } else { a };
+            for k in distinct.iter().map(|&c| key(c)) {
+                if passes == 1 || pass_of(k) == pass {
+                    *count.entry(k).or_insert(0) += 1;
+                }
+            }
+        }
+        shared.extend(count.iter().filter(|&(_, &n)| n >= 2).map(|(&k, _)| k));
+    }
+    shared.sort_unstable();
+    shared
 }
 
 /// Adds every leg of every arc of chain `ci` to `bump`.
