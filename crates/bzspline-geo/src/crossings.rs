@@ -16,7 +16,6 @@ use crate::graph::key;
 use geo_index::rtree::sort::HilbertSort;
 use geo_index::rtree::util::f64_box_to_f32;
 use geo_index::rtree::{RTree, RTreeBuilder, RTreeIndex};
-use rstar::{Envelope, AABB};
 
 /// A segment of polyline `line`, from its position `seg` to `seg + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -38,7 +37,41 @@ struct Item {
     start: SegId,
     /// The run holds a segment of a line in `dirty`.
     dirty: bool,
-    env: AABB<[f64; 2]>,
+    env: Bbox,
+}
+
+/// A box with its lower and upper corners: the few comparisons a segment's
+/// and a run's boxes take, in the hottest loops of a coverage's first round.
+#[derive(Clone, Copy, Debug)]
+struct Bbox {
+    lo: [f64; 2],
+    hi: [f64; 2],
+}
+
+impl Bbox {
+    /// The box of the two corners.
+    #[inline]
+    fn of(a: Coord, b: Coord) -> Bbox {
+        let min = |p: f64, q: f64| if p < q { p } else { q };
+        let max = |p: f64, q: f64| if p > q { p } else { q };
+        Bbox {
+            lo: [min(a.x, b.x), min(a.y, b.y)],
+            hi: [max(a.x, b.x), max(a.y, b.y)],
+        }
+    }
+
+    /// Grows to hold `o` too.
+    #[inline]
+    fn merge(&mut self, o: &Bbox) {
+        for k in 0..2 {
+            if o.lo[k] < self.lo[k] {
+                self.lo[k] = o.lo[k];
+            }
+            if o.hi[k] > self.hi[k] {
+                self.hi[k] = o.hi[k];
+            }
+        }
+    }
 }
 
 /// The segments of `lines` from `start` on, across the lines, in order.
@@ -60,19 +93,38 @@ fn segs_from(lines: &Arcs, start: SegId) -> impl Iterator<Item = SegId> + '_ {
 impl Item {
     /// The run of `lines` from segment `start`.
     fn of(lines: &Arcs, dirty: &[bool], start: SegId) -> Item {
-        let mut env: Option<AABB<[f64; 2]>> = None;
+        // The segments `segs_from` gives, a line's slice at a time (an
+        // iterator of segments each indexing its line again costs twice
+        // as much here, the hottest loop of a coverage's first round).
+        let mut env: Option<Bbox> = None;
         let mut any_dirty = false;
-        for id in segs_from(lines, start).take(RUN) {
-            let l = &lines[id.line as usize];
-            let e = seg_env(l[id.seg as usize], l[id.seg as usize + 1]);
-            env.get_or_insert(e).merge(&e);
-            any_dirty |= dirty[id.line as usize];
+        let mut left = RUN;
+        let mut first = start.seg as usize;
+        for li in start.line as usize..lines.len() {
+            let l = &lines[li];
+            let n = l.len().saturating_sub(1);
+            if first < n {
+                let take = (n - first).min(left);
+                for w in l[first..=first + take].windows(2) {
+                    let e = seg_env(w[0], w[1]);
+                    env.get_or_insert(e).merge(&e);
+                }
+                any_dirty |= dirty[li];
+                left -= take;
+                if left == 0 {
+                    break;
+                }
+            }
+            first = 0;
         }
         Item {
             start,
             dirty: any_dirty,
             // A run starts at a segment, so it holds at least that one.
-            env: env.unwrap_or_else(|| AABB::from_point([0.0, 0.0])),
+            env: env.unwrap_or(Bbox {
+                lo: [0.0; 2],
+                hi: [0.0; 2],
+            }),
         }
     }
 
@@ -85,7 +137,7 @@ impl Item {
     /// the exact box: the tree may offer a few runs more than meet, never
     /// fewer.
     fn env32(&self) -> (f32, f32, f32, f32) {
-        let (l, u) = (self.env.lower(), self.env.upper());
+        let (l, u) = (self.env.lo, self.env.hi);
         f64_box_to_f32(l[0], l[1], u[0], u[1])
     }
 }
@@ -119,12 +171,14 @@ impl Runs {
     }
 }
 
-fn seg_env(a: Coord, b: Coord) -> AABB<[f64; 2]> {
-    AABB::from_corners([a.x, a.y], [b.x, b.y])
+#[inline]
+fn seg_env(a: Coord, b: Coord) -> Bbox {
+    Bbox::of(a, b)
 }
 
-fn boxes_meet(p: &AABB<[f64; 2]>, q: &AABB<[f64; 2]>) -> bool {
-    let (pl, pu, ql, qu) = (p.lower(), p.upper(), q.lower(), q.upper());
+#[inline]
+fn boxes_meet(p: &Bbox, q: &Bbox) -> bool {
+    let (pl, pu, ql, qu) = (p.lo, p.hi, q.lo, q.hi);
     pl[0] <= qu[0] && ql[0] <= pu[0] && pl[1] <= qu[1] && ql[1] <= pu[1]
 }
 
@@ -238,20 +292,24 @@ impl Lines<'_> {
             let (i, j) = (p.seg.min(q.seg), p.seg.max(q.seg));
             j == i + 1 || (self.closed[p.line as usize] && i == 0 && j + 1 == n)
         };
-        let shared: Vec<(Coord, Coord, Coord)> = [(a0, a1), (a1, a0)]
-            .into_iter()
-            .flat_map(|(ea, oa)| {
-                [(b0, b1), (b1, b0)]
-                    .into_iter()
-                    .filter(move |&(eb, _)| key(ea) == key(eb))
-                    .map(move |(_, ob)| (ea, oa, ob))
-            })
-            .collect();
+        // Each end the segments share, with the other end of each (no
+        // vector: this runs for every pair of segments whose boxes meet).
+        let mut shared = [(a0, a1, b1); 4];
+        let mut n = 0;
+        for (ea, oa) in [(a0, a1), (a1, a0)] {
+            for (eb, ob) in [(b0, b1), (b1, b0)] {
+                if key(ea) == key(eb) {
+                    shared[n] = (ea, oa, ob);
+                    n += 1;
+                }
+            }
+        }
+        let shared = &shared[..n];
         // The predicates run on the four positions scaled alike by one power
         // of two ([`unit_scale`]: exact, equal positions stay equal).
         let s = unit_scale(largest(&[a0, a1, b0, b1]));
         let at = |c: Coord| if s == 1.0 { c } else { times(c, s) };
-        match shared.as_slice() {
+        match shared {
             [] => intersect(at(a0), at(a1), at(b0), at(b1)),
             [(e, oa, ob)] => {
                 let may_meet = consecutive || self.nodes.binary_search(&key(*e)).is_ok();
