@@ -129,7 +129,7 @@ mod tests {
 
     #[test]
     fn chains_keep_their_kind_and_arcs_in_order() {
-        let r = |arc, reversed| ArcRef { arc, reversed };
+        let r = ArcRef::new;
         let mut c = Chains::with_capacity(1, 1);
         c.push(ChainKind::Ring, [r(0, false), r(1, true)]);
         c.push(ChainKind::Line, []);

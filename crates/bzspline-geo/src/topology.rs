@@ -20,44 +20,74 @@ use crate::options::Frame;
 use crate::ragged::Ragged;
 
 /// One arc of a chain, in its stored direction or reversed (TopoJSON writes
-/// the reversed arc `k` as `!k`, that is `-k - 1`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct ArcRef {
-    /// Index into [`Topology::arcs`] ([`ArcRef::index`] as a `usize`):
-    /// a topology holds fewer than 2^32 arcs, and a chain's reference takes
-    /// 8 bytes.
-    pub arc: u32,
-    /// The chain runs along the arc from its last position to its first.
-    pub reversed: bool,
-}
+/// the reversed arc `k` as `!k`, that is `-k - 1`): 4 bytes, the arc's index
+/// and the direction in one `u32`, for a topology holds fewer than
+/// [`ArcRef::MAX_ARCS`] arcs.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ArcRef(u32);
 
 impl ArcRef {
+    /// How many arcs a topology may hold: an index takes 31 bits.
+    pub const MAX_ARCS: usize = 1 << 31;
+
+    /// Arc `arc`, in its stored direction or `reversed`.
+    ///
+    /// # Panics
+    ///
+    /// When `arc` is not below [`ArcRef::MAX_ARCS`].
+    #[must_use]
+    pub fn new(arc: usize, reversed: bool) -> ArcRef {
+        assert!(
+            arc < ArcRef::MAX_ARCS,
+            "arc {arc} past the 2^31 a topology holds"
+        );
+        ArcRef(((arc as u32) << 1) | u32::from(reversed))
+    }
+
     /// The arc's index into [`Topology::arcs`].
     #[must_use]
     pub fn index(self) -> usize {
-        self.arc as usize
+        (self.0 >> 1) as usize
+    }
+
+    /// Whether the chain runs along the arc from its last position to its
+    /// first.
+    #[must_use]
+    pub fn reversed(self) -> bool {
+        self.0 & 1 == 1
     }
 
     /// The reference TopoJSON writes: `k`, or `!k` (`-k - 1`) when reversed.
     #[must_use]
     pub fn to_topojson(self) -> i64 {
-        let k = i64::from(self.arc);
-        if self.reversed {
+        let k = self.index() as i64;
+        if self.reversed() {
             -k - 1
         } else {
             k
         }
     }
 
-    /// The reference from TopoJSON's `k` or `!k`; an index beyond `u32`
-    /// becomes `u32::MAX`, which names no arc of any topology.
+    /// The reference from TopoJSON's `k` or `!k`; an index of
+    /// [`ArcRef::MAX_ARCS`] or more becomes `MAX_ARCS - 1`, which names no
+    /// arc of any topology (one arc fewer than the most a topology holds).
     #[must_use]
     pub fn from_topojson(k: i64) -> ArcRef {
         let (index, reversed) = if k < 0 { (-(k + 1), true) } else { (k, false) };
-        ArcRef {
-            arc: u32::try_from(index).unwrap_or(u32::MAX),
-            reversed,
-        }
+        let index = usize::try_from(index)
+            .ok()
+            .filter(|&i| i < ArcRef::MAX_ARCS)
+            .unwrap_or(ArcRef::MAX_ARCS - 1);
+        ArcRef::new(index, reversed)
+    }
+}
+
+impl std::fmt::Debug for ArcRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ArcRef")
+            .field("arc", &self.index())
+            .field("reversed", &self.reversed())
+            .finish()
     }
 }
 
@@ -310,7 +340,7 @@ pub(crate) fn chain_coords(chain: Chain<'_>, arcs: &Arcs) -> Vec<Coord> {
                 out.push(c);
             }
         };
-        if r.reversed {
+        if r.reversed() {
             arc.iter().rev().for_each(|&c| push(c));
         } else {
             arc.iter().for_each(|&c| push(c));
@@ -412,8 +442,9 @@ impl<'a> Builder<'a> {
         if let Some(&a) = found {
             return a;
         }
-        // Arcs are counted in u32, as positions are: more would take over
-        // 2^32 segments.
+        // Arcs are counted in u32, as positions are, and a reference holds
+        // an index of 31 bits: more arcs would take over 2^31 positions
+        // (32 GiB), and `ArcRef::new` refuses them.
         let a = arcs.len() as u32;
         let ring = closed.then(|| points[scratch[0] as usize]);
         arcs.push(scratch.iter().map(|&i| points[i as usize]).chain(ring));
@@ -439,10 +470,7 @@ impl<'a> Builder<'a> {
         } else {
             self.scratch.extend_from_slice(run);
         }
-        ArcRef {
-            arc: self.find_or_add(false),
-            reversed,
-        }
+        ArcRef::new(self.find_or_add(false) as usize, reversed)
     }
 
     fn cut_line(&mut self, path: &[u32], junction: &[bool]) -> Vec<ArcRef> {
@@ -496,10 +524,7 @@ impl<'a> Builder<'a> {
         } else {
             self.scratch.extend(fwd);
         }
-        ArcRef {
-            arc: self.find_or_add(true),
-            reversed,
-        }
+        ArcRef::new(self.find_or_add(true) as usize, reversed)
     }
 
     /// The arcs' positions.
@@ -742,7 +767,7 @@ mod tests {
             .filter(|r| r.index() == shared)
             .collect();
         assert_eq!(refs.len(), 2);
-        assert_ne!(refs[0].reversed, refs[1].reversed);
+        assert_ne!(refs[0].reversed(), refs[1].reversed());
         // Chains assemble back to the same rings (rotated).
         for (i, (_, given)) in chains.iter().enumerate() {
             let ring = t.chain_coords(i, t.arcs());
@@ -785,7 +810,7 @@ mod tests {
         ];
         let t = Topology::from_chains(&chains, vec![vec![0, 1], vec![2]]).unwrap();
         assert_eq!(t.arcs().len(), 2);
-        assert_eq!(t.chain(1).arcs[0].arc, t.chain(2).arcs[0].arc);
+        assert_eq!(t.chain(1).arcs[0].index(), t.chain(2).arcs[0].index());
         let h = t.chain_coords(1, t.arcs());
         let i = t.chain_coords(2, t.arcs());
         // Same positions, opposite directions, as given.
@@ -819,12 +844,15 @@ mod tests {
         for k in [0i64, 1, 7, -1, -2, -8] {
             assert_eq!(ArcRef::from_topojson(k).to_topojson(), k);
         }
+        assert_eq!(ArcRef::from_topojson(-1), ArcRef::new(0, true));
+        assert_eq!(std::mem::size_of::<ArcRef>(), 4);
+        let far = ArcRef::from_topojson(1 << 40);
+        assert_eq!((far.index(), far.reversed()), (ArcRef::MAX_ARCS - 1, false));
+        let r = ArcRef::new(ArcRef::MAX_ARCS - 1, true);
+        assert_eq!((r.index(), r.reversed()), (ArcRef::MAX_ARCS - 1, true));
         assert_eq!(
-            ArcRef::from_topojson(-1),
-            ArcRef {
-                arc: 0,
-                reversed: true
-            }
+            format!("{r:?}"),
+            "ArcRef { arc: 2147483647, reversed: true }"
         );
     }
 

@@ -119,7 +119,7 @@ impl Shoelace {
             .arcs
             .iter()
             .map(|r| {
-                if r.reversed {
+                if r.reversed() {
                     -cross[r.index()]
                 } else {
                     cross[r.index()]
