@@ -8,7 +8,7 @@ use geo_types::Geometry;
 
 use crate::arcs::Arcs;
 use crate::chains::Chains;
-use crate::coverage::{chains_in, rebuild, Shape};
+use crate::coverage::{chains_in, kind_of, rebuild, Shape};
 use crate::offsets::Offsets;
 use crate::topology::chain_coords;
 
@@ -69,6 +69,17 @@ impl Assembled {
             c.unwrap_or_default()
         };
         rebuild(&self.shapes[i], &mut take)
+    }
+
+    /// The geo-types kind of geometry `i` (`"Polygon"`, `"Line"`: the name
+    /// of its `Geometry` variant), without putting it together.
+    ///
+    /// # Panics
+    ///
+    /// When `i` is past the last geometry.
+    #[must_use]
+    pub fn kind(&self, i: usize) -> &'static str {
+        kind_of(&self.shapes[i])
     }
 
     /// The geometries in order, each put together as it comes.

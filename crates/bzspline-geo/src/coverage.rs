@@ -483,6 +483,24 @@ pub(crate) fn chains_in(s: &Shape) -> usize {
     }
 }
 
+/// The name of the `Geometry` variant [`rebuild`] makes of `s`.
+pub(crate) fn kind_of(s: &Shape) -> &'static str {
+    match s {
+        Shape::Kept(g) => match **g {
+            Geometry::Point(_) => "Point",
+            Geometry::MultiPoint(_) => "MultiPoint",
+            // Only points are kept as they are.
+            _ => "GeometryCollection",
+        },
+        Shape::Line(_) => "Line",
+        Shape::LineString => "LineString",
+        Shape::MultiLineString(_) => "MultiLineString",
+        Shape::Polygon(_) => "Polygon",
+        Shape::MultiPolygon(_) => "MultiPolygon",
+        Shape::Collection(_) => "GeometryCollection",
+    }
+}
+
 pub(crate) fn rebuild(s: &Shape, take: &mut dyn FnMut() -> Vec<Coord>) -> Geometry<f64> {
     let polygon = |rings: usize, take: &mut dyn FnMut() -> Vec<Coord>| {
         let shell = LineString(take());
@@ -627,6 +645,21 @@ mod tests {
         assert_eq!(assembled.len(), kept.len());
         assert_eq!(assembled.iter().collect::<Vec<_>>(), kept);
         assert_eq!(assembled.get(kept.len() - 1), kept[kept.len() - 1]);
+        let variant = |g: &Geometry<f64>| match g {
+            Geometry::Point(_) => "Point",
+            Geometry::Line(_) => "Line",
+            Geometry::LineString(_) => "LineString",
+            Geometry::Polygon(_) => "Polygon",
+            Geometry::MultiPoint(_) => "MultiPoint",
+            Geometry::MultiLineString(_) => "MultiLineString",
+            Geometry::MultiPolygon(_) => "MultiPolygon",
+            Geometry::GeometryCollection(_) => "GeometryCollection",
+            Geometry::Rect(_) => "Rect",
+            Geometry::Triangle(_) => "Triangle",
+        };
+        for (i, g) in kept.iter().enumerate() {
+            assert_eq!(assembled.kind(i), variant(g), "{i}");
+        }
         assert_eq!(coverage.into_geometries(&arcs), kept);
     }
 }

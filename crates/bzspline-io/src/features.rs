@@ -205,12 +205,6 @@ impl Features {
         }
     }
 
-    /// Room for `n` more features.
-    pub fn reserve(&mut self, n: usize) {
-        self.shapes.reserve_exact(n);
-        self.values.reserve(n.saturating_mul(self.names.len()));
-    }
-
     /// Adds a feature: its properties (each field's value taken by name,
     /// `null` for a field it lacks, the one value for fields of one name;
     /// others dropped) and its GeoJSON geometry (or `null`).
@@ -460,6 +454,13 @@ impl Source for Features {
         Cow::Owned(Features::properties(self, i))
     }
     fn geometry_type(&self, i: usize) -> Option<&'static str> {
+        // A smoothed geometry's type, without putting it together.
+        if let Some((a, had)) = &self.assembled {
+            return had[i].then(|| match a.kind(i) {
+                "Line" => "LineString",
+                kind => kind,
+            });
+        }
         match &*self.shape(i) {
             Shape::Null => None,
             Shape::Plane(g) => Some(plane_type(g)),
@@ -470,6 +471,10 @@ impl Source for Features {
         }
     }
     fn has_z(&self, i: usize) -> bool {
+        if self.assembled.is_some() {
+            // Smoothed in the plane.
+            return false;
+        }
         match &*self.shape(i) {
             Shape::Json(v) => has_z(v),
             _ => false,
@@ -548,6 +553,71 @@ mod tests {
             assert_eq!(Shape::from_value(v.clone()).to_value(), v);
         }
         assert_eq!(Shape::from_value(Value::Null), Shape::Null);
+    }
+
+    #[test]
+    fn assembled_geometries_answer_as_the_same_shapes_do() {
+        let square =
+            |x: f64| json!([[[x, 0.0], [x + 1.0, 0.0], [x + 1.0, 1.0], [x, 1.0], [x, 0.0]]]);
+        let fc = json!({"type": "FeatureCollection", "features": [
+            {"type": "Feature", "properties": {"a": 1}, "geometry": {"type": "Polygon", "coordinates": square(0.0)}},
+            {"type": "Feature", "properties": {"a": "two"}, "geometry": null},
+            {"type": "Feature", "properties": {}, "geometry": {"type": "MultiPolygon", "coordinates": [square(1.0), square(3.0)]}},
+            {"type": "Feature", "properties": {"a": [3]}, "geometry": {"type": "LineString", "coordinates": [[0.0, 2.0], [1.0, 2.5], [2.0, 2.0]]}},
+            {"type": "Feature", "properties": {"a": null}, "geometry": {"type": "GeometryCollection", "geometries": [
+                {"type": "Point", "coordinates": [5.0, 5.0]},
+                {"type": "MultiLineString", "coordinates": [[[5.0, 0.0], [6.0, 1.0], [7.0, 0.0]]]}]}},
+            {"type": "Feature", "properties": {"a": 6}, "geometry": {"type": "MultiPoint", "coordinates": [[9.0, 9.0]]}},
+        ]});
+        let mut shapes = Features::from_value(&fc, vec!["a".into()]);
+        let mut assembled = shapes.clone();
+        let taken = assembled.take_shapes();
+        let had: Vec<bool> = taken.iter().map(|s| !matches!(s, Shape::Null)).collect();
+        let empty = || Geometry::GeometryCollection(GeometryCollection(vec![]));
+        let geoms: Vec<Geometry> = taken
+            .into_iter()
+            .map(|s| match s {
+                Shape::Plane(g) => *g,
+                _ => empty(),
+            })
+            .collect();
+        let coverage = bzspline_geo::Coverage::new(geoms).unwrap();
+        let smoothed = coverage
+            .topology()
+            .smooth(&bzspline_geo::SmoothOptions::default().tolerance(1e-3))
+            .unwrap();
+        let whole = coverage.assemble(&smoothed.arcs);
+        assembled.put_assembled(coverage.into_assembled(smoothed.arcs), had.clone());
+        let _ = shapes.take_shapes();
+        shapes.put_shapes(
+            whole
+                .into_iter()
+                .zip(&had)
+                .map(|(g, &h)| {
+                    if h {
+                        Shape::Plane(Box::new(g))
+                    } else {
+                        Shape::Null
+                    }
+                })
+                .collect(),
+        );
+        let (a, s): (&dyn Source, &dyn Source) = (&assembled, &shapes);
+        for i in 0..fc["features"].as_array().unwrap().len() {
+            assert_eq!(a.geometry(i), s.geometry(i), "{i}");
+            assert_eq!(a.geometry_type(i), s.geometry_type(i), "{i}");
+            assert_eq!(a.has_z(i), s.has_z(i), "{i}");
+            assert_eq!(a.properties(i), s.properties(i), "{i}");
+        }
+        assert_eq!(a.geometry_type(1), None);
+        assert_eq!(a.geometry_type(4), Some("GeometryCollection"));
+        assert!(assembled.is_plane());
+        assert_eq!(assembled, shapes);
+        assert_eq!(assembled.to_value(), shapes.to_value());
+        // Taken again, the assembled geometries come back as shapes.
+        let again = assembled.take_shapes();
+        assembled.put_shapes(again);
+        assert_eq!(assembled, shapes);
     }
 
     #[test]

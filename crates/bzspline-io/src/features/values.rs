@@ -32,11 +32,6 @@ pub(super) struct Values {
 }
 
 impl Values {
-    /// Room for `n` more values.
-    pub(super) fn reserve(&mut self, n: usize) {
-        self.slots.reserve_exact(n);
-    }
-
     /// Adds `v` after the last value.
     pub(super) fn push(&mut self, v: &Value) {
         let slot = match v {
