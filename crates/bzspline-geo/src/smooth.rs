@@ -368,7 +368,7 @@ impl Topology {
     fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Plans, Vec<(u64, u64)>) {
         let arcs = self.arcs();
         // The positions that occur twice or more over all arcs (a closed
-        // arc's end once), sorted.
+        // arc's end once).
         let shared = shared_positions(arcs);
         // Looked up for every position: a table, let go of with the plans
         // made (a binary search of the sorted keys would miss the cache at
@@ -448,7 +448,7 @@ impl Topology {
 const COUNTED_PER_PASS: usize = 1 << 20;
 
 /// The keys of the positions that occur twice or more over all arcs (a
-/// closed arc's end once), sorted. Counted in as many passes as it takes
+/// closed arc's end once), in no order. Counted in as many passes as it takes
 /// for each pass's table to hold about [`COUNTED_PER_PASS`] positions, each
 /// pass the positions whose hash falls in its share: a table of every
 /// position of a large coverage at once would take more than the arcs.
@@ -472,7 +472,6 @@ fn shared_positions(arcs: &Arcs) -> Vec<(u64, u64)> {
         }
         shared.extend(count.iter().filter(|&(_, &n)| n >= 2).map(|(&k, _)| k));
     }
-    shared.sort_unstable();
     shared
 }
 

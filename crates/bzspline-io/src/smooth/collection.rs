@@ -227,7 +227,7 @@ impl Collection {
     /// smoothed, without coordinates).
     fn feature(&self, i: usize) -> serde_json::Result<Feature> {
         let item = &self.items[i];
-        let mut f: Feature = serde_json::from_str(&item.rest)?;
+        let mut f = self.without_coordinates(i)?;
         let assembled = match &self.assembled {
             Some(a) if item.geometry => Some(a.get(i)),
             _ => None,
@@ -242,12 +242,18 @@ impl Collection {
         Ok(f)
     }
 
+    /// Feature `i` read again from its text, its geometry without
+    /// coordinates.
+    fn without_coordinates(&self, i: usize) -> serde_json::Result<Feature> {
+        serde_json::from_str(&self.items[i].rest)
+    }
+
     /// Every feature's properties (empty for none), read once.
     fn all_properties(&self) -> &[Map<String, Value>] {
         self.properties.get_or_init(|| {
             (0..self.len())
                 .map(|i| {
-                    self.feature(i)
+                    self.without_coordinates(i)
                         .ok()
                         .and_then(|f| f.properties)
                         .unwrap_or_default()
