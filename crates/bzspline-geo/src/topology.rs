@@ -233,7 +233,8 @@ impl Topology {
         &self.arcs
     }
 
-    /// The chains, the rest let go of ([`crate::Coverage::into_geometries`]).
+    /// The chains, the rest let go of ([`crate::Coverage::into_geometries`],
+    /// [`crate::Coverage::into_assembled`]).
     pub(crate) fn into_chains(self) -> Chains {
         self.chains
     }

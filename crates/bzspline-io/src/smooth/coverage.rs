@@ -136,24 +136,6 @@ pub fn smooth_together(
     })
 }
 
-/// The smoothed geometries of [`smooth_together`] and what smoothing did,
-/// the coverage let go of as they are put together (a smaller peak for a
-/// large layer).
-///
-/// # Errors
-///
-/// As [`smooth_together`].
-pub fn smooth_into_geometries(
-    geoms: Vec<geo_types::Geometry<f64>>,
-    opts: &SmoothOptions,
-    snap: Option<f64>,
-    where_: &str,
-    place: &dyn Fn(usize) -> String,
-) -> Result<(Vec<geo_types::Geometry<f64>>, Stats)> {
-    let (coverage, s) = smooth_coverage(geoms, opts, snap, where_, place)?;
-    Ok((coverage.into_geometries(&s.arcs), s.stats))
-}
-
 /// The smoothed geometries of [`smooth_together`], each put together when
 /// asked for ([`Assembled`]), and what smoothing did: for writing a large
 /// layer without holding all its smoothed geometries at once.
