@@ -8,8 +8,9 @@ use geo_types::Geometry;
 
 use crate::arcs::Arcs;
 use crate::chains::Chains;
-use crate::coverage::{chains_in, kind_of, rebuild, Shape};
+use crate::coverage::{chains_in, kind_of, rebuild};
 use crate::offsets::Offsets;
+use crate::shapes::Shapes;
 use crate::topology::chain_coords;
 
 /// The geometries of a [`Coverage`](crate::Coverage) with every line and
@@ -20,7 +21,7 @@ use crate::topology::chain_coords;
 /// arcs, not the coverage's own positions.
 #[derive(Clone)]
 pub struct Assembled {
-    shapes: Vec<Shape>,
+    shapes: Shapes,
     /// Each geometry's first chain.
     first: Offsets,
     chains: Chains,
@@ -28,12 +29,12 @@ pub struct Assembled {
 }
 
 impl Assembled {
-    pub(crate) fn new(shapes: Vec<Shape>, chains: Chains, arcs: Arcs) -> Assembled {
+    pub(crate) fn new(shapes: Shapes, chains: Chains, arcs: Arcs) -> Assembled {
         let mut first = Offsets::with_capacity(shapes.len());
         let mut next = 0;
-        for s in &shapes {
+        for s in shapes.iter() {
             first.push(next);
-            next += chains_in(s);
+            next += chains_in(&s);
         }
         Assembled {
             shapes,
@@ -68,7 +69,7 @@ impl Assembled {
             next += 1;
             c.unwrap_or_default()
         };
-        rebuild(&self.shapes[i], &mut take)
+        rebuild(&self.shapes.get(i), &mut take)
     }
 
     /// The geo-types kind of geometry `i` (`"Polygon"`, `"Line"`: the name
@@ -79,7 +80,7 @@ impl Assembled {
     /// When `i` is past the last geometry.
     #[must_use]
     pub fn kind(&self, i: usize) -> &'static str {
-        kind_of(&self.shapes[i])
+        kind_of(&self.shapes.get(i))
     }
 
     /// The geometries in order, each put together as it comes.

@@ -11,6 +11,7 @@ use crate::levels::Levels;
 use crate::nodes::Nodes;
 use crate::options::{Frame, SmoothOptions};
 use crate::ragged::Ragged;
+use crate::shapes::Shapes;
 use crate::smooth::Stats;
 use crate::topology::{snap_in, ChainKind, Topology};
 
@@ -58,13 +59,13 @@ struct Origin {
 pub struct Coverage {
     /// Each geometry's shape: its points as given, its lines and rings
     /// only counted (the topology holds their positions once).
-    shapes: Vec<Shape>,
+    shapes: Shapes,
     topology: Topology,
 }
 
 /// A geometry without the positions of its lines and rings: what
-/// [`rebuild`] puts them back into, in 24 bytes where a geo-types
-/// `Geometry` takes 56.
+/// [`rebuild`] puts them back into ([`Shapes`] holds the common ones in 4
+/// bytes, where a geo-types `Geometry` takes 56).
 #[derive(Clone, Debug)]
 pub(crate) enum Shape {
     /// A Point or MultiPoint, as given.
@@ -101,17 +102,17 @@ impl Shape {
 }
 
 /// The inputs of a [`Coverage`] beyond its geometries, by name
-/// ([`Coverage::builder`]).
+/// ([`Coverage::builder`]); `I` gives the geometries.
 #[derive(Debug, Clone)]
 #[must_use]
-pub struct CoverageBuilder {
-    geometries: Vec<Geometry<f64>>,
+pub struct CoverageBuilder<I = std::vec::IntoIter<Geometry<f64>>> {
+    geometries: I,
     snap: Option<f64>,
     frame: Frame,
     nodes: Nodes,
 }
 
-impl CoverageBuilder {
+impl<I: Iterator<Item = Geometry<f64>>> CoverageBuilder<I> {
     /// Merges positions closer than `distance` first, and puts positions
     /// that close to another line's or ring's edge into it
     /// ([`crate::snap`]); `None` (the default) does not snap.
@@ -141,7 +142,10 @@ impl CoverageBuilder {
         self
     }
 
-    /// Finds the topology.
+    /// Finds the topology, taking the geometries one at a time: without
+    /// snapping, each geometry's positions are let go of as soon as the
+    /// topology holds them, so the geometries and the topology are never
+    /// all held at once (snapping needs every position first).
     ///
     /// # Errors
     ///
@@ -149,15 +153,35 @@ impl CoverageBuilder {
     /// ([`Coverage::describe`] names the geometry); [`Error::InvalidOption`]
     /// for a snap distance that is not a finite non-negative number.
     pub fn build(self) -> Result<Coverage, Error> {
-        let mut geometries = self.geometries;
-        let (mut chains, polygons) = gather(&mut geometries);
-        let shapes = geometries.iter().map(Shape::of).collect();
-        drop(geometries);
-        if let Some(eps) = self.snap {
-            snap_in(&mut chains, eps, self.frame)?;
-        }
-        let topology = Topology::from_owned_chains(chains, polygons, self.nodes)?;
-        Ok(Coverage { shapes, topology })
+        let CoverageBuilder {
+            geometries,
+            snap,
+            frame,
+            nodes,
+        } = self;
+        // Most geometries have one line or ring: room for as many chains.
+        let room = geometries.size_hint().0;
+        let mut shapes = Shapes::with_capacity(room);
+        let mut polygons: Ragged<usize> = Ragged::new();
+        let mut taken = 0;
+        let chains = geometries.flat_map(|mut g| {
+            let chains = take_chains(&mut g, taken, &mut polygons);
+            taken += chains.len();
+            shapes.push(Shape::of(&g));
+            chains
+        });
+        let topology = match snap {
+            None => Topology::from_gathered(chains, room, nodes)?,
+            Some(eps) => {
+                let mut chains: Vec<(ChainKind, Vec<Coord>)> = chains.collect();
+                snap_in(&mut chains, eps, frame)?;
+                Topology::from_gathered(chains, room, nodes)?
+            }
+        };
+        Ok(Coverage {
+            shapes,
+            topology: topology.with_polygons(polygons),
+        })
     }
 }
 
@@ -168,15 +192,17 @@ impl Coverage {
     /// # Errors
     ///
     /// As [`CoverageBuilder::build`].
-    pub fn new(geometries: Vec<Geometry<f64>>) -> Result<Self, Error> {
+    pub fn new(geometries: impl IntoIterator<Item = Geometry<f64>>) -> Result<Self, Error> {
         Coverage::builder(geometries).build()
     }
 
     /// A coverage of `geometries` with options by name:
     /// `Coverage::builder(gs).snap(1e-6).build()`.
-    pub fn builder(geometries: Vec<Geometry<f64>>) -> CoverageBuilder {
+    pub fn builder<G: IntoIterator<Item = Geometry<f64>>>(
+        geometries: G,
+    ) -> CoverageBuilder<G::IntoIter> {
         CoverageBuilder {
-            geometries,
+            geometries: geometries.into_iter(),
             snap: None,
             frame: Frame::Plane,
             nodes: Nodes::default(),
@@ -267,7 +293,7 @@ impl Coverage {
             next += 1;
             c
         };
-        self.shapes.iter().map(|g| rebuild(g, &mut take)).collect()
+        self.shapes.iter().map(|g| rebuild(&g, &mut take)).collect()
     }
 
     /// As [`Coverage::assemble`], letting go of the coverage on the way: its
@@ -291,7 +317,7 @@ impl Coverage {
                 .next()
                 .map_or_else(Vec::new, |c| crate::topology::chain_coords(c, arcs))
         };
-        shapes.into_iter().map(|g| rebuild(&g, &mut take)).collect()
+        shapes.iter().map(|g| rebuild(&g, &mut take)).collect()
     }
 
     /// The geometries put together from `arcs` one at a time when asked
@@ -372,36 +398,42 @@ impl std::fmt::Display for Location {
 /// them: for [`crate::parts::meetings`] and [`crate::nodes::Nodes::of`].
 #[must_use]
 pub fn coverage_chains(geometries: &[Geometry<f64>]) -> Vec<(ChainKind, Vec<Coord>)> {
-    gather(&mut geometries.to_vec()).0
-}
-
-/// The chains of `geometries`, and which rings form each polygon. The
-/// positions of every line and ring are moved into the chains, not copied:
-/// each geometry is left with its lines and rings without positions, for
-/// [`Shape::of`].
-#[allow(clippy::type_complexity)] // two parallel results, used once
-fn gather(geometries: &mut [Geometry<f64>]) -> (Vec<(ChainKind, Vec<Coord>)>, Ragged<usize>) {
-    let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
-    let mut polygons: Ragged<usize> = Ragged::new();
-    for g in geometries.iter_mut() {
-        visit(g, &mut |part| match part {
-            Part::Line(coords) => chains.push((ChainKind::Line, coords)),
-            Part::Polygon(rings) => {
-                let first = chains.len();
-                chains.extend(rings.into_iter().map(|r| (ChainKind::Ring, r)));
-                polygons.push_row(first..chains.len());
-            }
-        });
+    let mut polygons = Ragged::new();
+    let mut chains = Vec::new();
+    for g in geometries {
+        let got = take_chains(&mut g.clone(), chains.len(), &mut polygons);
+        chains.extend(got);
     }
-    (chains, polygons)
+    chains
 }
 
-/// Calls `f` with where each chain comes from, in the order [`gather`] takes
-/// them out, from the geometries' shapes.
-fn each_origin(shapes: &[Shape], f: &mut dyn FnMut(Origin)) {
+/// The chains of `g`, which are chains `first..` of the coverage, with a
+/// row of `polygons` added for each of its polygons. The positions of every
+/// line and ring are moved into the chains, not copied: `g` is left with
+/// its lines and rings without positions, for [`Shape::of`].
+fn take_chains(
+    g: &mut Geometry<f64>,
+    first: usize,
+    polygons: &mut Ragged<usize>,
+) -> Vec<(ChainKind, Vec<Coord>)> {
+    let mut chains: Vec<(ChainKind, Vec<Coord>)> = Vec::new();
+    visit(g, &mut |part| match part {
+        Part::Line(coords) => chains.push((ChainKind::Line, coords)),
+        Part::Polygon(rings) => {
+            let at = first + chains.len();
+            chains.extend(rings.into_iter().map(|r| (ChainKind::Ring, r)));
+            polygons.push_row(at..first + chains.len());
+        }
+    });
+    chains
+}
+
+/// Calls `f` with where each chain comes from, in the order [`take_chains`]
+/// takes them out, from the geometries' shapes.
+fn each_origin(shapes: &Shapes, f: &mut dyn FnMut(Origin)) {
     for (gi, g) in shapes.iter().enumerate() {
         let mut member = 0;
-        parts(g, &mut |rings| {
+        parts(&g, &mut |rings| {
             match rings {
                 None => f(Origin {
                     geometry: gi,
@@ -599,8 +631,13 @@ mod tests {
     #[test]
     fn origins_walked_from_the_shapes_name_each_chain_taken_out() {
         let mut taken = geometries();
-        let (chains, _) = gather(&mut taken);
-        let shapes: Vec<Shape> = taken.iter().map(Shape::of).collect();
+        let mut chains = Vec::new();
+        for g in &mut taken {
+            let got = take_chains(g, chains.len(), &mut Ragged::new());
+            chains.extend(got);
+        }
+        let mut shapes = Shapes::with_capacity(0);
+        taken.iter().for_each(|g| shapes.push(Shape::of(g)));
         let mut origins = Vec::new();
         each_origin(&shapes, &mut |o| origins.push(o));
         assert_eq!(origins.len(), chains.len());
@@ -619,7 +656,7 @@ mod tests {
         let mut next = chains.iter();
         let back: Vec<Geometry<f64>> = shapes
             .iter()
-            .map(|s| rebuild(s, &mut || next.next().unwrap().1.clone()))
+            .map(|s| rebuild(&s, &mut || next.next().unwrap().1.clone()))
             .collect();
         assert!(next.next().is_none());
         let as_polygon = |g: Geometry<f64>| match g {

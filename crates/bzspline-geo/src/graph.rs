@@ -27,10 +27,58 @@ pub(crate) fn key(c: Coord) -> (u64, u64) {
     ((c.x + 0.0).to_bits(), (c.y + 0.0).to_bits())
 }
 
+/// Positions by id, in chunks that stay where they are: a vector of
+/// millions grows by copying itself into one twice its size, holding both
+/// for a moment.
+#[derive(Default)]
+pub(crate) struct Points {
+    chunks: Vec<Vec<Coord>>,
+}
+
+/// Positions per chunk of [`Points`] (1 MiB).
+const CHUNK_SHIFT: u32 = 16;
+
+impl Points {
+    /// Adds `c`; returns its id.
+    fn push(&mut self, c: Coord) -> u32 {
+        let id = self.len() as u32;
+        match self.chunks.last_mut() {
+            Some(chunk) if chunk.len() < 1 << CHUNK_SHIFT => chunk.push(c),
+            _ => {
+                let mut chunk = Vec::with_capacity(1 << CHUNK_SHIFT);
+                chunk.push(c);
+                self.chunks.push(chunk);
+            }
+        }
+        id
+    }
+
+    /// How many positions.
+    pub(crate) fn len(&self) -> usize {
+        self.chunks.last().map_or(0, |last| {
+            ((self.chunks.len() - 1) << CHUNK_SHIFT) + last.len()
+        })
+    }
+
+    /// The positions by id.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &Coord> + '_ {
+        self.chunks.iter().flatten()
+    }
+}
+
+impl std::ops::Index<usize> for Points {
+    type Output = Coord;
+
+    #[inline]
+    fn index(&self, id: usize) -> &Coord {
+        &self.chunks[id >> CHUNK_SHIFT][id & ((1 << CHUNK_SHIFT) - 1)]
+    }
+}
+
 /// Chains as ids of their distinct positions.
 pub(crate) struct Paths {
     /// Each distinct position once.
-    pub(crate) points: Vec<Coord>,
+    pub(crate) points: Points,
     /// Each chain as ids into `points`, consecutive repeats merged and a
     /// ring's closing repeat dropped.
     pub(crate) paths: Vec<(ChainKind, Vec<u32>)>,
@@ -43,13 +91,23 @@ impl Paths {
     pub(crate) fn of<C: AsRef<[Coord]>>(
         chains: impl IntoIterator<Item = (ChainKind, C)>,
     ) -> Result<Paths, Error> {
+        Paths::with_room(chains, 0)
+    }
+
+    /// As [`Paths::of`], with room for at least `room` chains from the
+    /// start (when the chains' iterator cannot tell how many it holds).
+    pub(crate) fn with_room<C: AsRef<[Coord]>>(
+        chains: impl IntoIterator<Item = (ChainKind, C)>,
+        room: usize,
+    ) -> Result<Paths, Error> {
         let chains = chains.into_iter();
         // The ids by their positions' bits, the positions themselves held
         // once, in `points`.
         let mut ids: HashTable<u32> = HashTable::new();
         let hash = |k: (u64, u64)| FxBuildHasher.hash_one(k);
-        let mut points: Vec<Coord> = Vec::new();
-        let mut paths: Vec<(ChainKind, Vec<u32>)> = Vec::with_capacity(chains.size_hint().0);
+        let mut points = Points::default();
+        let mut paths: Vec<(ChainKind, Vec<u32>)> =
+            Vec::with_capacity(chains.size_hint().0.max(room));
         for (ci, (kind, coords)) in chains.enumerate() {
             let coords = coords.as_ref();
             let mut path: Vec<u32> = Vec::with_capacity(coords.len());
@@ -69,9 +127,8 @@ impl Paths {
                 let id = match found {
                     Entry::Occupied(e) => *e.get(),
                     Entry::Vacant(v) => {
-                        let id = points.len() as u32;
+                        let id = points.push(c);
                         v.insert(id);
-                        points.push(c);
                         id
                     }
                 };

@@ -91,6 +91,7 @@ pub mod parts;
 mod piece;
 mod positions;
 mod ragged;
+mod shapes;
 mod smooth;
 mod smoothing;
 mod topology;

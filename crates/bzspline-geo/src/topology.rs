@@ -14,7 +14,7 @@ use crate::arcs::Arcs;
 use crate::chains::{Chain, Chains};
 use crate::error::Error;
 pub use crate::graph::ChainKind;
-use crate::graph::{junctions, key, Paths};
+use crate::graph::{junctions, key, Paths, Points};
 use crate::nodes::Nodes;
 use crate::options::Frame;
 use crate::ragged::Ragged;
@@ -138,15 +138,26 @@ impl Topology {
         Ok(Topology::from_paths(paths, polygons, nodes))
     }
 
-    /// As [`Topology::from_chains_with_nodes`], letting go of the chains'
-    /// positions as soon as each is held once.
-    pub(crate) fn from_owned_chains(
-        chains: Vec<(ChainKind, Vec<Coord>)>,
-        polygons: Ragged<usize>,
+    /// The topology of `chains`, at least `room` of them, taken one at a
+    /// time, each chain's positions let go of as soon as they are held
+    /// once; without polygons ([`Topology::with_polygons`]).
+    pub(crate) fn from_gathered(
+        chains: impl IntoIterator<Item = (ChainKind, Vec<Coord>)>,
+        room: usize,
         nodes: Nodes,
     ) -> Result<Topology, Error> {
-        check_polygons(chains.len(), &polygons, |i| chains[i].0)?;
-        Ok(Topology::from_paths(Paths::of(chains)?, polygons, nodes))
+        let paths = Paths::with_room(chains, room)?;
+        Ok(Topology::from_paths(paths, Ragged::new(), nodes))
+    }
+
+    /// This topology with `polygons` grouping its rings, which they name
+    /// correctly (as [`crate::Coverage`] gathers them).
+    pub(crate) fn with_polygons(mut self, polygons: Ragged<usize>) -> Topology {
+        debug_assert!(
+            check_polygons(self.chains.len(), &polygons, |i| self.chains.kinds()[i]).is_ok()
+        );
+        self.polygons = polygons;
+        self
     }
 
     /// The arcs of chains given as paths of distinct positions.
@@ -154,7 +165,7 @@ impl Topology {
         let Paths { points, paths } = paths;
         let mut junction = junctions(points.len(), &paths).0;
         if !nodes.is_empty() {
-            for (j, p) in junction.iter_mut().zip(&points) {
+            for (j, p) in junction.iter_mut().zip(points.iter()) {
                 *j |= nodes.contains(*p);
             }
         }
@@ -372,7 +383,7 @@ pub(crate) fn chain_coords(chain: Chain<'_>, arcs: &Arcs) -> Vec<Coord> {
 /// of a coverage holds each of its arcs exactly as the whole does.
 struct Builder<'a> {
     /// Each position, by id (compared by [`key`]).
-    points: &'a [Coord],
+    points: &'a Points,
     /// The arcs found so far, as their positions (a closed arc ends on its
     /// first position again): held as the topology holds them, with no
     /// list of ids beside them.
@@ -398,7 +409,7 @@ fn arc_hash(closed: bool, keys: impl ExactSizeIterator<Item = (u64, u64)>) -> u6
 }
 
 impl<'a> Builder<'a> {
-    fn new(points: &'a [Coord]) -> Builder<'a> {
+    fn new(points: &'a Points) -> Builder<'a> {
         Builder {
             points,
             arcs: Arcs::new(),

@@ -255,7 +255,7 @@ fn by_parts_agreeing(
         let mut ended = Vec::with_capacity(k);
         for h in &holdings {
             let held = h.held();
-            let cov = Coverage::builder(held.iter().map(|&i| gs[i].clone()).collect())
+            let cov = Coverage::builder(held.iter().map(|&i| gs[i].clone()))
                 .nodes(nodes.clone())
                 .build()
                 .unwrap();

@@ -137,14 +137,16 @@ pub fn smooth_together(
 }
 
 /// The smoothed geometries of [`smooth_together`], each put together when
-/// asked for ([`Assembled`]), and what smoothing did: for writing a large
-/// layer without holding all its smoothed geometries at once.
+/// asked for ([`Assembled`]), and what smoothing did: for a large layer,
+/// without holding all its geometries at once, neither as they come in
+/// (each is let go of once the coverage holds its positions, unless
+/// snapping) nor smoothed.
 ///
 /// # Errors
 ///
 /// As [`smooth_together`].
 pub fn smooth_into_assembled(
-    geoms: Vec<geo_types::Geometry<f64>>,
+    geoms: impl IntoIterator<Item = geo_types::Geometry<f64>>,
     opts: &SmoothOptions,
     snap: Option<f64>,
     where_: &str,
@@ -156,7 +158,7 @@ pub fn smooth_into_assembled(
 
 /// The coverage of `geoms` and its smoothing.
 fn smooth_coverage(
-    geoms: Vec<geo_types::Geometry<f64>>,
+    geoms: impl IntoIterator<Item = geo_types::Geometry<f64>>,
     opts: &SmoothOptions,
     snap: Option<f64>,
     where_: &str,
@@ -256,8 +258,8 @@ pub fn bounds(geoms: &[geo_types::Geometry<f64>]) -> [f64; 4] {
 
 /// Refuses a geometry with a line or ring of more than `max_points`
 /// positions, naming it by `place`.
-pub fn check_longest(
-    geoms: &[geo_types::Geometry<f64>],
+pub fn check_longest<'a>(
+    geoms: impl IntoIterator<Item = &'a geo_types::Geometry<f64>>,
     max_points: usize,
     place: &dyn Fn(usize) -> String,
 ) -> Result<()> {
@@ -282,7 +284,7 @@ pub fn check_longest(
             _ => 0,
         }
     }
-    for (i, g) in geoms.iter().enumerate() {
+    for (i, g) in geoms.into_iter().enumerate() {
         if longest(g) > max_points {
             return Err(anyhow!(
                 "{}: more than {max_points} positions (--max-points)",

@@ -245,15 +245,21 @@ impl Job {
         let empty =
             || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
         let had: Vec<bool> = shapes.iter().map(|s| !matches!(s, Shape::Null)).collect();
-        let geoms: Vec<geo_types::Geometry<f64>> = shapes
-            .into_iter()
-            .map(|s| match s {
-                Shape::Plane(g) => *g,
-                _ => empty(),
-            })
-            .collect();
+        let none = empty();
+        let place = |i: usize| format!("{name}: feature {i}");
+        let each = shapes.iter().map(|s| match s {
+            Shape::Plane(g) => &**g,
+            _ => &none,
+        });
+        coverage::check_longest(each, self.settings.limits.max_points, &place)?;
+        // Taken one at a time: a coverage lets go of each geometry's
+        // positions as soon as it holds them.
+        let geoms = shapes.into_iter().map(|s| match s {
+            Shape::Plane(g) => *g,
+            _ => empty(),
+        });
         if self.settings.independent {
-            let out = self.smooth_each(name, geoms, &lib)?;
+            let out = self.smooth_each(name, geoms.collect(), &lib)?;
             let shapes = out
                 .into_iter()
                 .zip(had)
@@ -323,6 +329,8 @@ impl Job {
             let out = self.smooth_each(name, geoms, &lib)?;
             c.put_geometries(out);
         } else {
+            let place = |i: usize| format!("{name}: feature {i}");
+            coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
             let (assembled, stats) = self.smooth_assembled(name, geoms, &lib, snap)?;
             self.total += &stats;
             c.put_assembled(assembled);
@@ -350,12 +358,11 @@ impl Job {
     fn smooth_assembled(
         &self,
         name: &str,
-        geoms: Vec<geo_types::Geometry<f64>>,
+        geoms: impl IntoIterator<Item = geo_types::Geometry<f64>>,
         lib: &SmoothOptions,
         snap: Option<f64>,
     ) -> Result<(bzspline_geo::Assembled, Stats)> {
         let place = |i: usize| format!("{name}: feature {i}");
-        coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
         coverage::smooth_into_assembled(geoms, lib, snap, name, &place)
     }
 
