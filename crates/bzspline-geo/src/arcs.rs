@@ -65,6 +65,26 @@ impl Arcs {
         Some(self.positions.get(start, self.lens[i] as usize))
     }
 
+    /// The address of arc `i`'s first position: its `k`-th is at the
+    /// address plus `k`, and no two arcs' positions share an address, so a
+    /// value per position fits a vector of [`Arcs::span`] values.
+    pub(crate) fn address(&self, i: usize) -> usize {
+        self.starts.get(i)
+    }
+
+    /// One past the largest address ([`Arcs::address`]).
+    pub(crate) fn span(&self) -> usize {
+        self.positions.span()
+    }
+
+    /// The positions in the order held, in runs at consecutive addresses,
+    /// each with the address of its first ([`Arcs::address`]): every arc's
+    /// positions, and those an arc replaced by more ([`Arcs::set`]) left
+    /// behind.
+    pub(crate) fn runs(&self) -> impl Iterator<Item = (usize, &[Coord])> + '_ {
+        self.positions.blocks()
+    }
+
     /// The arcs in order.
     pub fn iter(&self) -> ArcsIter<'_> {
         ArcsIter {

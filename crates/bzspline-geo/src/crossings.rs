@@ -270,11 +270,23 @@ pub(crate) struct Lines<'a> {
     pub lines: &'a Arcs,
     /// A closed polyline's last segment is followed by its first.
     pub closed: &'a [bool],
-    /// The nodes' keys, sorted.
+    /// A polyline whose ends are no nodes (a closed curve); every other
+    /// polyline's two ends are nodes.
+    pub curve: &'a [bool],
+    /// The keys of the nodes beyond the polylines' ends, sorted.
     pub nodes: &'a [(u64, u64)],
 }
 
 impl Lines<'_> {
+    /// `e` is an end of `id`'s polyline, and that end is a node.
+    fn node_end(&self, id: SegId, e: Coord) -> bool {
+        let l = id.line as usize;
+        !self.curve[l] && {
+            let line = &self.lines[l];
+            key(e) == key(line[0]) || key(e) == key(line[line.len() - 1])
+        }
+    }
+
     fn seg(&self, id: SegId) -> (Coord, Coord) {
         let l = &self.lines[id.line as usize];
         (l[id.seg as usize], l[id.seg as usize + 1])
@@ -312,7 +324,10 @@ impl Lines<'_> {
         match shared {
             [] => intersect(at(a0), at(a1), at(b0), at(b1)),
             [(e, oa, ob)] => {
-                let may_meet = consecutive || self.nodes.binary_search(&key(*e)).is_ok();
+                let may_meet = consecutive
+                    || self.node_end(p, *e)
+                    || self.node_end(q, *e)
+                    || self.nodes.binary_search(&key(*e)).is_ok();
                 if !may_meet {
                     return true;
                 }
@@ -442,9 +457,12 @@ mod tests {
         }
         nodes.sort_unstable();
         let closed = vec![false; 3];
+        // Line 2's ends are no nodes (as a closed curve's are not).
+        let curve = [false, false, true];
         let set = Lines {
             lines: &lines,
             closed: &closed,
+            curve: &curve,
             nodes: &nodes,
         };
         // Line 2 starts at an interior position of line 0 that is no node.
@@ -460,7 +478,16 @@ mod tests {
         let set = Lines {
             lines: &lines,
             closed: &closed,
+            curve: &curve,
             nodes: &nodes,
+        };
+        assert!(set.conflicts(&[true, true, true]).is_empty());
+        // So they may when line 2's ends are nodes, with none listed.
+        let set = Lines {
+            lines: &lines,
+            closed: &closed,
+            curve: &[false; 3],
+            nodes: &[],
         };
         assert!(set.conflicts(&[true, true, true]).is_empty());
     }
@@ -475,6 +502,7 @@ mod tests {
         let set = Lines {
             lines: &lines,
             closed: &[false, false],
+            curve: &[false, false],
             nodes: &nodes,
         };
         assert_eq!(set.conflicts(&[true, false]).len(), 2);
@@ -536,6 +564,7 @@ mod tests {
             let set = Lines {
                 lines: &lines,
                 closed: &closed,
+                curve: &closed,
                 nodes: &nodes,
             };
             let some: Vec<bool> = (0..count).map(|_| next() < 0.33).collect();

@@ -61,6 +61,19 @@ impl Positions {
         }
     }
 
+    /// One past the largest address a position may have: room for a value
+    /// per position, by address, in a vector this long.
+    pub(crate) fn span(&self) -> usize {
+        self.slots.len() << SHIFT
+    }
+
+    /// Every block's positions, each with the address of its first: every
+    /// position held, and the positions an arc moved away from
+    /// ([`crate::Arcs::set`]) left behind.
+    pub(crate) fn blocks(&self) -> impl Iterator<Item = (usize, &[Coord])> + '_ {
+        (self.blocks.iter().enumerate()).map(|(b, block)| (self.address(b, 0), &block[..]))
+    }
+
     fn address(&self, b: usize, place: usize) -> usize {
         (self.first[b] << SHIFT) + place
     }

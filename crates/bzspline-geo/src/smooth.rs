@@ -5,6 +5,8 @@
 use geo_types::{Coord, Rect};
 use std::hash::BuildHasher;
 
+use std::collections::hash_map::Entry;
+
 use rustc_hash::{FxBuildHasher, FxHashMap, FxHashSet};
 
 use crate::arcs::Arcs;
@@ -16,11 +18,12 @@ use crate::options::{default_tolerance_of, Frame, SmoothOptions};
 use crate::topology::{ChainKind, Topology};
 
 mod arc;
+mod legs;
 mod rings;
 
-use crate::ragged::Ragged;
 pub(crate) use arc::turning_degrees;
 use arc::{is_closed, smooth_arc, Along, Plans, Seg, Smoothing};
+use legs::Legs;
 use rings::{holes_inside, RingFacts, Shoelace, NO_POLYGON};
 
 /// The most times a leg is halved to resolve a conflict (into `2^MAX_LEVEL`
@@ -191,9 +194,8 @@ impl Topology {
 
         let shoelace = Shoelace::about(arcs, extent);
         let cross_in: Vec<f64> = arcs.iter().map(|a| shoelace.arc(a)).collect();
-        let mut cross_out: Vec<f64> = vec![0.0; arcs.len()];
         let rings = RingFacts::of(self, &shoelace, &cross_in);
-        stats.area_in = shoelace.polygons(self, &cross_in);
+        stats.area_in = shoelace.polygons(self, &|a| cross_in[a]);
         // Not needed again: freed before the rounds' peak.
         drop(cross_in);
 
@@ -211,16 +213,23 @@ impl Topology {
         loop {
             stats.rounds += 1;
             for a in (0..arcs.len()).filter(|&a| dirty[a]) {
-                let plan = plans.get(a);
-                stats.kept_pieces +=
-                    smooth_arc(a, &arcs[a], plan, &levels[a], opts, tolerance, &mut work)?;
-                cross_out[a] = shoelace.arc(&work.out);
+                let plan = plans.get(arcs, a);
+                stats.kept_pieces += smooth_arc(
+                    a,
+                    &arcs[a],
+                    plan,
+                    levels.get(arcs, a),
+                    opts,
+                    tolerance,
+                    &mut work,
+                )?;
                 out.set(a, &work.out);
             }
             input_conflicts.retain(|(p, q)| !dirty[p.line as usize] && !dirty[q.line as usize]);
             let lines = Lines {
                 lines: &out,
                 closed: &closed,
+                curve: &plans.closed_curve,
                 nodes: &nodes,
             };
             let mut bump: Vec<(usize, Seg)> = Vec::new();
@@ -240,28 +249,33 @@ impl Topology {
                     }
                 }
             }
-            let facts = (&rings, &shoelace, &cross_out[..], &out);
+            let facts = (&rings, &shoelace, &out);
             self.ring_conflicts(&dirty, exact, facts, &mut along, &levels, &mut bump)?;
             dirty.iter_mut().for_each(|d| *d = false);
             if bump.is_empty() {
                 break;
             }
             let last_resort = first - 1 + stats.rounds >= MAX_ROUNDS;
-            raise(bump, &mut levels, &mut dirty, &closed, last_resort);
+            raise(bump, arcs, &mut levels, &mut dirty, &closed, last_resort);
             along.clear();
             if one {
                 break;
             }
         }
         stats.input_conflicts = input_conflicts.len();
-        stats.refined_legs = levels.values().iter().filter(|&&l| l > 0).count();
-        stats.straight_legs = levels.values().iter().filter(|&&l| l == STRAIGHT).count();
+        let count = |f: fn(u8) -> bool| -> usize {
+            (levels.listed())
+                .map(|(_, l)| l.iter().filter(|&&v| f(v)).count())
+                .sum()
+        };
+        stats.refined_legs = count(|l| l > 0);
+        stats.straight_legs = count(|l| l == STRAIGHT);
         stats.positions_out = self.positions(&out);
-        stats.area_out = shoelace.polygons(self, &cross_out);
+        stats.area_out = shoelace.polygons(self, &|a| shoelace.arc(&out[a]));
         let mut ended = Levels::default();
-        for (a, l) in arcs.iter().zip(levels.iter()) {
+        for (a, l) in levels.listed() {
             if l.iter().any(|&v| v > 0) {
-                ended.insert(arc_key(a), l.to_vec());
+                ended.insert(arc_key(&arcs[a]), l.to_vec());
             }
         }
         Ok(Smoothed {
@@ -309,9 +323,9 @@ impl Topology {
         &self,
         dirty: &[bool],
         exact: &[bool],
-        (rings, shoelace, cross_out, out): (&RingFacts, &Shoelace, &[f64], &Arcs),
+        (rings, shoelace, out): (&RingFacts, &Shoelace, &Arcs),
         along: &mut Along<'_>,
-        levels: &Ragged<u8>,
+        levels: &Legs,
         bump: &mut Vec<(usize, Seg)>,
     ) -> Result<(), Error> {
         // Marks rather than lists of indices: in the first round every arc
@@ -325,9 +339,12 @@ impl Topology {
             })
             .collect();
         let mut in_play = vec![false; self.polygons().len()];
+        // Each arc's cross products summed again for each ring that uses it
+        // (twice for a border) rather than held, 8 bytes an arc.
+        let cross_out = |a: usize| shoelace.arc(&out[a]);
         for ci in (0..suspect.len()).filter(|&ci| suspect[ci]) {
             let sign = rings.sign_in[ci];
-            if sign != 0 && shoelace.ring(self, ci, cross_out).signum() != f64::from(sign) {
+            if sign != 0 && shoelace.ring(self, ci, &cross_out).signum() != f64::from(sign) {
                 bump_chain(self, ci, along, levels, bump)?;
             }
             if rings.polygon_of[ci] != NO_POLYGON {
@@ -363,18 +380,14 @@ impl Topology {
             .sum()
     }
 
-    /// Each arc's plan, and the nodes: positions where arcs may meet (keys,
-    /// sorted, each once: half the bytes of a hash set).
+    /// Each arc's plan, and the nodes beyond the arcs' ends: positions
+    /// where arcs may meet (keys, sorted, each once). Every arc's two ends
+    /// are nodes, but a closed curve's.
     fn plans(&self, keep_angle: Option<f64>, frame: Frame) -> (Plans, Vec<(u64, u64)>) {
         let arcs = self.arcs();
         // The positions that occur twice or more over all arcs (a closed
-        // arc's end once).
-        let shared = shared_positions(arcs);
-        // Looked up for every position: a table, let go of with the plans
-        // made (a binary search of the sorted keys would miss the cache at
-        // every step).
-        let table: FxHashSet<(u64, u64)> = shared.iter().copied().collect();
-        let is_shared = |c: Coord| table.contains(&key(c));
+        // arc's end once), marked where they are.
+        let mut fixed = shared_positions(arcs);
         let mut in_line = vec![false; arcs.len()];
         let mut min_out = vec![2u8; arcs.len()];
         for c in self.chains() {
@@ -391,33 +404,33 @@ impl Topology {
                 min_out[r.index()] = min_out[r.index()].max(want.min(len));
             }
         }
-        // The nodes beyond the shared positions.
+        // The nodes within arcs: held as keys, where the ends are not (an
+        // arc's positions are met there only in a degenerate coverage, or
+        // when `keep_angle` fixes them).
         let mut nodes: Vec<(u64, u64)> = Vec::new();
         // A node: met by two arcs here, or by the whole coverage's (given).
         let given = self.nodes();
-        let is_node = |c: Coord| is_shared(c) || (!given.is_empty() && given.contains(c));
-        let mut plans = Plans {
-            closed_curve: Vec::with_capacity(arcs.len()),
-            fixed: Ragged::with_capacity(arcs.len(), arcs.iter().map(<[Coord]>::len).sum()),
-            min_out,
-        };
+        let is_given = |c: Coord| !given.is_empty() && given.contains(c);
+        let mut closed_curve = Vec::with_capacity(arcs.len());
         for (ai, a) in arcs.iter().enumerate() {
+            let at = arcs.address(ai);
             let closed = is_closed(a);
-            let first_node = is_node(a[0]) || in_line[ai];
-            let closed_curve = closed && !first_node && a.len() >= 4;
-            if !closed_curve {
-                // Ends met by another arc are in `nodes` already: a list of
-                // every arc's two ends would be many times the nodes' size.
-                for end in [a[0], a[a.len() - 1]] {
-                    if !is_shared(end) {
-                        nodes.push(key(end));
-                    }
+            let n = if closed { a.len() - 1 } else { a.len() };
+            // Arc `ai`'s marks so far are the shared positions only: no other
+            // arc's positions have its addresses.
+            let fixed = &mut fixed[at..at + n];
+            let first_node = fixed[0] || is_given(a[0]) || in_line[ai];
+            let curve = closed && !first_node && a.len() >= 4;
+            let within = if closed { 1..n } else { 1..n.saturating_sub(1) };
+            for i in within.filter(|&i| fixed[i]) {
+                nodes.push(key(a[i]));
+            }
+            if !given.is_empty() {
+                for (f, &c) in fixed.iter_mut().zip(a) {
+                    *f |= given.contains(c);
                 }
             }
-            let n = if closed { a.len() - 1 } else { a.len() };
-            plans.fixed.push_row((0..n).map(|i| is_node(a[i])));
-            plans.closed_curve.push(closed_curve);
-            let fixed = &mut plans.fixed[ai];
+            closed_curve.push(curve);
             if let Some(deg) = keep_angle {
                 for i in 0..n {
                     let (prev, next) = match (closed, i) {
@@ -433,46 +446,78 @@ impl Topology {
                 }
             }
         }
-        drop(table);
-        let mut shared = shared;
-        shared.extend(nodes);
-        shared.sort_unstable();
-        shared.dedup();
-        shared.shrink_to_fit();
-        (plans, shared)
+        let plans = Plans {
+            closed_curve,
+            fixed,
+            min_out,
+        };
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes.shrink_to_fit();
+        (plans, nodes)
     }
 }
 
 /// Positions per pass of [`shared_positions`]: its table of counts holds
-/// about this many keys at a time.
-const COUNTED_PER_PASS: usize = 1 << 20;
+/// about this many keys at a time (half as many distinct ones in a
+/// coverage, whose positions are mostly held by two arcs).
+const COUNTED_PER_PASS: usize = 1 << 19;
 
-/// The keys of the positions that occur twice or more over all arcs (a
-/// closed arc's end once), in no order. Counted in as many passes as it takes
-/// for each pass's table to hold about [`COUNTED_PER_PASS`] positions, each
-/// pass the positions whose hash falls in its share: a table of every
+/// The most passes of [`shared_positions`]: a pass is a byte's value.
+const MAX_PASSES: usize = 254;
+
+/// Whether each position occurs twice or more over all arcs (a closed arc's
+/// end once), by address ([`Arcs::address`]; a closed arc's last position is
+/// left unmarked). Counted in as many passes as it takes for each pass's
+/// table to hold about [`COUNTED_PER_PASS`] positions (up to [`MAX_PASSES`]),
+/// each pass the positions whose hash falls in its share: a table of every
 /// position of a large coverage at once would take more than the arcs.
-fn shared_positions(arcs: &Arcs) -> Vec<(u64, u64)> {
-    let total: usize = arcs.iter().map(<[Coord]>::len).sum();
-    let passes = total.div_ceil(COUNTED_PER_PASS).max(1) as u64;
+fn shared_positions(arcs: &Arcs) -> Vec<bool> {
+    // Each position's byte holds its pass, then whether it is shared.
+    const SHARED: u8 = MAX_PASSES as u8;
+    const UNHELD: u8 = SHARED + 1;
+    let distinct = |a: &'_ [Coord]| -> usize {
+        if is_closed(a) {
+            a.len() - 1
+        } else {
+            a.len()
+        }
+    };
+    let total: usize = arcs.iter().map(distinct).sum();
+    let passes = total.div_ceil(COUNTED_PER_PASS).clamp(1, MAX_PASSES) as u64;
+    // Positions no arc holds (a closed arc's last, those left behind) have
+    // no pass and are never met.
+    let mut marks = vec![UNHELD; arcs.span()];
     // The pass a key is counted in, from its hash's upper bits: the table
     // places keys by the lower bits, which must stay spread.
-    let pass_of = |k: (u64, u64)| (FxBuildHasher.hash_one(k) >> 32) % passes;
-    let mut shared = Vec::new();
-    let mut count: FxHashMap<(u64, u64), u32> = FxHashMap::default();
-    for pass in 0..passes {
-        count.clear();
-        for a in arcs {
-            let distinct = if is_closed(a) { &a[..a.len() - 1] } else { a };
-            for k in distinct.iter().map(|&c| key(c)) {
-                if passes == 1 || pass_of(k) == pass {
-                    *count.entry(k).or_insert(0) += 1;
+    for (ai, a) in arcs.iter().enumerate() {
+        let at = arcs.address(ai);
+        for (m, &c) in marks[at..at + distinct(a)].iter_mut().zip(a) {
+            *m = ((FxBuildHasher.hash_one(key(c)) >> 32) % passes) as u8;
+        }
+    }
+    // The pass's keys met so far, each with the address it was first met at.
+    let mut first: FxHashMap<(u64, u64), usize> = FxHashMap::default();
+    for pass in 0..passes as u8 {
+        first.clear();
+        for (at, run) in arcs.runs() {
+            for (i, &c) in run.iter().enumerate() {
+                if marks[at + i] != pass {
+                    continue;
+                }
+                match first.entry(key(c)) {
+                    Entry::Vacant(v) => {
+                        v.insert(at + i);
+                    }
+                    Entry::Occupied(o) => {
+                        marks[*o.get()] = SHARED;
+                        marks[at + i] = SHARED;
+                    }
                 }
             }
         }
-        shared.extend(count.iter().filter(|&(_, &n)| n >= 2).map(|(&k, _)| k));
     }
-    shared
+    marks.into_iter().map(|m| m == SHARED).collect()
 }
 
 /// Adds every leg of every arc of chain `ci` to `bump`.
@@ -480,7 +525,7 @@ fn bump_chain(
     t: &Topology,
     ci: usize,
     along: &mut Along<'_>,
-    levels: &Ragged<u8>,
+    levels: &Legs,
     bump: &mut Vec<(usize, Seg)>,
 ) -> Result<(), Error> {
     for r in t.chain(ci).arcs {
@@ -495,13 +540,12 @@ fn bump_chain(
 
 /// The refinement levels the rounds start from: `start`'s for the arcs it
 /// holds (of the right length), 0 for every leg of the others.
-fn start_levels(arcs: &Arcs, start: &Levels) -> Ragged<u8> {
-    let mut levels = Ragged::filled(arcs.iter().map(|a| a.len() - 1), 0);
+fn start_levels(arcs: &Arcs, start: &Levels) -> Legs {
+    let mut levels = Legs::new(arcs);
     if !start.is_empty() {
         for (i, a) in arcs.iter().enumerate() {
-            let l = &mut levels[i];
-            if let Some(given) = start.get(arc_key(a)).filter(|g| g.len() == l.len()) {
-                l.copy_from_slice(given);
+            if let Some(given) = start.get(arc_key(a)).filter(|g| g.len() == a.len() - 1) {
+                levels.get_mut(arcs, i).copy_from_slice(given);
             }
         }
     }
@@ -513,7 +557,8 @@ fn start_levels(arcs: &Arcs, start: &Levels) -> Ragged<u8> {
 /// for smoothing again.
 fn raise(
     bump: Vec<(usize, Seg)>,
-    levels: &mut Ragged<u8>,
+    arcs: &Arcs,
+    levels: &mut Legs,
     dirty: &mut [bool],
     closed: &[bool],
     last_resort: bool,
@@ -521,13 +566,13 @@ fn raise(
     let mut legs: FxHashSet<(usize, u32)> = FxHashSet::default();
     for (a, s) in bump {
         legs.extend(
-            leg_range(s, levels[a].len() as u32, closed[a])
+            leg_range(s, (arcs[a].len() - 1) as u32, closed[a])
                 .into_iter()
                 .map(|l| (a, l)),
         );
     }
     for (a, leg) in legs {
-        let l = &mut levels[a][leg as usize];
+        let l = &mut levels.get_mut(arcs, a)[leg as usize];
         *l = if last_resort {
             STRAIGHT
         } else {

@@ -7,6 +7,7 @@ use std::collections::hash_map::Entry;
 use geo_types::Coord;
 use rustc_hash::FxHashMap;
 
+use super::legs::Legs;
 use super::{MAX_LEVEL, STRAIGHT};
 use crate::arcs::Arcs;
 use crate::error::Error;
@@ -14,7 +15,6 @@ use crate::geodesy::{self, Convention};
 use crate::graph::key;
 use crate::options::{Frame, SmoothOptions};
 use crate::piece::{self, Flat};
-use crate::ragged::Ragged;
 
 /// Which original legs one output segment lies along, and whether it is an
 /// original edge.
@@ -40,17 +40,26 @@ pub(super) struct Plan<'a> {
 #[derive(Default)]
 pub(super) struct Plans {
     pub(super) closed_curve: Vec<bool>,
-    pub(super) fixed: Ragged<bool>,
+    /// Whether each position stays, by its address in the arcs
+    /// ([`Arcs::address`]): a byte a position, with no row per arc.
+    pub(super) fixed: Vec<bool>,
     /// 2, 3 or 4 ([`Plan::min_out`]): a byte an arc.
     pub(super) min_out: Vec<u8>,
 }
 
 impl Plans {
-    /// Arc `a`'s plan.
-    pub(super) fn get(&self, a: usize) -> Plan<'_> {
+    /// The plan of arc `a` of `arcs` (the arcs the plans were made for).
+    pub(super) fn get(&self, arcs: &Arcs, a: usize) -> Plan<'_> {
+        let arc = &arcs[a];
+        let n = if is_closed(arc) {
+            arc.len() - 1
+        } else {
+            arc.len()
+        };
+        let at = arcs.address(a);
         Plan {
             closed_curve: self.closed_curve[a],
-            fixed: &self.fixed[a],
+            fixed: &self.fixed[at..at + n],
             min_out: usize::from(self.min_out[a]),
         }
     }
@@ -79,14 +88,22 @@ impl<'a> Along<'a> {
     }
 
     /// The segments of arc `a` smoothed at `levels[a]`.
-    pub(super) fn segs(&mut self, a: usize, levels: &Ragged<u8>) -> Result<&[Seg], Error> {
+    pub(super) fn segs(&mut self, a: usize, levels: &Legs) -> Result<&[Seg], Error> {
         match self.found.entry(a) {
             Entry::Occupied(e) => Ok(e.into_mut()),
             Entry::Vacant(v) => {
-                let plan = self.plans.get(a);
+                let plan = self.plans.get(self.arcs, a);
                 let mut work = Smoothing::default();
                 let arc = &self.arcs[a];
-                smooth_arc(a, arc, plan, &levels[a], self.opts, self.tol, &mut work)?;
+                smooth_arc(
+                    a,
+                    arc,
+                    plan,
+                    levels.get(self.arcs, a),
+                    self.opts,
+                    self.tol,
+                    &mut work,
+                )?;
                 Ok(v.insert(work.segs))
             }
         }

@@ -32,7 +32,7 @@ impl RingFacts {
         }
         let sign_in = (0..t.chains().len())
             .map(|ci| match t.chain(ci).kind {
-                ChainKind::Ring => shoelace.ring(t, ci, cross_in).signum() as i8,
+                ChainKind::Ring => shoelace.ring(t, ci, &|a| cross_in[a]).signum() as i8,
                 ChainKind::Line => 0,
             })
             .collect();
@@ -113,16 +113,17 @@ impl Shoelace {
             .sum()
     }
 
-    /// The signed area of ring `ci` (positive counter-clockwise).
-    pub(super) fn ring(&self, t: &Topology, ci: usize, cross: &[f64]) -> f64 {
+    /// The signed area of ring `ci` (positive counter-clockwise), from
+    /// each arc's sum of cross products ([`Shoelace::arc`]) by its index.
+    pub(super) fn ring(&self, t: &Topology, ci: usize, cross: &impl Fn(usize) -> f64) -> f64 {
         t.chain(ci)
             .arcs
             .iter()
             .map(|r| {
                 if r.reversed() {
-                    -cross[r.index()]
+                    -cross(r.index())
                 } else {
-                    cross[r.index()]
+                    cross(r.index())
                 }
             })
             .sum::<f64>()
@@ -130,12 +131,12 @@ impl Shoelace {
     }
 
     /// Area of the polygons: shells less holes, in the data's units.
-    pub(super) fn polygons(&self, t: &Topology, cross: &[f64]) -> f64 {
+    pub(super) fn polygons(&self, t: &Topology, cross: &impl Fn(usize) -> f64) -> f64 {
         self.scaled_polygons(t, cross) / self.scale / self.scale
     }
 
     /// Area of the polygons in the scaled units of the cross products.
-    fn scaled_polygons(&self, t: &Topology, cross: &[f64]) -> f64 {
+    fn scaled_polygons(&self, t: &Topology, cross: &impl Fn(usize) -> f64) -> f64 {
         t.polygons()
             .iter()
             .map(|p| {
