@@ -78,7 +78,9 @@ def main():
             ref = 2 * size + positions * 16 / 1e6
             read = "-"
             if name != "GeoJSON" and os.path.exists(args.phases):
-                r = subprocess.run([args.phases, path], capture_output=True, text=True)
+                # Its allocator set as the command sets it (crates/bzspline-cli/src/alloc.rs).
+                env = dict(os.environ, MIMALLOC_ARENA_PURGE_MULT="0")
+                r = subprocess.run([args.phases, path], capture_output=True, text=True, env=env)
                 if r.returncode != 0:
                     sys.exit(f"{name}: layer_memory: {r.stderr}")
                 read = next(f"{int(l.split()[2]):,}" for l in r.stdout.splitlines()

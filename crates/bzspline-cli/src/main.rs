@@ -3,15 +3,7 @@
 
 use clap::Parser;
 
-/// mimalloc in place of the system allocator: smoothing a large coverage frees the
-/// read phase's many small allocations and then asks for large arrays; glibc keeps the
-/// freed holes resident, mimalloc reuses them (BENCHMARKS.md, peak memory of `smooth`).
-/// Its version 2 (the crate's `v2`) hands freed pages back to the system after 10 ms
-/// where version 3 waits a second: each step of `smooth` frees what the next no longer
-/// needs, and with version 3 the command's peak on 10^6 polygons was 15-24 % higher.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
+mod alloc;
 mod cli;
 mod commands;
 mod fit;
@@ -25,6 +17,7 @@ mod smooth;
 use bzspline_io::{input, model, time};
 
 fn main() {
+    alloc::hand_back_at_once();
     let args = match commands::Cli::try_parse() {
         Ok(args) => args,
         // --help and --version print and exit 0.
