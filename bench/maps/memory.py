@@ -79,7 +79,7 @@ def main():
             read = "-"
             if name != "GeoJSON" and os.path.exists(args.phases):
                 # Its allocator set as the command sets it (crates/bzspline-cli/src/alloc.rs).
-                env = dict(os.environ, MIMALLOC_ARENA_PURGE_MULT="0")
+                env = dict(os.environ, MIMALLOC_PURGE_DELAY="0", MIMALLOC_ARENA_PURGE_MULT="0")
                 r = subprocess.run([args.phases, path], capture_output=True, text=True, env=env)
                 if r.returncode != 0:
                     sys.exit(f"{name}: layer_memory: {r.stderr}")

@@ -1,5 +1,5 @@
-//! The command's allocator: mimalloc, set to hand large freed blocks back to
-//! the system at once.
+//! The command's allocator: mimalloc, set to hand freed memory back to the
+//! system at once.
 //!
 //! mimalloc in place of the system allocator: smoothing a large coverage
 //! frees the read phase's many small allocations and then asks for large
@@ -10,12 +10,13 @@
 //! needs, and with version 3 the command's peak on 10^6 polygons was 15-24 %
 //! higher.
 //!
-//! Blocks of several MiB (the arrays of a coverage's steps) come from
-//! mimalloc's arenas, which it purges ten times later than its pages, and
-//! only when it next allocates from them: the arrays a step frees then
-//! stayed resident under the next step's, which put 10-40 MB on the
-//! command's peak on 10^6 polygons. With the arenas' delay set to none,
-//! they are handed back when freed.
+//! Freed memory is handed back at once, not after those 10 ms: mimalloc
+//! purges only when it next allocates or frees, and a step that computes for
+//! a second or two without either kept the previous step's freed pages
+//! resident under its own (its arenas, which hold the blocks of several MiB,
+//! wait ten times longer still). On 10^6 polygons that put 5-40 MB on the
+//! command's peak, varying from run to run; handing back at once costs about
+//! a second of system time there (of 20).
 #![allow(unsafe_code)]
 
 use std::ffi::c_long;
@@ -25,21 +26,27 @@ use libmimalloc_sys::{mi_option_get, mi_option_set, mi_option_t};
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-/// mimalloc 2's `mi_option_arena_purge_mult` (the multiple of the pages'
-/// purge delay that arenas wait), which libmimalloc-sys does not name.
-const ARENA_PURGE_MULT: mi_option_t = 24;
+/// mimalloc 2's options set, which libmimalloc-sys does not name: each
+/// index, its default, and the value set. An option is set only when it
+/// reads its default, so that the index names it (and a value set in the
+/// environment, `MIMALLOC_PURGE_DELAY` or `MIMALLOC_ARENA_PURGE_MULT`, wins).
+const SET: [(mi_option_t, c_long, c_long); 2] = [
+    // `mi_option_purge_delay`: milliseconds before freed pages are purged.
+    (15, 10, 0),
+    // `mi_option_arena_purge_mult`: the arenas' multiple of that delay.
+    (24, 10, 0),
+];
 
-/// Its default: the option is set only when it reads so, so that the index
-/// names it (and `MIMALLOC_ARENA_PURGE_MULT` in the environment wins).
-const ARENA_PURGE_MULT_DEFAULT: c_long = 10;
-
-/// Makes mimalloc purge freed arena blocks at once.
+/// Makes mimalloc hand freed memory back to the system at once.
 pub fn hand_back_at_once() {
-    // SAFETY: both functions take any option index (an unknown one is
-    // ignored and reads 0) and may be called at any time, from any thread.
-    unsafe {
-        if mi_option_get(ARENA_PURGE_MULT) == ARENA_PURGE_MULT_DEFAULT {
-            mi_option_set(ARENA_PURGE_MULT, 0);
+    for (option, default, value) in SET {
+        // SAFETY: both functions take any option index (an unknown one is
+        // ignored and reads 0) and may be called at any time, from any
+        // thread.
+        unsafe {
+            if mi_option_get(option) == default {
+                mi_option_set(option, value);
+            }
         }
     }
 }
@@ -49,13 +56,17 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_index_names_the_arena_option_and_it_is_set_to_none() {
+    fn the_indices_name_the_options_and_they_are_set() {
         // SAFETY: as in `hand_back_at_once`.
-        let get = || unsafe { mi_option_get(ARENA_PURGE_MULT) };
-        // An index past mimalloc's options would read 0 (run without
-        // MIMALLOC_ARENA_PURGE_MULT set).
-        assert_eq!(get(), ARENA_PURGE_MULT_DEFAULT);
+        let get = |option| unsafe { mi_option_get(option) };
+        // An index past mimalloc's options would read 0 (run without the
+        // options set in the environment).
+        for (option, default, _) in SET {
+            assert_eq!(get(option), default, "option {option}");
+        }
         hand_back_at_once();
-        assert_eq!(get(), 0);
+        for (option, _, value) in SET {
+            assert_eq!(get(option), value, "option {option}");
+        }
     }
 }

@@ -3,8 +3,8 @@
 //! coverage, smooths it at the default tolerance and assembles the smoothed
 //! geometries one at a time, printing after each step the resident memory and its peak so
 //! far (Linux's `VmRSS` and `VmHWM`), in MB. It allocates with mimalloc,
-//! as the command does (which also has mimalloc purge freed arena blocks at
-//! once: `MIMALLOC_ARENA_PURGE_MULT=0` does that here).
+//! as the command does (which also has mimalloc hand freed memory back at
+//! once: `MIMALLOC_PURGE_DELAY=0 MIMALLOC_ARENA_PURGE_MULT=0` does that here).
 //!
 //! ```text
 //! cargo run --release -p bzspline-io --all-features --example layer_memory -- FILE
