@@ -22,7 +22,7 @@ mod legs;
 mod rings;
 
 pub(crate) use arc::turning_degrees;
-use arc::{is_closed, smooth_arc, Along, Plans, Seg, Smoothing};
+use arc::{distinct, is_closed, smooth_arc, Along, Plans, Seg, Smoothing};
 use legs::Legs;
 use rings::{holes_inside, RingFacts, Shoelace, NO_POLYGON};
 
@@ -415,7 +415,7 @@ impl Topology {
         for (ai, a) in arcs.iter().enumerate() {
             let at = arcs.address(ai);
             let closed = is_closed(a);
-            let n = if closed { a.len() - 1 } else { a.len() };
+            let n = distinct(a);
             // Arc `ai`'s marks so far are the shared positions only: no other
             // arc's positions have its addresses.
             let fixed = &mut fixed[at..at + n];
@@ -476,13 +476,6 @@ fn shared_positions(arcs: &Arcs) -> Vec<bool> {
     // Each position's byte holds its pass, then whether it is shared.
     const SHARED: u8 = MAX_PASSES as u8;
     const UNHELD: u8 = SHARED + 1;
-    let distinct = |a: &'_ [Coord]| -> usize {
-        if is_closed(a) {
-            a.len() - 1
-        } else {
-            a.len()
-        }
-    };
     let total: usize = arcs.iter().map(distinct).sum();
     let passes = total.div_ceil(COUNTED_PER_PASS).clamp(1, MAX_PASSES) as u64;
     // Positions no arc holds (a closed arc's last, those left behind) have

@@ -50,12 +50,7 @@ pub(super) struct Plans {
 impl Plans {
     /// The plan of arc `a` of `arcs` (the arcs the plans were made for).
     pub(super) fn get(&self, arcs: &Arcs, a: usize) -> Plan<'_> {
-        let arc = &arcs[a];
-        let n = if is_closed(arc) {
-            arc.len() - 1
-        } else {
-            arc.len()
-        };
+        let n = distinct(&arcs[a]);
         let at = arcs.address(a);
         Plan {
             closed_curve: self.closed_curve[a],
@@ -364,6 +359,16 @@ fn collect(flat: &Flat, leg_of: &[u32], out: &mut Vec<Coord>, segs: &mut Vec<Seg
 
 pub(super) fn is_closed(a: &[Coord]) -> bool {
     a.len() >= 2 && key(a[0]) == key(a[a.len() - 1])
+}
+
+/// How many of the arc's positions are its own: all but a closed arc's
+/// last, which repeats its first.
+pub(super) fn distinct(a: &[Coord]) -> usize {
+    if is_closed(a) {
+        a.len() - 1
+    } else {
+        a.len()
+    }
 }
 
 /// The angle in degrees between the legs into and out of `b`: in the
