@@ -97,42 +97,40 @@ impl Rows<'_> {
     fn damping(&self, k: usize) -> (f64, f64) {
         damping(self.knots, self.ws, self.terms(k - 1), self.terms(k), k)
     }
+}
 
-    /// The first knot `lo` of the chunk that keeps knot `s` first: the
-    /// product of the downward damping of rows `lo + 1 ..= s` is at most
-    /// [`TRUNCATION`] (or `lo` is 0, the true end). `None` past
-    /// [`MAX_OVERLAP`] rows.
-    fn reach_down(&self, s: usize) -> Option<usize> {
-        let mut product = 1.0;
-        for (i, k) in (1..=s).rev().enumerate() {
-            if i >= MAX_OVERLAP {
-                return None;
-            }
-            product *= self.damping(k).0;
-            if product <= TRUNCATION {
-                return Some(k - 1);
-            }
+/// The first knot `lo` of the chunk that keeps knot `s` first: the product
+/// of the downward damping of rows `lo + 1 ..= s` is at most [`TRUNCATION`]
+/// (or `lo` is 0, the true end). `None` past [`MAX_OVERLAP`] rows.
+fn reach_down(damping: &impl Fn(usize) -> (f64, f64), s: usize) -> Option<usize> {
+    let mut product = 1.0;
+    for (i, k) in (1..=s).rev().enumerate() {
+        if i >= MAX_OVERLAP {
+            return None;
         }
-        Some(0)
+        product *= damping(k).0;
+        if product <= TRUNCATION {
+            return Some(k - 1);
+        }
     }
+    Some(0)
+}
 
-    /// The last knot `hi` of the chunk that keeps knot `s` last: the product
-    /// of the upward damping of rows `s ..= hi - 1` is at most
-    /// [`TRUNCATION`] (or `hi` is `n - 1`, the true end).
-    fn reach_up(&self, s: usize) -> Option<usize> {
-        let n = self.knots.len();
-        let mut product = 1.0;
-        for (i, k) in (s..n - 1).enumerate() {
-            if i >= MAX_OVERLAP {
-                return None;
-            }
-            product *= self.damping(k).1;
-            if product <= TRUNCATION {
-                return Some(k + 1);
-            }
+/// The last knot `hi` of the chunk that keeps knot `s` last (of `m + 1`):
+/// the product of the upward damping of rows `s ..= hi - 1` is at most
+/// [`TRUNCATION`] (or `hi` is `m`, the true end).
+fn reach_up(damping: &impl Fn(usize) -> (f64, f64), m: usize, s: usize) -> Option<usize> {
+    let mut product = 1.0;
+    for (i, k) in (s..m).enumerate() {
+        if i >= MAX_OVERLAP {
+            return None;
         }
-        Some(n - 1)
+        product *= damping(k).1;
+        if product <= TRUNCATION {
+            return Some(k + 1);
+        }
     }
+    Some(m)
 }
 
 /// The chunks of the system of `knots` (validated: strictly increasing, `n`
@@ -142,7 +140,7 @@ impl Rows<'_> {
 /// fewer than [`CHUNKED_MIN`] legs, or no cut made.
 pub(crate) fn plan(knots: &[f64], alphas: &[f64], uniform: Option<f64>, ws: f64) -> Vec<Chunk> {
     let m = knots.len().saturating_sub(1);
-    if m < CHUNKED_MIN || (uniform.is_none() && alphas.len() != m) {
+    if uniform.is_none() && alphas.len() != m {
         return Vec::new();
     }
     let rows = Rows {
@@ -151,11 +149,23 @@ pub(crate) fn plan(knots: &[f64], alphas: &[f64], uniform: Option<f64>, ws: f64)
         uniform: uniform.map(alpha_terms),
         ws,
     };
+    cut(m, |k| rows.damping(k))
+}
+
+/// The chunks of any tridiagonal system of `m` legs (knots `0..=m`, rows
+/// `1..m`, the end deviations zero) whose row `k` has the damping factors
+/// `damping(k)` (§16: each in `[0, 1]`, what an error at the row below and at
+/// the row above passes on to row `k`), cut as [`plan`] cuts. Empty below
+/// [`CHUNKED_MIN`] legs or when no cut can be made.
+pub(crate) fn cut(m: usize, damping: impl Fn(usize) -> (f64, f64)) -> Vec<Chunk> {
+    if m < CHUNKED_MIN {
+        return Vec::new();
+    }
     let mut chunks = Vec::with_capacity(m / CHUNK + 1);
     let (mut lo, mut start) = (0, 0);
     let mut cut = CHUNK;
     while cut + CHUNK / 2 <= m {
-        if let (Some(next_lo), Some(hi)) = (rows.reach_down(cut), rows.reach_up(cut)) {
+        if let (Some(next_lo), Some(hi)) = (reach_down(&damping, cut), reach_up(&damping, m, cut)) {
             chunks.push(Chunk {
                 lo,
                 start,
@@ -175,6 +185,31 @@ pub(crate) fn plan(knots: &[f64], alphas: &[f64], uniform: Option<f64>, ws: f64)
         });
     }
     chunks
+}
+
+/// Runs `f` on every item with a scratch made by `init`: side by side on the
+/// current rayon pool (with the `rayon` feature) for systems of more than
+/// `PARALLEL_MIN` knots, else one after the other. The items are a plan's
+/// chunks, each computed the same way wherever it runs.
+pub(crate) fn each<T: Send, S>(
+    knots: usize,
+    items: &mut [T],
+    init: impl Fn() -> S + Sync + Send,
+    f: impl Fn(&mut S, &mut T) + Sync + Send,
+) {
+    #[cfg(feature = "rayon")]
+    {
+        use rayon::prelude::*;
+        if rayon::current_num_threads() > 1 && knots > PARALLEL_MIN {
+            items.par_iter_mut().for_each_init(init, f);
+            return;
+        }
+    }
+    let _ = knots;
+    let mut scratch = init();
+    for item in items {
+        f(&mut scratch, item);
+    }
 }
 
 /// Where one chunk writes: the pieces of its legs (`D` a leg), and the slots
@@ -263,25 +298,17 @@ pub(crate) fn run<const D: usize, const KNOT: bool>(
         });
         (coefs, second, first, bd, bp) = (rest_c, rest_s, rest_f, rest_d, rest_p);
     }
-    #[cfg(feature = "rayon")]
-    {
-        use rayon::prelude::*;
-        if rayon::current_num_threads() > 1 && whole.knots.len() > PARALLEL_MIN {
-            for phase in [Phase::Eliminate, Phase::Substitute] {
-                outs.par_iter_mut()
-                    .zip(plan)
-                    .for_each_init(Scratch::new, |scratch, (out, &c)| {
-                        solve::<D, KNOT>(whole, c, out, scratch, phase);
-                    });
-            }
-            return;
-        }
-    }
-    let mut scratch = Scratch::new();
+    let mut jobs: Vec<(&mut Out<'_, D>, Chunk)> =
+        outs.iter_mut().zip(plan.iter().copied()).collect();
     for phase in [Phase::Eliminate, Phase::Substitute] {
-        for (out, &c) in outs.iter_mut().zip(plan) {
-            solve::<D, KNOT>(whole, c, out, &mut scratch, phase);
-        }
+        each(
+            whole.knots.len(),
+            &mut jobs,
+            Scratch::new,
+            |scratch, (out, c)| {
+                solve::<D, KNOT>(whole, *c, out, scratch, phase);
+            },
+        );
     }
 }
 
