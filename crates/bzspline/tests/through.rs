@@ -123,6 +123,60 @@ fn splines_pass_through_their_points_and_touch_their_control_legs() {
 }
 
 #[test]
+fn large_splines_solved_in_chunks_pass_through_their_points() {
+    // From 65,537 points the system is solved in overlapping chunks (§16),
+    // side by side from 131,073 with the `rayon` feature: the knot values of
+    // the spline built on the solved controls are the data, and the
+    // controls' legs are touched, on uneven grids with random alphas, only
+    // the extremes, and one alpha of 1/3 and of 2/3 (the weakest rows).
+    let mut rng = Rng::new(31);
+    for (case, n) in [(0, 70_001), (1, 140_003), (2, 70_001), (3, 140_003)] {
+        let x = rng.grid(n, 3.0);
+        let p = rng.values(n);
+        let mut a = rng.alphas(n - 1);
+        if case == 1 {
+            for v in &mut a {
+                *v = if *v < 0.5 { 1.0 / 3.0 } else { 2.0 / 3.0 };
+            }
+        }
+        let alphas = match case {
+            2 => Alphas::Uniform(1.0 / 3.0),
+            3 => Alphas::Uniform(2.0 / 3.0),
+            _ => Alphas::PerInterval(&a),
+        };
+        let s = Spline::through(&x, &p, alphas).unwrap();
+        let scale = max_abs(&p);
+        for (k, v) in s.knot_values().iter().enumerate() {
+            assert!(
+                (v - p[k]).abs() <= 1e-12 * scale,
+                "case {case}, knot {k}: {v} against {}",
+                p[k]
+            );
+        }
+        let g = s.values();
+        let gs = max_abs(g).max(scale);
+        for k in (0..n - 1).step_by(97) {
+            let ak = match case {
+                2 => 1.0 / 3.0,
+                3 => 2.0 / 3.0,
+                _ => a[k],
+            };
+            let h = x[k + 1] - x[k];
+            let leg = ak * g[k] + (1.0 - ak) * g[k + 1];
+            let at = x[k + 1] - ak * h;
+            let v = s.eval(at).unwrap();
+            // The point itself is rounded to a few units of |x|.
+            let slope = s.deriv(at, 1).unwrap().abs();
+            let tol = 1e-12 * gs + slope * 4.0 * f64::EPSILON * at.abs();
+            assert!(
+                (v - leg).abs() <= tol,
+                "case {case}, leg {k}: {v} against {leg}"
+            );
+        }
+    }
+}
+
+#[test]
 fn at_one_half_the_system_is_diagonal() {
     // §11: at alpha = 1/2 the off-diagonals of T + K vanish and the diagonal
     // is 2/(h_{k-1}/2) + 2/(h_k/2): at unit widths 8, so each deviation is an

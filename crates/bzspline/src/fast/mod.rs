@@ -8,6 +8,7 @@
 //!   buffer);
 //! - [`chunks`]: the system cut into overlapping chunks, solved one after
 //!   the other or side by side, for large inputs;
+//! - [`through`]: the interpolating variant's system, whole or in chunks;
 //! - [`batch`]: the batch evaluator of a spline's derivatives at many queries;
 //! - [`search`]: the summary of the knots and its index, and the searches of
 //!   one query and of a block of them.
@@ -18,6 +19,7 @@ pub(crate) mod batch;
 pub(crate) mod chunks;
 pub(crate) mod search;
 pub(crate) mod sweep;
+pub(crate) mod through;
 
 /// The four power-basis coefficients of one piece in `t = (x - tau_k) / h_k`,
 /// aligned so that one piece never straddles two cache lines.

@@ -221,10 +221,12 @@ impl Spline {
         Self::build(knots, &g, alphas)
     }
 
-    /// [`Spline::through`] for valid input, in one forward and one backward
-    /// sweep of `(T + K) d = K P` (§11) that forms each row as it goes, after
-    /// the build's one-pass check; anything the check does not pass goes the
-    /// step-by-step way, which names the fault.
+    /// [`Spline::through`] for valid input: the control values from one
+    /// forward and one backward sweep of `(T + K) d = K P` (§11) that form
+    /// each row as they go, over overlapping chunks for large inputs
+    /// ([`crate::fast::through`]), after the build's one-pass check; anything
+    /// the check does not pass goes the step-by-step way, which names the
+    /// fault.
     pub(super) fn through_fast(
         knots: &[f64],
         values: &[f64],
@@ -234,52 +236,16 @@ impl Spline {
         let Some(max_abs) = quick_check(knots, values, alphas, s.pieces.parts_mut().summary) else {
             return Self::through_checked(knots, values, alphas);
         };
-        let n = knots.len();
         let scale = scale_for_max(max_abs);
-        let inv = 1.0 / scale;
-        let f = |k: usize| values[k] * inv;
-        let uniform = match alphas {
-            Alphas::Uniform(a) => Some(method::alpha_terms(a)),
-            Alphas::PerInterval(_) => None,
+        let (given, uniform) = match alphas {
+            Alphas::Uniform(a) => (&[][..], Some(a)),
+            Alphas::PerInterval(a) => (a, None),
         };
-        let terms = |k: usize| match (uniform, alphas) {
-            (Some(t), _) => t,
-            (None, Alphas::PerInterval(a)) => method::alpha_terms(a[k]),
-            (None, Alphas::Uniform(a)) => method::alpha_terms(a),
-        };
-        // Forward: c'_k and r'_k of the Thomas sweep, stored in `c` and `g`.
-        let mut c = vec![0.0; n];
-        let mut g = vec![0.0; n];
-        let (mut cp, mut rp) = (0.0, 0.0);
-        for k in 1..n.saturating_sub(1) {
-            let (hl, hr) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
-            let (p, q) = method::neighbour_weights(hl, hr);
-            let [al, b1, _, _] = terms(k - 1);
-            let [_, _, b2, cr] = terms(k);
-            let (lo, di, up) = method::through_row(p, q, al, b1, b2, cr);
-            let rhs = q * (f(k + 1) - f(k)) - p * (f(k) - f(k - 1));
-            let m = di - lo * cp;
-            cp = up / m;
-            rp = (rhs - lo * rp) / m;
-            c[k] = cp;
-            g[k] = rp;
-        }
-        // Backward: d_k = r'_k - c'_k d_{k+1}, then G_k = P_k - d_k.
-        let mut next = 0.0;
-        g[n - 1] = values[n - 1];
-        g[0] = values[0];
-        let mut max_g = values[0].abs().max(values[n - 1].abs());
-        for k in (1..n.saturating_sub(1)).rev() {
-            let d = g[k] - c[k] * next;
-            next = d;
-            g[k] = (f(k) - d) * scale;
-            if !g[k].is_finite() {
-                return Err(Error::Overflow {
-                    what: "a solved control value",
-                });
-            }
-            max_g = max_g.max(g[k].abs());
-        }
+        let mut g = vec![0.0; knots.len()];
+        let max_g = crate::fast::through::controls(knots, values, given, uniform, scale, &mut g)
+            .ok_or(Error::Overflow {
+                what: "a solved control value",
+            })?;
         // The knots and alphas passed the check above and every control value
         // is finite: the build needs no second check (and the summary of the
         // knots is formed).

@@ -1,0 +1,398 @@
+//! The interpolating variant's system `(T + K) d = K P` (`docs/method.md`
+//! §11), solved for the control values `G = P - d`: one Thomas sweep forward
+//! and one back over its rows, each row formed as the forward sweep reaches
+//! it; from [`chunks::CHUNKED_MIN`] legs the same sweeps over overlapping
+//! chunks (§16), side by side with the `rayon` feature, the same bits on any
+//! number of threads.
+
+use super::chunks::{self, Chunk};
+use crate::method::{alpha_terms, neighbour_weights, through_row};
+
+/// The rows of the system: `knots` and `values` (`n` each, validated), the
+/// values scaled by `inv` as they are read, and the alphas' terms, from
+/// `alphas` (`n - 1`) unless `uniform` holds the one alpha's.
+struct Rows<'a> {
+    knots: &'a [f64],
+    values: &'a [f64],
+    inv: f64,
+    alphas: &'a [f64],
+    uniform: Option<[f64; 4]>,
+}
+
+impl Rows<'_> {
+    #[inline(always)]
+    fn terms(&self, leg: usize) -> [f64; 4] {
+        match self.uniform {
+            Some(t) => t,
+            None => alpha_terms(self.alphas[leg]),
+        }
+    }
+
+    /// Value `k`, scaled.
+    #[inline(always)]
+    fn f(&self, k: usize) -> f64 {
+        self.values[k] * self.inv
+    }
+
+    /// Row `k` (`1 <= k <= n - 2`): lower, diagonal and upper entries, and
+    /// the right-hand side, the jump of the scaled data's slope.
+    #[inline(always)]
+    fn row(&self, k: usize) -> (f64, f64, f64, f64) {
+        let knots = self.knots;
+        let (hl, hr) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
+        let (p, q) = neighbour_weights(hl, hr);
+        let [al, b1, _, _] = self.terms(k - 1);
+        let [_, _, b2, cr] = self.terms(k);
+        let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
+        let rhs = q * (self.f(k + 1) - self.f(k)) - p * (self.f(k) - self.f(k - 1));
+        (lo, di, up, rhs)
+    }
+
+    /// The forward Thomas sweep over rows `lo + 1 ..= hi - 1` with the
+    /// deviation at `lo` taken as zero: `c'_k` and `r'_k` of each row, in
+    /// order, into `out`. The rows are [`Rows::row`]'s, formed from a window
+    /// over the knots and values that moves a knot a row, each alpha's terms
+    /// formed once; `PER` says whether the alphas differ (with one alpha
+    /// the knots pace the loop in their place).
+    #[inline(always)]
+    fn forward<const PER: bool>(&self, lo: usize, hi: usize, out: &mut Vec<[f64; 2]>) {
+        let legs = if PER { self.alphas } else { self.knots };
+        let (Some(kn), Some(vs), Some(al)) = (
+            self.knots.get(lo..=hi),
+            self.values.get(lo..=hi),
+            legs.get(lo + 1..hi),
+        ) else {
+            return;
+        };
+        let (Some((&[k0, k1], kn)), Some((&[v0, v1], vs))) =
+            (kn.split_first_chunk(), vs.split_first_chunk())
+        else {
+            return;
+        };
+        let one = self.uniform.unwrap_or_default();
+        let (mut kc, mut hl) = (k1, k1 - k0);
+        let (mut fl, mut fc) = (v0 * self.inv, v1 * self.inv);
+        let mut left = self.terms(lo);
+        let (mut cp, mut rp) = (0.0, 0.0);
+        for ((&kr, &vr), &a) in kn.iter().zip(vs).zip(al) {
+            let right = if PER { alpha_terms(a) } else { one };
+            let hr = kr - kc;
+            let fr = vr * self.inv;
+            let (p, q) = neighbour_weights(hl, hr);
+            let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
+            let rhs = q * (fr - fc) - p * (fc - fl);
+            let m = di - l * cp;
+            cp = up / m;
+            rp = (rhs - l * rp) / m;
+            out.push([cp, rp]);
+            (kc, hl, fl, fc, left) = (kr, hr, fc, fr, right);
+        }
+    }
+
+    /// The damping factors of row `k` (§16): `|lower| / (diag - |upper|)`
+    /// and `|upper| / (diag - |lower|)`, both in `[0, 1]` by the dominance
+    /// of every term (§11); anything else counts as 1, no damping.
+    fn damping(&self, k: usize) -> (f64, f64) {
+        let (lo, di, up, _) = self.row(k);
+        let sane = |r: f64| if (0.0..=1.0).contains(&r) { r } else { 1.0 };
+        (
+            sane(lo.abs() / (di - up.abs())),
+            sane(up.abs() / (di - lo.abs())),
+        )
+    }
+}
+
+/// The control values of the spline through `values` at `knots` into
+/// `out` (`n` long), with the largest of their magnitudes; `None` when one
+/// of them is not finite. The input is validated: `knots` strictly
+/// increasing with a finite span, `values` finite (their largest magnitude
+/// scaled by `1 / scale` near 1), `alphas` one per interval in range unless
+/// `uniform` gives the one alpha.
+pub(crate) fn controls(
+    knots: &[f64],
+    values: &[f64],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    scale: f64,
+    out: &mut [f64],
+) -> Option<f64> {
+    let n = knots.len();
+    if n < 2 || values.len() != n || out.len() != n || (uniform.is_none() && alphas.len() != n - 1)
+    {
+        // Not reached: the caller has validated the lengths.
+        return None;
+    }
+    let rows = Rows {
+        knots,
+        values,
+        inv: 1.0 / scale,
+        alphas,
+        uniform: uniform.map(alpha_terms),
+    };
+    let m = n - 1;
+    let mut plan = chunks::cut(m, |k| rows.damping(k));
+    if plan.is_empty() {
+        plan.push(Chunk {
+            lo: 0,
+            start: 0,
+            end: m,
+            hi: m,
+        });
+    }
+    // Each chunk writes the control values of the knots it keeps: the first
+    // those of knots `0..=end`, the others `start + 1..=end`.
+    let mut jobs = Vec::with_capacity(plan.len());
+    let mut rest = out;
+    for (i, &c) in plan.iter().enumerate() {
+        let owned = c.end - c.start + usize::from(i == 0);
+        let (mine, later) = rest.split_at_mut(owned.min(rest.len()));
+        jobs.push((c, mine, Some(0.0)));
+        rest = later;
+    }
+    chunks::each(n, &mut jobs, Vec::new, |scratch, (c, mine, max)| {
+        *max = solve(&rows, *c, scale, mine, scratch);
+    });
+    jobs.iter()
+        .try_fold(0.0f64, |m, &(_, _, max)| Some(m.max(max?)))
+}
+
+/// One chunk `c` of the system: the forward sweep over its rows
+/// `lo + 1 ..= hi - 1` (the deviations at `lo` and `hi` taken as zero) into
+/// `scratch`, then the backward sweep, writing the control values of the
+/// knots it keeps into `out`. Their largest magnitude, or `None` when one is
+/// not finite.
+fn solve(
+    rows: &Rows<'_>,
+    c: Chunk,
+    scale: f64,
+    out: &mut [f64],
+    scratch: &mut Vec<[f64; 2]>,
+) -> Option<f64> {
+    let n = rows.knots.len();
+    let first = if c.start == 0 { 0 } else { c.start + 1 };
+    if out.len() != c.end + 1 - first {
+        // Not reached: the plan covers the knots once.
+        return None;
+    }
+    scratch.clear();
+    scratch.reserve(c.hi - c.lo);
+    if rows.uniform.is_some() {
+        rows.forward::<false>(c.lo, c.hi, scratch);
+    } else {
+        rows.forward::<true>(c.lo, c.hi, scratch);
+    }
+    // Backward: d_k = r'_k - c'_k d_{k+1}, then G_k = P_k - d_k; the rows
+    // past the kept knots (`end + 1 ..= hi - 1`) only carry d down. The kept
+    // rows are knots `kmin..=kmax`, `scratch[k - lo - 1]` each.
+    let (kmin, kmax) = (first.max(1), c.end.min(c.hi - 1));
+    let (Some(own), Some(past), Some(dst), Some(src)) = (
+        scratch.get(kmin - c.lo - 1..kmax - c.lo),
+        scratch.get(kmax - c.lo..),
+        out.get_mut(kmin - first..=kmax - first),
+        rows.values.get(kmin..=kmax),
+    ) else {
+        // Not reached: the chunk's rows hold its knots.
+        return None;
+    };
+    let mut next = 0.0;
+    for &[cp, rp] in past.iter().rev() {
+        next = rp - cp * next;
+    }
+    let mut max = 0.0f64;
+    let mut finite = true;
+    for ((&[cp, rp], g), &v) in own.iter().zip(dst).zip(src).rev() {
+        let d = rp - cp * next;
+        next = d;
+        *g = (v * rows.inv - d) * scale;
+        let a = g.abs();
+        finite &= a <= f64::MAX;
+        max = if a > max { a } else { max };
+    }
+    // The end points are their own control values.
+    for k in [0, n - 1] {
+        if (first..=c.end).contains(&k) {
+            out[k - first] = rows.values[k];
+            max = max.max(rows.values[k].abs());
+        }
+    }
+    finite.then_some(max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::rng;
+
+    /// Knots over `grid` (0: random widths in `[0.5, 1.5)`, 1: over 12
+    /// decades) and values, `n` of each.
+    fn data(n: usize, grid: u8, seed: u64) -> (Vec<f64>, Vec<f64>) {
+        let mut next = rng(seed);
+        let mut x = 0.0;
+        let knots = (0..n)
+            .map(|_| {
+                let k = x;
+                x += match grid {
+                    0 => 0.5 + next(),
+                    _ => 10f64.powf(12.0 * next() - 6.0),
+                };
+                k
+            })
+            .collect();
+        let values = (0..n)
+            .map(|i| (i as f64 * 0.01).sin() + 0.3 * (next() - 0.5))
+            .collect();
+        (knots, values)
+    }
+
+    /// The alphas of case `kind`: 0 random in range, 1 only the extremes,
+    /// 2 alternating 2/3 and 1/3 (the weakest rows); 3, 4, 5 the one alpha
+    /// 1/3, 2/3, 1/2.
+    fn alphas(n: usize, kind: u8, seed: u64) -> (Vec<f64>, Option<f64>) {
+        let mut next = rng(seed);
+        let (lo, hi) = (crate::ALPHA_MIN, crate::ALPHA_MAX);
+        match kind {
+            0 => ((1..n).map(|_| lo + (hi - lo) * next()).collect(), None),
+            1 => (
+                (1..n).map(|_| if next() < 0.5 { lo } else { hi }).collect(),
+                None,
+            ),
+            2 => (
+                (1..n).map(|i| if i % 2 == 1 { hi } else { lo }).collect(),
+                None,
+            ),
+            3 => (Vec::new(), Some(lo)),
+            4 => (Vec::new(), Some(hi)),
+            _ => (Vec::new(), Some(0.5)),
+        }
+    }
+
+    /// The whole system in one Thomas sweep over all its rows, written
+    /// plainly: the reference the chunks must reproduce.
+    fn whole(knots: &[f64], values: &[f64], alphas: &[f64], uniform: Option<f64>) -> Vec<f64> {
+        let n = knots.len();
+        let rows = Rows {
+            knots,
+            values,
+            inv: 1.0,
+            alphas,
+            uniform: uniform.map(alpha_terms),
+        };
+        let (mut c, mut r) = (vec![0.0; n], vec![0.0; n]);
+        for k in 1..n - 1 {
+            let (lo, di, up, rhs) = rows.row(k);
+            let m = di - lo * c[k - 1];
+            c[k] = up / m;
+            r[k] = (rhs - lo * r[k - 1]) / m;
+        }
+        let mut d = vec![0.0; n];
+        for k in (1..n - 1).rev() {
+            d[k] = r[k] - c[k] * d[k + 1];
+        }
+        (0..n).map(|k| values[k] - d[k]).collect()
+    }
+
+    #[test]
+    fn chunks_agree_with_the_whole_system_to_rounding() {
+        let n = 5 * chunks::CHUNK + 1234;
+        let mut worst: f64 = 0.0;
+        for grid in 0..2u8 {
+            for kind in 0..6u8 {
+                let seed = 10 * u64::from(grid) + u64::from(kind);
+                let (knots, values) = data(n, grid, seed);
+                let (a, uniform) = alphas(n, kind, seed + 100);
+                let rows = Rows {
+                    knots: &knots,
+                    values: &values,
+                    inv: 1.0,
+                    alphas: &a,
+                    uniform: uniform.map(alpha_terms),
+                };
+                let plan = chunks::cut(n - 1, |k| rows.damping(k));
+                assert!(plan.len() >= 4, "grid {grid}, alphas {kind}: {plan:?}");
+                let mut g = vec![0.0; n];
+                let max = controls(&knots, &values, &a, uniform, 1.0, &mut g);
+                let want = whole(&knots, &values, &a, uniform);
+                let big = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let max = max.unwrap_or(f64::NAN);
+                assert!(
+                    (max - big).abs() <= 16.0 * big * f64::EPSILON,
+                    "grid {grid}, alphas {kind}: {max} against {big}"
+                );
+                for (k, (x, y)) in g.iter().zip(&want).enumerate() {
+                    let e = (x - y).abs() / (big * f64::EPSILON);
+                    worst = worst.max(e);
+                    assert!(
+                        e <= 16.0,
+                        "grid {grid}, alphas {kind}: G_{k} {x} against {y}"
+                    );
+                }
+            }
+        }
+        eprintln!("largest difference: {worst} ulps of the largest control value");
+    }
+
+    #[test]
+    fn alpha_one_half_needs_one_row_of_overlap() {
+        // The system is diagonal: no row passes anything on.
+        let n = 5 * chunks::CHUNK;
+        let (knots, values) = data(n, 1, 3);
+        let rows = Rows {
+            knots: &knots,
+            values: &values,
+            inv: 1.0,
+            alphas: &[],
+            uniform: Some(alpha_terms(0.5)),
+        };
+        let plan = chunks::cut(n - 1, |k| rows.damping(k));
+        assert!(plan.len() >= 4);
+        for (i, c) in plan.iter().enumerate() {
+            if i > 0 {
+                assert_eq!(c.start - c.lo, 1, "{c:?}");
+            }
+            if i + 1 < plan.len() {
+                assert_eq!(c.hi - c.end, 1, "{c:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_control_value_that_overflows_is_refused() {
+        let n = 5 * chunks::CHUNK;
+        let (knots, _) = data(n, 0, 4);
+        // Values of 0.9 times the largest double, alternating in sign: at
+        // alpha 1/2 each control value is 1.5 times its value, past the
+        // largest double, in every chunk.
+        let values: Vec<f64> = (0..n)
+            .map(|i| if i % 2 == 0 { 0.9 } else { -0.9 } * f64::MAX)
+            .collect();
+        let scale = 2f64.powi(1023);
+        let mut g = vec![0.0; n];
+        assert_eq!(
+            controls(&knots, &values, &[], Some(0.5), scale, &mut g),
+            None
+        );
+        // A tenth of them stays finite.
+        let tenth: Vec<f64> = values.iter().map(|v| v / 10.0).collect();
+        assert!(controls(&knots, &tenth, &[], Some(0.5), scale, &mut g).is_some());
+    }
+
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn every_thread_count_gives_the_same_bits() {
+        let n = 10 * chunks::CHUNK + 3;
+        let (knots, values) = data(n, 1, 9);
+        let (a, _) = alphas(n, 0, 19);
+        let runs: Vec<Vec<u64>> = [1, 2, 16]
+            .into_iter()
+            .map(|threads| {
+                crate::testing::on_threads(threads, || {
+                    let mut g = vec![0.0; n];
+                    let max = controls(&knots, &values, &a, None, 1.0, &mut g);
+                    assert!(max.is_some());
+                    g.iter().map(|v| v.to_bits()).collect()
+                })
+            })
+            .collect();
+        assert!(runs.iter().all(|r| *r == runs[0]));
+    }
+}
