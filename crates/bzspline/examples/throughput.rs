@@ -49,6 +49,13 @@ fn main() {
             Spline::through(&knots, &values, Alphas::default())
         })
     };
+    // The same with one alpha per interval (random in range).
+    let through_alphas_fresh = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || {
+            Spline::through(&knots, &values, Alphas::PerInterval(&alphas))
+        })
+    };
     let mut s = match Spline::new(&knots, &values) {
         Ok(s) => s,
         Err(e) => {
@@ -197,6 +204,7 @@ fn main() {
          \"construct_fresh_ns_per_point\": {}, \
          \"construct_per_interval_alphas_ns_per_point\": {}, \
          \"construct_through_fresh_ns_per_point\": {}, \
+         \"construct_through_alphas_fresh_ns_per_point\": {}, \
          \"eval_sorted_ns_per_point\": {}, \"eval_sorted_new_ns_per_point\": {}, \
          \"eval_random_ns_per_point\": {}, \
          \"eval_random_first_ns_per_point\": {}, \
@@ -214,6 +222,7 @@ fn main() {
         num(fresh_only / n as f64),
         num(per_interval / n as f64),
         num(through_fresh / n as f64),
+        num(through_alphas_fresh / n as f64),
         num(sorted0),
         num(sorted0_new),
         num(random0),
