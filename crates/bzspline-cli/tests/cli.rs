@@ -882,6 +882,32 @@ fn input_limits_are_refused_with_their_option_named() {
         None,
         &["shapes.geojson: larger than 64 bytes (--max-bytes)"],
     );
+    // A feature's ring past --max-points, as one coverage and each feature
+    // on its own, in a FeatureCollection in the plane (with z and without)
+    // and in a layer of a GeoPackage.
+    let dir = tempfile::tempdir().unwrap();
+    let gpkg = dir.path().join("mosaic.gpkg");
+    let gpkg = gpkg.to_str().unwrap();
+    let o = run(
+        &["smooth", "mosaic.geojson", "--tolerance", "0.1", "-o", gpkg],
+        None,
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    for (input, named) in [
+        ("shapes.geojson", "shapes.geojson: feature 0:"),
+        ("mosaic.geojson", "mosaic.geojson: feature 0:"),
+        (gpkg, "mosaic.gpkg: feature 0:"),
+    ] {
+        for apart in [&[][..], &["--independent"][..]] {
+            let mut args = vec!["smooth", input, "--tolerance", "0.1", "--max-points", "3"];
+            args.extend(apart);
+            assert_data_error(
+                &args,
+                None,
+                &[named, "more than 3 positions (--max-points)"],
+            );
+        }
+    }
 }
 
 #[test]

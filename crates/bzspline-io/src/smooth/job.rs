@@ -246,12 +246,13 @@ impl Job {
             || geo_types::Geometry::GeometryCollection(geo_types::GeometryCollection(vec![]));
         let had: Vec<bool> = shapes.iter().map(|s| !matches!(s, Shape::Null)).collect();
         let none = empty();
-        let place = |i: usize| format!("{name}: feature {i}");
-        let each = shapes.iter().map(|s| match s {
-            Shape::Plane(g) => &**g,
-            _ => &none,
-        });
-        coverage::check_longest(each, self.settings.limits.max_points, &place)?;
+        self.check_longest(
+            name,
+            shapes.iter().map(|s| match s {
+                Shape::Plane(g) => &**g,
+                _ => &none,
+            }),
+        )?;
         // Taken one at a time: a coverage lets go of each geometry's
         // positions as soon as it holds them.
         let geoms = shapes.into_iter().map(|s| match s {
@@ -325,12 +326,11 @@ impl Job {
         let (lib, snap) = self.resolved(name, || {
             Space::of_lonlat_bounds(coverage::bounds(&geoms), "it")
         })?;
+        self.check_longest(name, &geoms)?;
         if self.settings.independent {
             let out = self.smooth_each(name, geoms, &lib)?;
             c.put_geometries(out);
         } else {
-            let place = |i: usize| format!("{name}: feature {i}");
-            coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
             let (assembled, stats) = self.smooth_assembled(name, geoms, &lib, snap)?;
             self.total += &stats;
             c.put_assembled(assembled);
@@ -338,23 +338,33 @@ impl Job {
         Ok(())
     }
 
-    /// Smooths geometries in the plane, geometry i feature i of `name`,
-    /// each on its own (`--independent`), adding to the totals.
+    /// Refuses a line or ring longer than the settings allow among the
+    /// geometries of `name`, geometry i feature i.
+    fn check_longest<'a>(
+        &self,
+        name: &str,
+        geoms: impl IntoIterator<Item = &'a geo_types::Geometry<f64>>,
+    ) -> Result<()> {
+        coverage::check_longest(geoms, self.settings.limits.max_points, &feature_of(name))
+    }
+
+    /// Smooths geometries in the plane, geometry i feature i of `name`
+    /// (checked by [`Job::check_longest`]), each on its own
+    /// (`--independent`), adding to the totals.
     fn smooth_each(
         &mut self,
         name: &str,
         geoms: Vec<geo_types::Geometry<f64>>,
         lib: &SmoothOptions,
     ) -> Result<Vec<geo_types::Geometry<f64>>> {
-        let place = |i: usize| format!("{name}: feature {i}");
-        coverage::check_longest(&geoms, self.settings.limits.max_points, &place)?;
-        let (out, stats) = coverage::smooth_apart(geoms, lib, name, &place)?;
+        let (out, stats) = coverage::smooth_apart(geoms, lib, name, &feature_of(name))?;
         self.total += &stats;
         Ok(out)
     }
 
     /// Smooths geometries in the plane as one coverage, geometry i feature
-    /// i of `name`, each smoothed geometry put together as it is written.
+    /// i of `name` (checked by [`Job::check_longest`]), each smoothed
+    /// geometry put together as it is written.
     fn smooth_assembled(
         &self,
         name: &str,
@@ -362,8 +372,7 @@ impl Job {
         lib: &SmoothOptions,
         snap: Option<f64>,
     ) -> Result<(bzspline_geo::Assembled, Stats)> {
-        let place = |i: usize| format!("{name}: feature {i}");
-        coverage::smooth_into_assembled(geoms, lib, snap, name, &place)
+        coverage::smooth_into_assembled(geoms, lib, snap, name, &feature_of(name))
     }
 
     /// The options and snap distance for data in `space` (found by `space`
@@ -644,4 +653,9 @@ impl Job {
         }
         s
     }
+}
+
+/// How errors name geometry i of `name`: its feature i.
+fn feature_of(name: &str) -> impl Fn(usize) -> String + '_ {
+    move |i| format!("{name}: feature {i}")
 }
