@@ -177,6 +177,46 @@ fn large_splines_solved_in_chunks_pass_through_their_points() {
 }
 
 #[test]
+fn long_open_curves_pass_through_their_points() {
+    // An open curve's system is solved coordinate by coordinate in chunks
+    // from 65,537 points: a random walk in the plane and in space, on every
+    // parametrisation, through every point.
+    let mut rng = Rng::new(41);
+    for (case, param) in [Param::Uniform, Param::Chordal, Param::Centripetal]
+        .into_iter()
+        .enumerate()
+    {
+        let (dim, n) = (2 + case % 2, 70_001);
+        let mut at = vec![0.0; dim];
+        let pts: Vec<f64> = (0..n)
+            .flat_map(|_| {
+                for v in &mut at {
+                    *v += rng.uniform(-1.0, 1.0);
+                }
+                at.clone()
+            })
+            .collect();
+        let a = rng.alphas(n - 1);
+        let c = CurveBuilder::new(&pts, dim)
+            .param(param)
+            .alphas(&a)
+            .through(true)
+            .build()
+            .unwrap();
+        let scale = max_abs(&pts);
+        for (k, q) in c.knot_points().iter().enumerate() {
+            for j in 0..dim {
+                let want = pts[k * dim + j];
+                assert!(
+                    (q[j] - want).abs() <= 1e-12 * scale,
+                    "case {case}, point {k}: {q:?} against {want}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn at_one_half_the_system_is_diagonal() {
     // §11: at alpha = 1/2 the off-diagonals of T + K vanish and the diagonal
     // is 2/(h_{k-1}/2) + 2/(h_k/2): at unit widths 8, so each deviation is an

@@ -361,9 +361,15 @@ impl Curve {
         b.through = false;
         let (dim, closed) = (b.dim, b.closed);
         let data = b.build()?;
-        let widths: Vec<f64> = data.knots().windows(2).map(|w| w[1] - w[0]).collect();
-        let controls = method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
-            .ok_or(Error::Overflow {
+        // An open curve's system in the fused sweeps (in chunks when long),
+        // a closed curve's cyclic one assembled and factored.
+        let controls = if closed || data.knots().len() < 2 {
+            let widths: Vec<f64> = data.knots().windows(2).map(|w| w[1] - w[0]).collect();
+            method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
+        } else {
+            crate::fast::through::curve_controls(data.knots(), &data.points, dim, &data.alphas)
+        }
+        .ok_or(Error::Overflow {
             what: "a solved control point",
         })?;
         let mut c = CurveBuilder::new(&controls, dim)

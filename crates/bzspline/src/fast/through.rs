@@ -6,7 +6,7 @@
 //! number of threads.
 
 use super::chunks::{self, Chunk};
-use crate::method::{alpha_terms, neighbour_weights, through_row};
+use crate::method::{alpha_terms, neighbour_weights, power_of_two_scale, through_row};
 
 /// The rows of the system: `knots` and `values` (`n` each, validated), the
 /// values scaled by `inv` as they are read, and the alphas' terms, from
@@ -154,6 +154,36 @@ pub(crate) fn controls(
     });
     jobs.iter()
         .try_fold(0.0f64, |m, &(_, _, max)| Some(m.max(max?)))
+}
+
+/// The control points of the open curve through `points` (`dim`
+/// coordinates a point, flat) at the parameters `knots` with `alphas` (one
+/// per leg): [`controls`] of each coordinate, each scaled by its own power
+/// of two while it is solved. `None` when a control value leaves the range
+/// of a double.
+pub(crate) fn curve_controls(
+    knots: &[f64],
+    points: &[f64],
+    dim: usize,
+    alphas: &[f64],
+) -> Option<Vec<f64>> {
+    let n = knots.len();
+    if dim == 0 || points.len() != n * dim {
+        return None;
+    }
+    let mut out = vec![0.0; points.len()];
+    let (mut coord, mut g) = (vec![0.0; n], vec![0.0; n]);
+    for c in 0..dim {
+        for (v, p) in coord.iter_mut().zip(points.chunks_exact(dim)) {
+            *v = p[c];
+        }
+        let scale = power_of_two_scale(&coord);
+        controls(knots, &coord, alphas, None, scale, &mut g)?;
+        for (p, v) in out.chunks_exact_mut(dim).zip(&g) {
+            p[c] = *v;
+        }
+    }
+    Some(out)
 }
 
 /// One chunk `c` of the system: the forward sweep over its rows
