@@ -89,6 +89,14 @@ fn main() {
         let mut keep = Vec::new();
         f_median(r, &mut keep, || Curve::open(&pts))
     };
+    // The interpolating variant of the same curve, fresh.
+    let flat: Vec<f64> = pts.iter().flatten().copied().collect();
+    let curve_through = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || {
+            CurveBuilder::new(&flat, 2).through(true).build()
+        })
+    };
     // The same curve built again into its own allocations, as `rebuild` does
     // for the spline.
     let curve_rebuild = rebuild_ns(r, &pts);
@@ -214,6 +222,7 @@ fn main() {
          \"par_threads\": {}, \"par_eval_sorted_ns_per_point\": {}, \
          \"par_eval_random_ns_per_point\": {}, \"bytes_per_point\": {}, \
          \"curve2d_construct_ns_per_point\": {}, \"curve2d_rebuild_ns_per_point\": {}, \
+         \"curve2d_through_ns_per_point\": {}, \
          \"curve2d_move_point_ns\": {}, \
          \"spiral_1e5_construct_ns_per_point\": {}, \"spiral_1e5_rebuild_ns_per_point\": {}, \
          \"spiral_1e5_flatten_ns_per_point\": {}, \"spiral_1e5_flatten_vertices\": {}}}",
@@ -237,6 +246,7 @@ fn main() {
         num(bytes as f64 / n as f64),
         num(curve_build / n as f64),
         num(curve_rebuild / n as f64),
+        num(curve_through / n as f64),
         num(curve_move),
         num(spiral_build / SPIRAL as f64),
         num(spiral_rebuild / SPIRAL as f64),
