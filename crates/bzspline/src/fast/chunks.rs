@@ -443,47 +443,7 @@ fn substitute<const D: usize, const PER: bool, const KNOT: bool>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::rng;
-
-    /// Knots, values and alphas of one generated case: `grid` 0 random
-    /// widths in `[0.5, 1.5)`, 1 widths over 12 decades; `alphas` 0 random
-    /// in range, 1 only the extremes, 2 alternating 2/3 and 1/3 (the weakest
-    /// rows), 3 the one alpha 1/3, 4 the one alpha 2/3.
-    fn case(
-        n: usize,
-        grid: u8,
-        alphas: u8,
-        seed: u64,
-    ) -> (Vec<f64>, Vec<f64>, Vec<f64>, Option<f64>) {
-        let mut next = rng(seed);
-        let mut knots = Vec::with_capacity(n);
-        let mut x = 0.0;
-        for _ in 0..n {
-            knots.push(x);
-            x += match grid {
-                0 => 0.5 + next(),
-                _ => 10f64.powf(12.0 * next() - 6.0),
-            };
-        }
-        let values: Vec<f64> = (0..n)
-            .map(|i| (i as f64 * 0.01).sin() + 0.3 * (next() - 0.5))
-            .collect();
-        let (lo, hi) = (crate::ALPHA_MIN, crate::ALPHA_MAX);
-        let (a, uniform): (Vec<f64>, _) = match alphas {
-            0 => ((1..n).map(|_| lo + (hi - lo) * next()).collect(), None),
-            1 => (
-                (1..n).map(|_| if next() < 0.5 { lo } else { hi }).collect(),
-                None,
-            ),
-            2 => (
-                (1..n).map(|i| if i % 2 == 1 { hi } else { lo }).collect(),
-                None,
-            ),
-            3 => (Vec::new(), Some(lo)),
-            _ => (Vec::new(), Some(hi)),
-        };
-        (knots, values, a, uniform)
-    }
+    use crate::testing::case;
 
     /// The pieces and deviations of one solve.
     type Solved = (Vec<Piece>, Vec<[f64; 1]>);

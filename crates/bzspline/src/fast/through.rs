@@ -251,50 +251,7 @@ fn solve(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::rng;
-
-    /// Knots over `grid` (0: random widths in `[0.5, 1.5)`, 1: over 12
-    /// decades) and values, `n` of each.
-    fn data(n: usize, grid: u8, seed: u64) -> (Vec<f64>, Vec<f64>) {
-        let mut next = rng(seed);
-        let mut x = 0.0;
-        let knots = (0..n)
-            .map(|_| {
-                let k = x;
-                x += match grid {
-                    0 => 0.5 + next(),
-                    _ => 10f64.powf(12.0 * next() - 6.0),
-                };
-                k
-            })
-            .collect();
-        let values = (0..n)
-            .map(|i| (i as f64 * 0.01).sin() + 0.3 * (next() - 0.5))
-            .collect();
-        (knots, values)
-    }
-
-    /// The alphas of case `kind`: 0 random in range, 1 only the extremes,
-    /// 2 alternating 2/3 and 1/3 (the weakest rows); 3, 4, 5 the one alpha
-    /// 1/3, 2/3, 1/2.
-    fn alphas(n: usize, kind: u8, seed: u64) -> (Vec<f64>, Option<f64>) {
-        let mut next = rng(seed);
-        let (lo, hi) = (crate::ALPHA_MIN, crate::ALPHA_MAX);
-        match kind {
-            0 => ((1..n).map(|_| lo + (hi - lo) * next()).collect(), None),
-            1 => (
-                (1..n).map(|_| if next() < 0.5 { lo } else { hi }).collect(),
-                None,
-            ),
-            2 => (
-                (1..n).map(|i| if i % 2 == 1 { hi } else { lo }).collect(),
-                None,
-            ),
-            3 => (Vec::new(), Some(lo)),
-            4 => (Vec::new(), Some(hi)),
-            _ => (Vec::new(), Some(0.5)),
-        }
-    }
+    use crate::testing::case;
 
     /// The whole system in one Thomas sweep over all its rows, written
     /// plainly: the reference the chunks must reproduce.
@@ -328,8 +285,7 @@ mod tests {
         for grid in 0..2u8 {
             for kind in 0..6u8 {
                 let seed = 10 * u64::from(grid) + u64::from(kind);
-                let (knots, values) = data(n, grid, seed);
-                let (a, uniform) = alphas(n, kind, seed + 100);
+                let (knots, values, a, uniform) = case(n, grid, kind, seed);
                 let rows = Rows {
                     knots: &knots,
                     values: &values,
@@ -365,7 +321,7 @@ mod tests {
     fn alpha_one_half_needs_one_row_of_overlap() {
         // The system is diagonal: no row passes anything on.
         let n = 5 * chunks::CHUNK;
-        let (knots, values) = data(n, 1, 3);
+        let (knots, values, _, _) = case(n, 1, 5, 3);
         let rows = Rows {
             knots: &knots,
             values: &values,
@@ -388,7 +344,7 @@ mod tests {
     #[test]
     fn a_control_value_that_overflows_is_refused() {
         let n = 5 * chunks::CHUNK;
-        let (knots, _) = data(n, 0, 4);
+        let (knots, ..) = case(n, 0, 5, 4);
         // Values of 0.9 times the largest double, alternating in sign: at
         // alpha 1/2 each control value is 1.5 times its value, past the
         // largest double, in every chunk.
@@ -410,8 +366,7 @@ mod tests {
     #[test]
     fn every_thread_count_gives_the_same_bits() {
         let n = 10 * chunks::CHUNK + 3;
-        let (knots, values) = data(n, 1, 9);
-        let (a, _) = alphas(n, 0, 19);
+        let (knots, values, a, _) = case(n, 1, 0, 9);
         let runs: Vec<Vec<u64>> = [1, 2, 16]
             .into_iter()
             .map(|threads| {
