@@ -49,6 +49,15 @@ pub(crate) struct Chunk {
     pub(crate) hi: usize,
 }
 
+impl Chunk {
+    /// The knots whose slots in the outputs this chunk writes: `start + 1
+    /// ..= end`, and knot 0 too for the first chunk.
+    pub(crate) fn kept(&self) -> std::ops::RangeInclusive<usize> {
+        let first = if self.start == 0 { 0 } else { self.start + 1 };
+        first..=self.end
+    }
+}
+
 /// The whole system's input, as the sweeps take it: `knots` (`n`), `values`
 /// (`n`, scaled by `inv_scale` as they are read), `alphas` (`n - 1`, not read
 /// when `uniform` gives the one alpha) and the power of two `ws` that brings
@@ -271,10 +280,9 @@ pub(crate) fn run<const D: usize, const KNOT: bool>(
     let mut outs = Vec::with_capacity(plan.len());
     let (mut coefs, mut second, mut first) = (coefs, second, first);
     let (mut bd, mut bp) = (&mut below_d[..], &mut below_p[..]);
-    for (i, c) in plan.iter().enumerate() {
-        // The first chunk owns the slots of knots 0..=end, the others those
-        // of start+1..=end: the rows they keep.
-        let owned = c.end - c.start + usize::from(i == 0);
+    for c in plan {
+        // The slots of the knots it keeps: the rows it keeps.
+        let owned = c.kept().count();
         let below = c.start - c.lo;
         let (Some((pieces, rest_c)), Some((s, rest_s)), Some((f, rest_f))) = (
             coefs.split_at_mut_checked((c.end - c.start) * D),

@@ -139,12 +139,11 @@ pub(crate) fn controls(
             hi: m,
         });
     }
-    // Each chunk writes the control values of the knots it keeps: the first
-    // those of knots `0..=end`, the others `start + 1..=end`.
+    // Each chunk writes the control values of the knots it keeps.
     let mut jobs = Vec::with_capacity(plan.len());
     let mut rest = out;
-    for (i, &c) in plan.iter().enumerate() {
-        let owned = c.end - c.start + usize::from(i == 0);
+    for &c in &plan {
+        let owned = c.kept().count();
         let (mine, later) = rest.split_at_mut(owned.min(rest.len()));
         jobs.push((c, mine, Some(0.0)));
         rest = later;
@@ -199,8 +198,8 @@ fn solve(
     scratch: &mut Vec<[f64; 2]>,
 ) -> Option<f64> {
     let n = rows.knots.len();
-    let first = if c.start == 0 { 0 } else { c.start + 1 };
-    if out.len() != c.end + 1 - first {
+    let first = *c.kept().start();
+    if out.len() != c.kept().count() {
         // Not reached: the plan covers the knots once.
         return None;
     }
