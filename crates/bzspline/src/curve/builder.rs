@@ -363,7 +363,7 @@ impl Curve {
         let data = b.build()?;
         // An open curve's system in the fused sweeps (in chunks when long),
         // a closed curve's cyclic one assembled and factored.
-        let controls = if closed || data.knots().len() < 2 {
+        let controls = if closed {
             let widths: Vec<f64> = data.knots().windows(2).map(|w| w[1] - w[0]).collect();
             method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
         } else {
