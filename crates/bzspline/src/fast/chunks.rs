@@ -196,6 +196,24 @@ pub(crate) fn cut(m: usize, damping: impl Fn(usize) -> (f64, f64)) -> Vec<Chunk>
     chunks
 }
 
+/// Makes `v` `n` items long, keeping what it holds and filling new slots
+/// with `value`; on several threads from [`PARALLEL_MIN`] items, so that a
+/// fresh output's first touch (page faults and clearing) is shared as its
+/// chunks will share it.
+pub(crate) fn sized<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, value: T) {
+    v.truncate(n);
+    #[cfg(feature = "rayon")]
+    {
+        use rayon::prelude::*;
+        let more = n - v.len();
+        if rayon::current_num_threads() > 1 && more > PARALLEL_MIN {
+            v.par_extend(rayon::iter::repeat_n(value, more));
+            return;
+        }
+    }
+    v.resize(n, value);
+}
+
 /// Runs `f` on every item with a scratch made by `init`: side by side on the
 /// current rayon pool (with the `rayon` feature) for systems of more than
 /// `PARALLEL_MIN` knots, else one after the other. The items are a plan's

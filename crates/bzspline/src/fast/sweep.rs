@@ -145,8 +145,7 @@ pub(crate) fn build(
     // than clearing them first (no pass over the memory when the size is
     // unchanged).
     for out in [&mut *knots_out, &mut *values_out] {
-        out.truncate(n);
-        out.resize(n, 0.0);
+        chunks::sized(out, n, 0.0);
     }
     let (kn, vs) = (
         knots_out.as_chunks_mut::<1>().0,
@@ -156,8 +155,7 @@ pub(crate) fn build(
     if !plan.is_empty() {
         // Every piece is written by one chunk: no pass to clear them when
         // the size is unchanged.
-        coefs.truncate(n - 1);
-        coefs.resize(n - 1, Piece::default());
+        chunks::sized(coefs, n - 1, Piece::default());
         let whole = Whole {
             knots,
             values: values.as_chunks().0,
@@ -209,8 +207,7 @@ pub(crate) fn build_open_curve<const D: usize>(
     let n = knots.len();
     // Every slot is overwritten below: no pass to clear them first.
     for v in [&mut *dev, &mut *points_out] {
-        v.truncate(n * D);
-        v.resize(n * D, 0.0);
+        chunks::sized(v, n * D, 0.0);
     }
     let (values, _) = points.as_chunks::<D>();
     if n < 2 || values.len() != n || alphas.len() != n - 1 {
@@ -226,8 +223,7 @@ pub(crate) fn build_open_curve<const D: usize>(
     );
     let plan = chunks::plan(knots, alphas, uniform, wscale);
     if !plan.is_empty() {
-        coefs.truncate((n - 1) * D);
-        coefs.resize((n - 1) * D, Piece::default());
+        chunks::sized(coefs, (n - 1) * D, Piece::default());
         let whole = Whole {
             knots,
             values,
