@@ -281,6 +281,24 @@ fn curves_pass_through_their_points_open_and_closed() {
                 );
             }
         }
+        // It is the method's curve on its control points at those
+        // parameters, to the bit.
+        let on_controls = CurveBuilder::new(c.points(), dim)
+            .closed(closed)
+            .param(Param::Given(c.knots().to_vec()))
+            .alphas(c.alphas())
+            .build()
+            .unwrap();
+        assert_eq!(
+            bits(&c.knot_points().concat()),
+            bits(&on_controls.knot_points().concat()),
+            "case {case}"
+        );
+        for w in c.knots().windows(2) {
+            let t = 0.5 * (w[0] + w[1]);
+            let (a, b) = (c.eval(t).unwrap(), on_controls.eval(t).unwrap());
+            assert_eq!(bits(&a), bits(&b), "case {case} at {t}");
+        }
         // It touches the legs of its control polygon at x_k.
         for (k, (t, p)) in c.tangent_points().iter().enumerate() {
             let e = c.eval(*t).unwrap();
@@ -340,4 +358,9 @@ fn the_variant_refuses_what_the_method_refuses() {
         (sq.knot_points()[2][0] - 1.0).abs() < 1e-15
             && (sq.knot_points()[2][1] - 1.0).abs() < 1e-15
     );
+}
+
+/// The bits of each number, so that equal means equal to the bit.
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
 }

@@ -5,10 +5,9 @@
 
 use std::borrow::Cow;
 
-use super::solve::survey;
+use super::solve::{survey, Input};
 use super::{Curve, Param, ParamKind, Repeats};
 use crate::error::{Error, Field};
-use crate::method;
 use crate::smoothing::{self, check_positive_weights, check_weight_values, Smoothed, Smoothing};
 use crate::validate::{check_alphas, check_finite, resolve_alphas, Alphas, DEFAULT_ALPHA};
 
@@ -353,35 +352,6 @@ impl<'a> CurveBuilder<'a> {
 impl Curve {
     /// Validates the builder's inputs and solves into `target`, which changes
     /// only on success.
-    /// The interpolating variant (§11): the curve of the data validates them
-    /// and gives the parameters, alphas and points after dropping repeats; the
-    /// control points come from the variant's system; the curve is built on
-    /// them with the data's parameters.
-    fn build_through(mut b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
-        b.through = false;
-        let (dim, closed) = (b.dim, b.closed);
-        let data = b.build()?;
-        // An open curve's system in the fused sweeps (in chunks when long),
-        // a closed curve's cyclic one assembled and factored.
-        let controls = if closed {
-            let widths: Vec<f64> = data.knots().windows(2).map(|w| w[1] - w[0]).collect();
-            method::through_controls(&widths, &data.alphas, &data.points, dim, closed)
-        } else {
-            crate::fast::through::curve_controls(data.knots(), &data.points, dim, &data.alphas)
-        }
-        .ok_or(Error::Overflow {
-            what: "a solved control point",
-        })?;
-        let mut c = CurveBuilder::new(&controls, dim)
-            .closed(closed)
-            .param(Param::Given(data.knots().to_vec()))
-            .alphas(&data.alphas)
-            .build()?;
-        c.dropped = data.dropped;
-        *target = c;
-        Ok(())
-    }
-
     fn build_from(b: CurveBuilder<'_>, target: &mut Curve) -> Result<(), Error> {
         if b.smoothing.is_some() {
             // Not dispatched from here, so that a program building plain
@@ -390,9 +360,6 @@ impl Curve {
                 what: "a smoothing curve is built with build_smoothed",
                 value: 0.0,
             });
-        }
-        if b.through {
-            return Self::build_through(b, target);
         }
         let dim = b.dim;
         if dim == 0 {
@@ -451,8 +418,18 @@ impl Curve {
         if !repeats {
             // Nothing to drop: the builder's points and alphas are the curve's.
             let given = given.as_deref();
-            let pts = (&b.points[..], &maxes[..]);
-            return Self::solve_into(target, dim, b.closed, kind, pts, Vec::new(), given, choice);
+            let input = Input {
+                dim,
+                closed: b.closed,
+                kind,
+                points: &b.points,
+                maxes: &maxes,
+                dropped: Vec::new(),
+                given,
+                alphas: choice,
+                through: b.through,
+            };
+            return Self::solve_into(target, input);
         }
         let (keep, dropped) = keep_list(&b.points, dim, b.closed, b.repeats)?;
         if keep.len() < min {
@@ -486,8 +463,18 @@ impl Curve {
         });
         let (given, alphas) = (given.as_deref(), Alphas::PerInterval(&alphas));
         // Dropped points repeat kept ones: the largest magnitudes stay.
-        let pts = (&points[..], &maxes[..]);
-        Self::solve_into(target, dim, b.closed, kind, pts, dropped, given, alphas)
+        let input = Input {
+            dim,
+            closed: b.closed,
+            kind,
+            points: &points,
+            maxes: &maxes,
+            dropped,
+            given,
+            alphas,
+            through: b.through,
+        };
+        Self::solve_into(target, input)
     }
 }
 

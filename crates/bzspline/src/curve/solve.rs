@@ -4,7 +4,7 @@
 use super::{norm, Curve, ParamKind};
 use crate::error::Error;
 use crate::fast::{self, Piece};
-use crate::method::{alpha_terms, piece_coefs_with, ClosedSystem, OpenSystem};
+use crate::method::{alpha_terms, piece_coefs_with, through_controls, ClosedSystem, OpenSystem};
 use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::traits::ParamCurve;
@@ -80,6 +80,49 @@ pub(super) fn chord_step(
     }
 }
 
+/// What [`Curve::solve_into`] solves: validated points (`dim` coordinates a
+/// point, flat) with the largest magnitude of each coordinate, the points a
+/// builder dropped, the kind of parameters (the parameters themselves when
+/// given), checked alphas, and whether the curve passes through the points
+/// rather than taking them as its control points.
+pub(super) struct Input<'a> {
+    pub(super) dim: usize,
+    pub(super) closed: bool,
+    pub(super) kind: ParamKind,
+    pub(super) points: &'a [f64],
+    pub(super) maxes: &'a [f64],
+    pub(super) dropped: Vec<usize>,
+    pub(super) given: Option<&'a [f64]>,
+    pub(super) alphas: Alphas<'a>,
+    pub(super) through: bool,
+}
+
+/// The control points of the curve through `points` at the parameters
+/// `knots` (§11): an open curve's system in the fused sweeps (in chunks when
+/// long), a closed curve's cyclic one assembled and factored. `None` when a
+/// control value leaves the range of a double.
+fn through_points(
+    knots: &[f64],
+    points: &[f64],
+    dim: usize,
+    closed: bool,
+    alphas: Alphas<'_>,
+) -> Option<Vec<f64>> {
+    let (given, uniform) = match alphas {
+        Alphas::Uniform(a) => (&[][..], Some(a)),
+        Alphas::PerInterval(a) => (a, None),
+    };
+    if !closed {
+        return fast::through::curve_controls(knots, points, dim, given, uniform);
+    }
+    let widths: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
+    let resolved = match uniform {
+        Some(a) => vec![a; widths.len()],
+        None => given.to_vec(),
+    };
+    through_controls(&widths, &resolved, points, dim, closed)
+}
+
 impl Curve {
     /// A curve with no points, to be built into.
     pub(super) fn empty() -> Self {
@@ -98,19 +141,21 @@ impl Curve {
     }
 
     /// Parameters for the kind, validates them, and solves into `c`, reusing
-    /// its allocations; `c` changes only on success. `alphas` are checked;
-    /// `points` come with the largest magnitude of each coordinate.
-    #[allow(clippy::too_many_arguments)] // the parts of a builder, validated
-    pub(super) fn solve_into(
-        c: &mut Curve,
-        dim: usize,
-        closed: bool,
-        kind: ParamKind,
-        (points, maxes): (&[f64], &[f64]),
-        dropped: Vec<usize>,
-        given: Option<&[f64]>,
-        alphas: Alphas<'_>,
-    ) -> Result<(), Error> {
+    /// its allocations; `c` changes only on success. With `through` the
+    /// curve passes through the points: its control points are solved from
+    /// them first (§11), and its parameters are then given ones.
+    pub(super) fn solve_into(c: &mut Curve, input: Input<'_>) -> Result<(), Error> {
+        let Input {
+            dim,
+            closed,
+            kind,
+            points,
+            maxes,
+            dropped,
+            given,
+            alphas,
+            through,
+        } = input;
         let n = points.len() / dim;
         let legs = if closed { n } else { n - 1 };
         let mut chord_scale = 1.0;
@@ -155,13 +200,40 @@ impl Curve {
         if let Some(k) = &aside {
             check_knots(k)?;
         }
+        let uniform_knots = || (0..=legs).map(|i| i as f64);
+        // Through the points: the control points, and the curve is then the
+        // one on them at these parameters, given.
+        let (mut kind, mut own_maxes) = (kind, Vec::new());
+        let controls = if through {
+            let uniform: Vec<f64>;
+            let knots = match &aside {
+                Some(k) => &k[..],
+                None => {
+                    uniform = uniform_knots().collect();
+                    &uniform[..]
+                }
+            };
+            let controls =
+                through_points(knots, points, dim, closed, alphas).ok_or(Error::Overflow {
+                    what: "a solved control point",
+                })?;
+            survey(&controls, dim, &mut own_maxes);
+            (kind, chord_scale, knot_unit) = (ParamKind::Given, 1.0, 1.0);
+            Some(controls)
+        } else {
+            None
+        };
+        let (points, maxes) = match &controls {
+            Some(g) => (&g[..], &own_maxes[..]),
+            None => (points, maxes),
+        };
         // From here on nothing fails.
         let parts = c.pieces.parts_mut();
         match aside {
             Some(k) => *parts.knots = k,
             None => {
                 parts.knots.clear();
-                parts.knots.extend((0..=legs).map(|i| i as f64));
+                parts.knots.extend(uniform_knots());
             }
         }
         c.pieces.knots_changed();
@@ -200,11 +272,20 @@ impl Curve {
         alphas: &[f64],
     ) -> Result<Self, Error> {
         let mut c = Curve::empty();
-        let alphas = Alphas::PerInterval(alphas);
         let mut maxes = Vec::new();
         survey(points, dim, &mut maxes);
-        let pts = (points, &maxes[..]);
-        Self::solve_into(&mut c, dim, closed, kind, pts, dropped, given, alphas)?;
+        let input = Input {
+            dim,
+            closed,
+            kind,
+            points,
+            maxes: &maxes,
+            dropped,
+            given,
+            alphas: Alphas::PerInterval(alphas),
+            through: false,
+        };
+        Self::solve_into(&mut c, input)?;
         Ok(c)
     }
 

@@ -157,7 +157,8 @@ pub(crate) fn controls(
 
 /// The control points of the open curve through `points` (`dim`
 /// coordinates a point, flat) at the parameters `knots` with `alphas` (one
-/// per leg): [`controls`] of each coordinate, each scaled by its own power
+/// per leg) unless `uniform` gives the one alpha: [`controls`] of each
+/// coordinate, each scaled by its own power
 /// of two while it is solved. `None` when a control value leaves the range
 /// of a double.
 pub(crate) fn curve_controls(
@@ -165,6 +166,7 @@ pub(crate) fn curve_controls(
     points: &[f64],
     dim: usize,
     alphas: &[f64],
+    uniform: Option<f64>,
 ) -> Option<Vec<f64>> {
     let n = knots.len();
     if dim == 0 || points.len() != n * dim {
@@ -177,7 +179,7 @@ pub(crate) fn curve_controls(
             *v = p[c];
         }
         let scale = power_of_two_scale(&coord);
-        controls(knots, &coord, alphas, None, scale, &mut g)?;
+        controls(knots, &coord, alphas, uniform, scale, &mut g)?;
         for (p, v) in out.chunks_exact_mut(dim).zip(&g) {
             p[c] = *v;
         }
