@@ -1,25 +1,30 @@
 //! The interpolating variant's system `(T + K) d = K P` (`docs/method.md`
 //! §11), solved for the control values `G = P - d`: one Thomas sweep forward
 //! and one back over its rows, each row formed as the forward sweep reaches
-//! it; from [`chunks::CHUNKED_MIN`] legs the same sweeps over overlapping
-//! chunks (§16), side by side with the `rayon` feature, the same bits on any
-//! number of threads.
+//! it and eliminated for every coordinate of a curve at once; from
+//! [`chunks::CHUNKED_MIN`] legs the same sweeps over overlapping chunks
+//! (§16), side by side with the `rayon` feature, the same bits on any number
+//! of threads.
 
 use super::chunks::{self, Chunk};
 use crate::method::{alpha_terms, neighbour_weights, power_of_two_scale, through_row};
 
-/// The rows of the system: `knots` and `values` (`n` each, validated), the
-/// values scaled by `inv` as they are read, and the alphas' terms, from
-/// `alphas` (`n - 1`) unless `uniform` holds the one alpha's.
-struct Rows<'a> {
+/// The rows of the system: `knots` and `values` (`n` each, validated, `D`
+/// coordinates a value), each coordinate scaled by its `inv` as it is read,
+/// and the alphas' terms, from `alphas` (`n - 1`) unless `uniform` holds the
+/// one alpha's.
+struct Rows<'a, const D: usize> {
     knots: &'a [f64],
-    values: &'a [f64],
-    inv: f64,
+    values: &'a [[f64; D]],
+    inv: [f64; D],
     alphas: &'a [f64],
     uniform: Option<[f64; 4]>,
 }
 
-impl Rows<'_> {
+/// A row after the forward sweep: `c'_k`, and `r'_k` of each coordinate.
+type Swept<const D: usize> = (f64, [f64; D]);
+
+impl<const D: usize> Rows<'_, D> {
     #[inline(always)]
     fn terms(&self, leg: usize) -> [f64; 4] {
         match self.uniform {
@@ -28,34 +33,28 @@ impl Rows<'_> {
         }
     }
 
-    /// Value `k`, scaled.
+    /// Row `k` of the matrix (`1 <= k <= n - 2`): its lower, diagonal and
+    /// upper entries.
     #[inline(always)]
-    fn f(&self, k: usize) -> f64 {
-        self.values[k] * self.inv
-    }
-
-    /// Row `k` (`1 <= k <= n - 2`): lower, diagonal and upper entries, and
-    /// the right-hand side, the jump of the scaled data's slope.
-    #[inline(always)]
-    fn row(&self, k: usize) -> (f64, f64, f64, f64) {
+    fn matrix(&self, k: usize) -> (f64, f64, f64) {
         let knots = self.knots;
         let (hl, hr) = (knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
         let (p, q) = neighbour_weights(hl, hr);
         let [al, b1, _, _] = self.terms(k - 1);
         let [_, _, b2, cr] = self.terms(k);
-        let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
-        let rhs = q * (self.f(k + 1) - self.f(k)) - p * (self.f(k) - self.f(k - 1));
-        (lo, di, up, rhs)
+        through_row(p, q, al, b1, b2, cr)
     }
 
     /// The forward Thomas sweep over rows `lo + 1 ..= hi - 1` with the
-    /// deviation at `lo` taken as zero: `c'_k` and `r'_k` of each row, in
-    /// order, into `out`. The rows are [`Rows::row`]'s, formed from a window
-    /// over the knots and values that moves a knot a row, each alpha's terms
-    /// formed once; `PER` says whether the alphas differ (with one alpha
-    /// the knots pace the loop in their place).
+    /// deviation at `lo` taken as zero: `c'_k` and each coordinate's `r'_k`
+    /// of each row, in order, into `out`. A row is [`Rows::matrix`]'s with
+    /// the right-hand side `q (f_{k+1} - f_k) - p (f_k - f_{k-1})`, the jump
+    /// of the scaled data's slope, formed from a window over the knots and
+    /// values that moves a knot a row, each alpha's terms formed once; `PER`
+    /// says whether the alphas differ (with one alpha the knots pace the loop
+    /// in their place).
     #[inline(always)]
-    fn forward<const PER: bool>(&self, lo: usize, hi: usize, out: &mut Vec<[f64; 2]>) {
+    fn forward<const PER: bool>(&self, lo: usize, hi: usize, out: &mut Vec<Swept<D>>) {
         let legs = if PER { self.alphas } else { self.knots };
         let (Some(kn), Some(vs), Some(al)) = (
             self.knots.get(lo..=hi),
@@ -69,22 +68,25 @@ impl Rows<'_> {
         else {
             return;
         };
+        let scaled = |v: [f64; D]| -> [f64; D] { std::array::from_fn(|c| v[c] * self.inv[c]) };
         let one = self.uniform.unwrap_or_default();
         let (mut kc, mut hl) = (k1, k1 - k0);
-        let (mut fl, mut fc) = (v0 * self.inv, v1 * self.inv);
+        let (mut fl, mut fc) = (scaled(v0), scaled(v1));
         let mut left = self.terms(lo);
-        let (mut cp, mut rp) = (0.0, 0.0);
+        let (mut cp, mut rp) = (0.0, [0.0; D]);
         for ((&kr, &vr), &a) in kn.iter().zip(vs).zip(al) {
             let right = if PER { alpha_terms(a) } else { one };
             let hr = kr - kc;
-            let fr = vr * self.inv;
+            let fr = scaled(vr);
             let (p, q) = neighbour_weights(hl, hr);
             let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
-            let rhs = q * (fr - fc) - p * (fc - fl);
             let m = di - l * cp;
             cp = up / m;
-            rp = (rhs - l * rp) / m;
-            out.push([cp, rp]);
+            for c in 0..D {
+                let rhs = q * (fr[c] - fc[c]) - p * (fc[c] - fl[c]);
+                rp[c] = (rhs - l * rp[c]) / m;
+            }
+            out.push((cp, rp));
             (kc, hl, fl, fc, left) = (kr, hr, fc, fr, right);
         }
     }
@@ -93,7 +95,7 @@ impl Rows<'_> {
     /// and `|upper| / (diag - |lower|)`, both in `[0, 1]` by the dominance
     /// of every term (§11); anything else counts as 1, no damping.
     fn damping(&self, k: usize) -> (f64, f64) {
-        let (lo, di, up, _) = self.row(k);
+        let (lo, di, up) = self.matrix(k);
         let sane = |r: f64| if (0.0..=1.0).contains(&r) { r } else { 1.0 };
         (
             sane(lo.abs() / (di - up.abs())),
@@ -116,6 +118,21 @@ pub(crate) fn controls(
     scale: f64,
     out: &mut [f64],
 ) -> Option<f64> {
+    let (values, out) = (values.as_chunks::<1>().0, out.as_chunks_mut::<1>().0);
+    let [max] = solve_all(knots, values, alphas, uniform, [scale], out)?;
+    Some(max)
+}
+
+/// [`controls`] of `D` coordinates at once, each scaled by its own `scale`,
+/// with the largest magnitude of each coordinate's control values.
+fn solve_all<const D: usize>(
+    knots: &[f64],
+    values: &[[f64; D]],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    scale: [f64; D],
+    out: &mut [[f64; D]],
+) -> Option<[f64; D]> {
     let n = knots.len();
     if n < 2 || values.len() != n || out.len() != n || (uniform.is_none() && alphas.len() != n - 1)
     {
@@ -125,7 +142,7 @@ pub(crate) fn controls(
     let rows = Rows {
         knots,
         values,
-        inv: 1.0 / scale,
+        inv: scale.map(|s| 1.0 / s),
         alphas,
         uniform: uniform.map(alpha_terms),
     };
@@ -145,22 +162,24 @@ pub(crate) fn controls(
     for &c in &plan {
         let owned = c.kept().count();
         let (mine, later) = rest.split_at_mut(owned.min(rest.len()));
-        jobs.push((c, mine, Some(0.0)));
+        jobs.push((c, mine, Some([0.0; D])));
         rest = later;
     }
     chunks::each(n, &mut jobs, Vec::new, |scratch, (c, mine, max)| {
         *max = solve(&rows, *c, scale, mine, scratch);
     });
-    jobs.iter()
-        .try_fold(0.0f64, |m, &(_, _, max)| Some(m.max(max?)))
+    jobs.iter().try_fold([0.0f64; D], |m, &(_, _, max)| {
+        let max = max?;
+        Some(std::array::from_fn(|c| m[c].max(max[c])))
+    })
 }
 
 /// The control points of the open curve through `points` (`dim`
 /// coordinates a point, flat) at the parameters `knots` with `alphas` (one
-/// per leg) unless `uniform` gives the one alpha: [`controls`] of each
-/// coordinate, each scaled by its own power
-/// of two while it is solved. `None` when a control value leaves the range
-/// of a double.
+/// per leg) unless `uniform` gives the one alpha: the sweeps of [`controls`]
+/// with every coordinate eliminated at once (one at a time beyond three),
+/// each scaled by its own power of two while it is solved. `None` when a
+/// control value leaves the range of a double.
 pub(crate) fn curve_controls(
     knots: &[f64],
     points: &[f64],
@@ -168,9 +187,28 @@ pub(crate) fn curve_controls(
     alphas: &[f64],
     uniform: Option<f64>,
 ) -> Option<Vec<f64>> {
+    fn fixed<const D: usize>(
+        knots: &[f64],
+        points: &[f64],
+        alphas: &[f64],
+        uniform: Option<f64>,
+    ) -> Option<Vec<f64>> {
+        let values = points.as_chunks::<D>().0;
+        let scale = std::array::from_fn(|c| power_of_two_scale(values.iter().map(|p| &p[c])));
+        let mut out = vec![0.0; points.len()];
+        let dst = out.as_chunks_mut::<D>().0;
+        solve_all(knots, values, alphas, uniform, scale, dst)?;
+        Some(out)
+    }
     let n = knots.len();
     if dim == 0 || points.len() != n * dim {
         return None;
+    }
+    match dim {
+        1 => return fixed::<1>(knots, points, alphas, uniform),
+        2 => return fixed::<2>(knots, points, alphas, uniform),
+        3 => return fixed::<3>(knots, points, alphas, uniform),
+        _ => {}
     }
     let mut out = vec![0.0; points.len()];
     let (mut coord, mut g) = (vec![0.0; n], vec![0.0; n]);
@@ -190,15 +228,15 @@ pub(crate) fn curve_controls(
 /// One chunk `c` of the system: the forward sweep over its rows
 /// `lo + 1 ..= hi - 1` (the deviations at `lo` and `hi` taken as zero) into
 /// `scratch`, then the backward sweep, writing the control values of the
-/// knots it keeps into `out`. Their largest magnitude, or `None` when one is
-/// not finite.
-fn solve(
-    rows: &Rows<'_>,
+/// knots it keeps into `out`. The largest magnitude of each coordinate's,
+/// or `None` when one is not finite.
+fn solve<const D: usize>(
+    rows: &Rows<'_, D>,
     c: Chunk,
-    scale: f64,
-    out: &mut [f64],
-    scratch: &mut Vec<[f64; 2]>,
-) -> Option<f64> {
+    scale: [f64; D],
+    out: &mut [[f64; D]],
+    scratch: &mut Vec<Swept<D>>,
+) -> Option<[f64; D]> {
     let n = rows.knots.len();
     let first = *c.kept().start();
     if out.len() != c.kept().count() {
@@ -225,25 +263,31 @@ fn solve(
         // Not reached: the chunk's rows hold its knots.
         return None;
     };
-    let mut next = 0.0;
-    for &[cp, rp] in past.iter().rev() {
-        next = rp - cp * next;
+    let mut next = [0.0; D];
+    for &(cp, rp) in past.iter().rev() {
+        for c in 0..D {
+            next[c] = rp[c] - cp * next[c];
+        }
     }
-    let mut max = 0.0f64;
+    let mut max = [0.0f64; D];
     let mut finite = true;
-    for ((&[cp, rp], g), &v) in own.iter().zip(dst).zip(src).rev() {
-        let d = rp - cp * next;
-        next = d;
-        *g = (v * rows.inv - d) * scale;
-        let a = g.abs();
-        finite &= a <= f64::MAX;
-        max = if a > max { a } else { max };
+    for ((&(cp, rp), g), v) in own.iter().zip(dst).zip(src).rev() {
+        for c in 0..D {
+            let d = rp[c] - cp * next[c];
+            next[c] = d;
+            g[c] = (v[c] * rows.inv[c] - d) * scale[c];
+            let a = g[c].abs();
+            finite &= a <= f64::MAX;
+            max[c] = if a > max[c] { a } else { max[c] };
+        }
     }
     // The end points are their own control values.
     for k in [0, n - 1] {
         if (first..=c.end).contains(&k) {
             out[k - first] = rows.values[k];
-            max = max.max(rows.values[k].abs());
+            for (m, v) in max.iter_mut().zip(rows.values[k]) {
+                *m = m.max(v.abs());
+            }
         }
     }
     finite.then_some(max)
@@ -260,14 +304,16 @@ mod tests {
         let n = knots.len();
         let rows = Rows {
             knots,
-            values,
-            inv: 1.0,
+            values: values.as_chunks::<1>().0,
+            inv: [1.0],
             alphas,
             uniform: uniform.map(alpha_terms),
         };
         let (mut c, mut r) = (vec![0.0; n], vec![0.0; n]);
         for k in 1..n - 1 {
-            let (lo, di, up, rhs) = rows.row(k);
+            let (lo, di, up) = rows.matrix(k);
+            let (p, q) = neighbour_weights(knots[k] - knots[k - 1], knots[k + 1] - knots[k]);
+            let rhs = q * (values[k + 1] - values[k]) - p * (values[k] - values[k - 1]);
             let m = di - lo * c[k - 1];
             c[k] = up / m;
             r[k] = (rhs - lo * r[k - 1]) / m;
@@ -289,8 +335,8 @@ mod tests {
                 let (knots, values, a, uniform) = case(n, grid, kind, seed);
                 let rows = Rows {
                     knots: &knots,
-                    values: &values,
-                    inv: 1.0,
+                    values: values.as_chunks::<1>().0,
+                    inv: [1.0],
                     alphas: &a,
                     uniform: uniform.map(alpha_terms),
                 };
@@ -325,8 +371,8 @@ mod tests {
         let (knots, values, _, _) = case(n, 1, 5, 3);
         let rows = Rows {
             knots: &knots,
-            values: &values,
-            inv: 1.0,
+            values: values.as_chunks::<1>().0,
+            inv: [1.0],
             alphas: &[],
             uniform: Some(alpha_terms(0.5)),
         };
@@ -380,5 +426,40 @@ mod tests {
             })
             .collect();
         assert!(runs.iter().all(|r| *r == runs[0]));
+    }
+
+    #[test]
+    fn every_coordinate_at_once_gives_each_coordinate_s_bits() {
+        // A curve's coordinates are eliminated together; each must come out
+        // as the one-coordinate solve gives it, in chunks and without.
+        for (n, seed) in [(1000, 1u64), (5 * chunks::CHUNK + 17, 2)] {
+            for dim in 1..=3 {
+                for kind in [0u8, 5] {
+                    let (knots, _, a, uniform) = case(n, 1, kind, seed);
+                    // Coordinates of their own data and magnitudes.
+                    let coords: Vec<Vec<f64>> = (0..dim)
+                        .map(|c| {
+                            let v = case(n, 0, 0, seed + 100 + c as u64).1;
+                            v.iter().map(|x| x * 1e3f64.powi(c as i32)).collect()
+                        })
+                        .collect();
+                    let pts: Vec<f64> = (0..n * dim).map(|i| coords[i % dim][i / dim]).collect();
+                    let got = curve_controls(&knots, &pts, dim, &a, uniform).unwrap();
+                    for c in 0..dim {
+                        let coord = &coords[c];
+                        let mut want = vec![0.0; n];
+                        let scale = power_of_two_scale(coord);
+                        controls(&knots, coord, &a, uniform, scale, &mut want).unwrap();
+                        for k in 0..n {
+                            assert_eq!(
+                                got[k * dim + c].to_bits(),
+                                want[k].to_bits(),
+                                "n {n}, dim {dim}, alphas {kind}, coordinate {c}, knot {k}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 }
