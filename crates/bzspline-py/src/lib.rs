@@ -10,6 +10,7 @@ mod alloc;
 mod args;
 mod curve;
 mod geo;
+mod spare;
 mod spline;
 mod threads;
 

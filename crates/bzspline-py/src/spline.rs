@@ -203,6 +203,12 @@ impl Spline {
     }
 }
 
+impl Drop for Spline {
+    fn drop(&mut self) {
+        crate::spare::keep(&mut self.inner);
+    }
+}
+
 fn build_spline(
     x: &[f64],
     y: &[f64],
@@ -216,7 +222,7 @@ fn build_spline(
             if through {
                 bzspline::Spline::through(x, y, alpha.as_alphas())
             } else {
-                bzspline::Spline::build(x, y, alpha.as_alphas())
+                crate::spare::build(x, y, alpha.as_alphas())
             }
         })
     });
@@ -792,7 +798,7 @@ pub(crate) fn _spline_from_parts(
     posterior: Option<&Bound<'_, PyAny>>,
     robustness: Option<Vec<f64>>,
 ) -> PyResult<Spline> {
-    let s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
+    let mut s = Spline::new(py, x, y, Some(alpha), through, Some(extrapolate))?;
     let anti = (nu < 0).then(|| Arc::new(s.inner.antiderivative()));
     let posterior = match posterior.filter(|p| !p.is_none()) {
         None => None,
@@ -809,15 +815,13 @@ pub(crate) fn _spline_from_parts(
             ))
         }
     };
-    Ok(Spline {
-        nu: nu.max(-1),
-        anti,
-        offset,
-        smoothing,
-        posterior,
-        robustness: robustness.map(Arc::new),
-        ..s
-    })
+    s.nu = nu.max(-1);
+    s.anti = anti;
+    s.offset = offset;
+    s.smoothing = smoothing;
+    s.posterior = posterior;
+    s.robustness = robustness.map(Arc::new);
+    Ok(s)
 }
 
 /// A posterior as `__reduce__` passes it: `(knots, alphas, covariances,

@@ -1,7 +1,8 @@
 """The extension's allocator keeps a few freed blocks of 4 MiB or more for the
-next large spline: a build into kept memory gives the bits of a build into new
-memory, and what is kept stays bounded (512 MiB at most) however many sizes
-come and go."""
+next large spline, and the last large spline dropped is kept whole to be
+rebuilt as the next one of about its size: a build into kept memory gives the
+bits of a build into new memory, a spline still in use is never taken, and
+what is kept stays bounded however many sizes come and go."""
 
 import hashlib
 import os
@@ -82,3 +83,47 @@ def test_the_bits_do_not_depend_on_what_ran_before_in_this_process():
         del junk
         got = hashlib.sha256(bzspline.Spline(x, y).segments.tobytes()).hexdigest()
         assert got == want
+
+
+def test_a_spline_rebuilt_in_a_dropped_one_has_the_bits_of_a_fresh_one():
+    # In a process of its own, so that the first build of each size has
+    # nothing kept to use (the smaller cannot use the larger's spline, whose
+    # knots are more than twice its own... until the larger is dropped).
+    lines = run("""
+x, y = data(300_001, 6)
+small = digest(bzspline.Spline(x, y))
+u, v = data(400_001, 7)
+large = digest(bzspline.Spline(u, v))
+# The large spline is kept: the small one is now rebuilt in it, and a large
+# one of other data and alphas in the small one's.
+print(small, large)
+print(digest(bzspline.Spline(x, y)))
+w = bzspline.Spline(u, -v, alpha=np.full(400_000, 0.6))
+del w
+print(digest(bzspline.Spline(u, v)))
+# A refused build leaves what is kept as it was.
+bad = y.copy(); bad[1234] = np.nan
+try:
+    bzspline.Spline(x, bad)
+except ValueError as e:
+    print("refused" if "1234" in str(e) else "unnamed")
+print(digest(bzspline.Spline(x, y)))
+""")
+    small, large, *rest = lines
+    assert rest == [small, large, "refused", small]
+
+
+def test_a_spline_still_in_use_is_not_rebuilt():
+    # The derivative shares its spline's pieces: dropping the spline leaves
+    # them in use, and the next build of that size must not take them.
+    got = run("""
+x, y = data(300_001, 8)
+s = bzspline.Spline(x, y)
+d = s.derivative()
+q = np.linspace(x[0], x[-1], 1001)
+before = d(q).tobytes()
+del s
+t = bzspline.Spline(x, -y)
+print(d(q).tobytes() == before, np.array_equal(t(q), -bzspline.Spline(x, y)(q)))
+""")
+    assert got == ["True", "True"]
