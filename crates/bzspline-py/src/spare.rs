@@ -3,7 +3,7 @@
 //!
 //! A new spline of a million knots must clear its 48 MB of pieces, knots and
 //! values before the sweeps write them (safe Rust never hands out memory it
-//! has not written), and that clearing costs a third of the build. A spline
+//! has not written), and that clearing costs about a quarter of the build. A spline
 //! rebuilt in the memory of another ([`bzspline::Spline::rebuild`]) writes
 //! over memory that is already its own: the build of a loop that drops each
 //! spline before making the next costs what a rebuild costs. One spline is

@@ -31,6 +31,17 @@ impl Default for Alphas<'_> {
     }
 }
 
+impl<'a> Alphas<'a> {
+    /// The form the sweeps take: the alphas given one per interval (none for
+    /// one alpha), and the one alpha when there is one.
+    pub(crate) fn parts(self) -> (&'a [f64], Option<f64>) {
+        match self {
+            Alphas::Uniform(a) => (&[], Some(a)),
+            Alphas::PerInterval(a) => (a, None),
+        }
+    }
+}
+
 /// The owned form of [`Alphas`]: what an option or a binding's argument
 /// holds (one alpha, or one per interval) before there are knots to count.
 ///

@@ -108,10 +108,7 @@ fn through_points(
     closed: bool,
     alphas: Alphas<'_>,
 ) -> Option<Vec<f64>> {
-    let (given, uniform) = match alphas {
-        Alphas::Uniform(a) => (&[][..], Some(a)),
-        Alphas::PerInterval(a) => (a, None),
-    };
+    let (given, uniform) = alphas.parts();
     if !closed {
         return fast::through::curve_controls(knots, points, dim, given, uniform);
     }
@@ -252,11 +249,7 @@ impl Curve {
         c.chord_scale = chord_scale;
         c.knot_unit = knot_unit;
         // One alpha for every leg: known here, no pass over them to find it.
-        let uniform = match alphas {
-            Alphas::Uniform(a) => Some(a),
-            Alphas::PerInterval(_) => None,
-        };
-        c.solve_all(points, uniform);
+        c.solve_all(points, alphas.parts().1);
         Ok(())
     }
 

@@ -237,10 +237,7 @@ impl Spline {
             return Self::through_checked(knots, values, alphas);
         };
         let scale = scale_for_max(max_abs);
-        let (given, uniform) = match alphas {
-            Alphas::Uniform(a) => (&[][..], Some(a)),
-            Alphas::PerInterval(a) => (a, None),
-        };
+        let (given, uniform) = alphas.parts();
         let mut g = vec![0.0; knots.len()];
         let max_g = crate::fast::through::controls(knots, values, given, uniform, scale, &mut g)
             .ok_or(Error::Overflow {
