@@ -634,3 +634,47 @@ fn output_buffers_are_written_not_judged() {
     f.eval_many(&xs, &mut out).expect("a buffer holding NaN");
     assert_eq!(out, want);
 }
+
+#[test]
+fn a_fault_anywhere_in_a_large_input_is_found_and_named() {
+    // From 131,073 knots the one-pass check runs in two halves side by side
+    // (with the `rayon` feature): a fault at either end of either half, or
+    // at the last knot, is found, and a rebuild into a spline of that size
+    // refuses it too, leaving the spline as it was.
+    let n = 300_001;
+    let half = (n - 1) / 2 / 16 * 16;
+    let x: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    let f: Vec<f64> = x.iter().map(|v| (v * 0.01).sin()).collect();
+    let a = vec![0.5; n - 1];
+    let mut s = Spline::new(&x, &f).unwrap();
+    let before = s.eval(1234.5).unwrap();
+    for at in [1, half - 1, half, half + 1, n - 2, n - 1] {
+        let mut bad_x = x.clone();
+        bad_x[at] = bad_x[at - 1];
+        let want = Error::NotIncreasing {
+            index: at,
+            previous: x[at - 1],
+            value: x[at - 1],
+        };
+        assert_eq!(
+            Spline::new(&bad_x, &f).err(),
+            Some(want.clone()),
+            "knot {at}"
+        );
+        assert_eq!(s.rebuild(&bad_x, &f, Default::default()).err(), Some(want));
+        let mut bad_f = f.clone();
+        bad_f[at] = f64::NAN;
+        assert_non_finite(Spline::new(&x, &bad_f), Field::Value, at, f64::NAN);
+        let leg = at.min(n - 2);
+        let mut bad_a = a.clone();
+        bad_a[leg] = above(ALPHA_MAX);
+        assert!(
+            matches!(
+                Spline::with_alphas(&x, &f, &bad_a),
+                Err(Error::AlphaOutOfRange { interval, .. }) if interval == leg
+            ),
+            "alpha {leg}"
+        );
+    }
+    assert!(same(s.eval(1234.5).unwrap(), before));
+}

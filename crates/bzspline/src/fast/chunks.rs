@@ -196,6 +196,24 @@ pub(crate) fn cut(m: usize, damping: impl Fn(usize) -> (f64, f64)) -> Vec<Chunk>
     chunks
 }
 
+/// `a()` and `b()`, side by side on the current rayon pool (with the `rayon`
+/// feature) for inputs of more than `PARALLEL_MIN` knots, else one after
+/// the other.
+pub(crate) fn both<A: Send, B: Send>(
+    knots: usize,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    #[cfg(feature = "rayon")]
+    {
+        if rayon::current_num_threads() > 1 && knots > PARALLEL_MIN {
+            return rayon::join(a, b);
+        }
+    }
+    let _ = knots;
+    (a(), b())
+}
+
 /// Makes `v` `n` items long, keeping what it holds and filling new slots
 /// with `value`; on several threads from [`PARALLEL_MIN`] items, so that a
 /// fresh output's first touch (page faults and clearing) is shared as its

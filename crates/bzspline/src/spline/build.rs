@@ -5,7 +5,7 @@
 use super::{Extrapolate, Shape, Spline, TINY_SPAN};
 use crate::error::{Error, Field};
 use crate::fast::search::{Summary, STRIDE};
-use crate::fast::{sweep, Piece};
+use crate::fast::{chunks, sweep, Piece};
 use crate::method::{self, piece_coefs, OpenSystem};
 use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
@@ -33,8 +33,9 @@ pub(super) fn validate_step_by_step(
     Ok((widths, resolved))
 }
 
-/// Every check of [`Spline::build`] in one branch-free pass: `Some(max |F|)`
-/// when the input is valid, `None` when something is wrong (the step-by-step
+/// Every check of [`Spline::build`] in one branch-free pass (two halves side
+/// by side on large inputs, [`chunks::both`]): `Some(max |F|)` when the
+/// input is valid, `None` when something is wrong (the step-by-step
 /// validation then finds what). A finite positive span and widths that are
 /// positive and at least `span * MIN_RELATIVE_INTERVAL` imply finite,
 /// strictly increasing knots.
@@ -57,61 +58,108 @@ pub(super) fn quick_check(
         return None;
     }
     let thr = span * MIN_RELATIVE_INTERVAL;
-    // Widths in four lanes, so that the loop vectorises; a stretch of
-    // `STRIDE` knots at a time, whose first goes into the summary.
+    let (list, one) = alphas.parts();
+    let alphas_ok = match one {
+        Some(a) => (ALPHA_MIN..=ALPHA_MAX).contains(&a),
+        None => list.len() == n - 1,
+    };
+    if !alphas_ok {
+        return None;
+    }
+    // Two stretches of widths, the first a whole number of `STRIDE`s, side
+    // by side on large inputs; each writes its share of the summary.
     let every = &mut summary.every;
     every.clear();
-    every.reserve(n.div_ceil(STRIDE));
-    let mut lanes = [true; 4];
-    let (left, right) = (&knots[..n - 1], &knots[1..]);
-    let (lc, rc) = (left.chunks_exact(STRIDE), right.chunks_exact(STRIDE));
-    let (lr, rr) = (lc.remainder(), rc.remainder());
-    for (l, r) in lc.zip(rc) {
-        every.push(l[0]);
-        for j in 0..STRIDE {
-            let d = r[j] - l[j];
-            lanes[j % 4] &= (d >= thr) & (d > 0.0);
+    every.resize((n - 1) / STRIDE + 1, 0.0);
+    let half = (n - 1) / 2 / STRIDE * STRIDE;
+    let (e0, e1) = every.split_at_mut(half / STRIDE);
+    let check = Stretches {
+        knots,
+        values,
+        alphas: list,
+        thr,
+    };
+    let (a, b) = chunks::both(
+        n,
+        || check.widths(0..half, e0),
+        || check.widths(half..n - 1, e1),
+    );
+    let m = a?.max(b?);
+    summary.formed();
+    Some(m)
+}
+
+/// The input of [`quick_check`], checked a stretch of widths at a time.
+struct Stretches<'a> {
+    knots: &'a [f64],
+    values: &'a [f64],
+    /// One per interval, or none for one alpha (checked apart).
+    alphas: &'a [f64],
+    thr: f64,
+}
+
+impl Stretches<'_> {
+    /// The checks of widths `w` (`w.start` a multiple of [`STRIDE`]), of the
+    /// values at their left ends (and the last value with the last width),
+    /// and of their alphas: `Some(max |F|)` of those values when they pass.
+    /// `every` gets every `STRIDE`-th knot from `w.start`.
+    fn widths(&self, w: std::ops::Range<usize>, every: &mut [f64]) -> Option<f64> {
+        let (knots, n, thr) = (self.knots, self.knots.len(), self.thr);
+        // Widths in four lanes, so that the loop vectorises; a stretch of
+        // `STRIDE` knots at a time, whose first goes into the summary.
+        let mut lanes = [true; 4];
+        let (left, right) = (&knots[w.start..w.end], &knots[w.start + 1..=w.end]);
+        let (lc, rc) = (left.chunks_exact(STRIDE), right.chunks_exact(STRIDE));
+        let (lr, rr) = (lc.remainder(), rc.remainder());
+        let mut slots = every.iter_mut();
+        for ((l, r), e) in lc.zip(rc).zip(&mut slots) {
+            *e = l[0];
+            for j in 0..STRIDE {
+                let d = r[j] - l[j];
+                lanes[j % 4] &= (d >= thr) & (d > 0.0);
+            }
         }
-    }
-    for (l, r) in lr.iter().zip(rr) {
-        let d = r - l;
-        lanes[0] &= (d >= thr) & (d > 0.0);
-    }
-    // The stretches the loop did not reach (the last knot's included).
-    every.extend(knots[(n - 1) / STRIDE * STRIDE..].iter().step_by(STRIDE));
-    let mut ok = lanes.iter().all(|&b| b);
-    // Four running maxima and finiteness flags, so that the loop vectorises.
-    let mut mx = [0.0f64; 4];
-    let mut fin = [true; 4];
-    let chunks = values.chunks_exact(4);
-    let rest = chunks.remainder();
-    for c in chunks {
-        for j in 0..4 {
-            let a = c[j].abs();
-            mx[j] = if a > mx[j] { a } else { mx[j] };
-            fin[j] &= c[j].is_finite();
+        for (l, r) in lr.iter().zip(rr) {
+            let d = r - l;
+            lanes[0] &= (d >= thr) & (d > 0.0);
         }
-    }
-    for &v in rest {
-        let a = v.abs();
-        mx[0] = if a > mx[0] { a } else { mx[0] };
-        fin[0] &= v.is_finite();
-    }
-    ok &= fin.iter().all(|&f| f);
-    match alphas {
-        Alphas::Uniform(a) => ok &= (ALPHA_MIN..=ALPHA_MAX).contains(&a),
-        Alphas::PerInterval(a) => {
-            ok &= a.len() == n - 1;
+        // The stretches the loop did not reach (the last knot's included).
+        let tail = w.start + (w.end - w.start) / STRIDE * STRIDE;
+        for (e, k) in slots.zip(knots[tail..].iter().step_by(STRIDE)) {
+            *e = *k;
+        }
+        let mut ok = lanes.iter().all(|&b| b);
+        // Four running maxima and finiteness flags, so that the loop vectorises.
+        let values = if w.end == n - 1 {
+            &self.values[w.start..]
+        } else {
+            &self.values[w.clone()]
+        };
+        let mut mx = [0.0f64; 4];
+        let mut fin = [true; 4];
+        let chunks = values.chunks_exact(4);
+        let rest = chunks.remainder();
+        for c in chunks {
+            for j in 0..4 {
+                let a = c[j].abs();
+                mx[j] = if a > mx[j] { a } else { mx[j] };
+                fin[j] &= c[j].is_finite();
+            }
+        }
+        for &v in rest {
+            let a = v.abs();
+            mx[0] = if a > mx[0] { a } else { mx[0] };
+            fin[0] &= v.is_finite();
+        }
+        ok &= fin.iter().all(|&f| f);
+        if let Some(a) = self.alphas.get(w) {
             ok &= a
                 .iter()
                 .fold(true, |ok, a| ok & (ALPHA_MIN..=ALPHA_MAX).contains(a));
         }
+        let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
+        ok.then_some(m)
     }
-    let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
-    if ok {
-        summary.formed();
-    }
-    ok.then_some(m)
 }
 
 impl Spline {
