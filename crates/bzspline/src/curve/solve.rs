@@ -4,8 +4,8 @@
 use super::{norm, Curve, ParamKind};
 use crate::error::Error;
 use crate::fast::{self, Piece};
+use crate::method::scale_for_max;
 use crate::method::{alpha_terms, piece_coefs_with, through_controls, ClosedSystem, OpenSystem};
-use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::traits::ParamCurve;
 use crate::validate::{check_knots, Alphas};
@@ -78,6 +78,38 @@ pub(super) fn chord_step(
     } else {
         len
     }
+}
+
+/// The parameter step of every leg into `steps` (one a leg; the leg from
+/// the last point to the first closes a closed curve), [`chord_step`]'s:
+/// in stretches side by side on large curves ([`fast::chunks::each`]),
+/// each step from its own two points.
+fn chord_steps(kind: &ParamKind, points: &[f64], dim: usize, chord_scale: f64, steps: &mut [f64]) {
+    /// Legs a stretch.
+    const STRETCH: usize = 1 << 14;
+    let n = points.len() / dim;
+    let mut jobs: Vec<(usize, &mut [f64])> = steps
+        .chunks_mut(STRETCH)
+        .enumerate()
+        .map(|(i, s)| (i * STRETCH, s))
+        .collect();
+    fast::chunks::each(
+        n,
+        &mut jobs,
+        || vec![0.0; dim],
+        |chord, (first, out)| {
+            for (k, step) in (*first..).zip(out.iter_mut()) {
+                let j = (k + 1) % n;
+                *step = chord_step(
+                    kind,
+                    &points[k * dim..(k + 1) * dim],
+                    &points[j * dim..(j + 1) * dim],
+                    chord_scale,
+                    chord,
+                );
+            }
+        },
+    );
 }
 
 /// What [`Curve::solve_into`] solves: validated points (`dim` coordinates a
@@ -163,21 +195,15 @@ impl Curve {
             (ParamKind::Given, Some(g)) => Some(g.to_vec()),
             (ParamKind::Uniform, _) | (ParamKind::Given, None) => None,
             (ParamKind::Chordal | ParamKind::Centripetal, _) => {
-                chord_scale = power_of_two_scale(points);
-                let mut chord = vec![0.0; dim];
-                let mut knots = Vec::with_capacity(legs + 1);
+                // The largest magnitude of all the points, from the survey's.
+                chord_scale = scale_for_max(maxes.iter().fold(0.0f64, |m, &v| m.max(v)));
+                let mut knots = vec![0.0; legs + 1];
+                chord_steps(&kind, points, dim, chord_scale, &mut knots[1..]);
+                // Summed in order, for the same bits on any number of threads.
                 let mut acc = 0.0;
-                knots.push(0.0);
-                for k in 0..legs {
-                    let j = (k + 1) % n;
-                    acc += chord_step(
-                        &kind,
-                        &points[k * dim..(k + 1) * dim],
-                        &points[j * dim..(j + 1) * dim],
-                        chord_scale,
-                        &mut chord,
-                    );
-                    knots.push(acc);
+                for k in &mut knots[1..] {
+                    acc += *k;
+                    *k = acc;
                 }
                 let unit = if kind == ParamKind::Chordal {
                     chord_scale

@@ -426,3 +426,52 @@ mod serde_tests {
         assert!(e.to_string().contains("repeats"), "{e}");
     }
 }
+
+#[cfg(feature = "rayon")]
+#[test]
+fn chord_parameters_of_a_long_curve_are_its_chords_on_any_number_of_threads() {
+    // From 131,073 points the legs' steps are formed in stretches side by
+    // side, then summed in order: each step is the chord (or its square
+    // root), and 1, 2 and 16 threads give the same bits.
+    let mut rng = Rng(17);
+    let n = 200_001;
+    let pts: Vec<f64> = (0..2 * n).map(|_| 200.0 * rng.next() - 100.0).collect();
+    for closed in [false, true] {
+        for param in [Param::Chordal, Param::Centripetal] {
+            let build = |threads| {
+                crate::testing::on_threads(threads, || {
+                    CurveBuilder::new(&pts, 2)
+                        .closed(closed)
+                        .param(param.clone())
+                        .build()
+                        .unwrap()
+                        .knots()
+                        .to_vec()
+                })
+            };
+            let knots = build(2);
+            let legs = if closed { n } else { n - 1 };
+            assert_eq!(knots.len(), legs + 1);
+            for k in 0..legs {
+                let j = (k + 1) % n;
+                let chord = (pts[2 * j] - pts[2 * k]).hypot(pts[2 * j + 1] - pts[2 * k + 1]);
+                let want = if param == Param::Centripetal {
+                    chord.sqrt()
+                } else {
+                    chord
+                };
+                // The sums' rounding, and the step's own.
+                let got = knots[k + 1] - knots[k];
+                let tol = 4.0 * f64::EPSILON * knots[k + 1].abs() + 1e-12 * want;
+                assert!(
+                    (got - want).abs() <= tol,
+                    "closed {closed}, {param:?}, leg {k}: {got} against {want}"
+                );
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            for threads in [1, 16] {
+                assert_eq!(bits(&build(threads)), bits(&knots), "{threads} threads");
+            }
+        }
+    }
+}
