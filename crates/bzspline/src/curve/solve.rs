@@ -1,5 +1,6 @@
-//! Solving a curve: surveying its points, the parameter steps, the open and
-//! closed systems (factored once, solved once a coordinate) and the pieces.
+//! Solving a curve: surveying its points, the parameter steps, the control
+//! points of a curve through its points, the open and closed systems
+//! (factored once, solved once a coordinate) and the pieces.
 
 use super::{norm, Curve, ParamKind};
 use crate::error::Error;
