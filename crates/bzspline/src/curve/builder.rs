@@ -324,10 +324,11 @@ impl<'a> CurveBuilder<'a> {
     }
 
     /// Validates the inputs and solves into `curve`, reusing its allocations:
-    /// rebuilding a curve of the same size allocates nothing (with uniform
-    /// parameters and no repeated points), which saves the page faults of fresh
-    /// memory on long curves. The result is the curve [`CurveBuilder::build`]
-    /// returns.
+    /// rebuilding a curve of the same size allocates none of its own arrays
+    /// (with uniform parameters and no repeated points), which saves the page
+    /// faults of fresh memory on long curves; from 65,537 points the chunked
+    /// solve takes a few small allocations (under 100 kB for a million points).
+    /// The result is the curve [`CurveBuilder::build`] returns.
     ///
     /// # Errors
     ///
@@ -375,9 +376,17 @@ impl Curve {
                 found: b.points.len(),
             });
         }
-        // One pass: finite coordinates, repeated neighbours, largest magnitudes.
-        let mut maxes = Vec::new();
-        let Some(repeats) = survey(&b.points, dim, &mut maxes) else {
+        // One pass: finite coordinates, repeated neighbours, largest magnitudes
+        // (on the stack up to eight coordinates: a rebuild allocates nothing).
+        let (mut small, mut large) = ([0.0f64; 8], Vec::new());
+        let maxes: &mut [f64] = match small.get_mut(..dim) {
+            Some(m) => m,
+            None => {
+                large.resize(dim, 0.0);
+                &mut large
+            }
+        };
+        let Some(repeats) = survey(&b.points, dim, maxes) else {
             let i = b.points.iter().position(|v| !v.is_finite()).unwrap_or(0);
             return Err(Error::NonFinite {
                 field: Field::Coordinate,
@@ -423,7 +432,7 @@ impl Curve {
                 closed: b.closed,
                 kind,
                 points: &b.points,
-                maxes: &maxes,
+                maxes,
                 dropped: Vec::new(),
                 given,
                 alphas: choice,
@@ -468,7 +477,7 @@ impl Curve {
             closed: b.closed,
             kind,
             points: &points,
-            maxes: &maxes,
+            maxes,
             dropped,
             given,
             alphas,

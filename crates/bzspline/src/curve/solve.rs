@@ -12,10 +12,10 @@ use crate::traits::ParamCurve;
 use crate::validate::{check_knots, Alphas};
 
 /// One pass over points of `dim` coordinates: `None` if a coordinate is not
-/// finite, else whether two consecutive points are equal; `maxes` gets the
-/// largest magnitude of each coordinate.
-pub(super) fn survey(points: &[f64], dim: usize, maxes: &mut Vec<f64>) -> Option<bool> {
-    pub(super) fn fixed<const D: usize>(points: &[f64], maxes: &mut Vec<f64>) -> Option<bool> {
+/// finite, else whether two consecutive points are equal; `maxes` (`dim`
+/// long) gets the largest magnitude of each coordinate.
+pub(super) fn survey(points: &[f64], dim: usize, maxes: &mut [f64]) -> Option<bool> {
+    pub(super) fn fixed<const D: usize>(points: &[f64], maxes: &mut [f64]) -> Option<bool> {
         let (pts, _) = points.as_chunks::<D>();
         let mut mx = [0.0f64; D];
         let mut finite = true;
@@ -31,8 +31,9 @@ pub(super) fn survey(points: &[f64], dim: usize, maxes: &mut Vec<f64>) -> Option
             repeat |= *p == prev;
             prev = *p;
         }
-        maxes.clear();
-        maxes.extend_from_slice(&mx);
+        for (m, x) in maxes.iter_mut().zip(mx) {
+            *m = x;
+        }
         finite.then_some(repeat)
     }
     match dim {
@@ -40,8 +41,7 @@ pub(super) fn survey(points: &[f64], dim: usize, maxes: &mut Vec<f64>) -> Option
         2 => fixed::<2>(points, maxes),
         3 => fixed::<3>(points, maxes),
         _ => {
-            maxes.clear();
-            maxes.resize(dim, 0.0);
+            maxes.fill(0.0);
             if points.iter().any(|v| !v.is_finite()) {
                 return None;
             }
@@ -241,6 +241,7 @@ impl Curve {
                 through_points(knots, points, dim, closed, alphas).ok_or(Error::Overflow {
                     what: "a solved control point",
                 })?;
+            own_maxes.resize(dim, 0.0);
             survey(&controls, dim, &mut own_maxes);
             (kind, chord_scale, knot_unit) = (ParamKind::Given, 1.0, 1.0);
             Some(controls)
@@ -292,7 +293,7 @@ impl Curve {
         alphas: &[f64],
     ) -> Result<Self, Error> {
         let mut c = Curve::empty();
-        let mut maxes = Vec::new();
+        let mut maxes = vec![0.0; dim];
         survey(points, dim, &mut maxes);
         let input = Input {
             dim,

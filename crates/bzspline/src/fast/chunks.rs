@@ -279,13 +279,14 @@ struct Scratch<const D: usize> {
 }
 
 impl<const D: usize> Scratch<D> {
+    /// Empty: each grows to the overlaps of the chunks it serves (tens of
+    /// rows, at most [`MAX_OVERLAP`]), since rayon may make one for every
+    /// piece of work it splits off.
     fn new() -> Self {
-        // The overlap's rows on one side, and their legs.
-        let rows = MAX_OVERLAP + 2;
         Scratch {
-            coefs: Vec::with_capacity(rows * D),
-            second: Vec::with_capacity(rows),
-            first: Vec::with_capacity(rows),
+            coefs: Vec::new(),
+            second: Vec::new(),
+            first: Vec::new(),
         }
     }
 }
