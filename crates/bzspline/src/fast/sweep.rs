@@ -730,7 +730,9 @@ impl Legs for Vec<Piece> {
     }
 }
 
-/// A slice filled from the front by [`Legs::next`].
+/// A slice filled from the front by [`Legs::next`]. Its slots are handed
+/// out as they are (old pieces, on a rebuild): the substitution writes every
+/// one it asks for.
 pub(super) struct Fill<'a>(pub(super) &'a mut [Piece]);
 
 impl Legs for Fill<'_> {
@@ -739,7 +741,6 @@ impl Legs for Fill<'_> {
         let rest = core::mem::take(&mut self.0);
         let (now, later) = rest.split_at_mut(count.min(rest.len()));
         self.0 = later;
-        now.fill(Piece([0.0; 4]));
         now
     }
 }
