@@ -91,6 +91,7 @@ mod flatten;
 mod fraction;
 #[cfg(feature = "kurbo")]
 mod kurbo_path;
+mod lanes;
 pub(crate) mod method;
 mod num;
 mod pieces;

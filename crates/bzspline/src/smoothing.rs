@@ -5,7 +5,6 @@
 //! `lambda`, O(N) time and memory, the trace of the influence matrix included.
 
 mod cyclic;
-mod lanes;
 mod posterior;
 mod robust;
 mod system;

@@ -21,7 +21,7 @@
 // Small fixed-size matrices read best indexed as they are written on paper.
 #![allow(clippy::needless_range_loop)]
 
-use super::lanes::{lane3, lane33, pair3, pair33, Lane, F2};
+use crate::lanes::{lane3, lane33, pair3, pair33, Lane, F2};
 use crate::method::{alpha_terms, neighbour_weights, through_row};
 
 /// A 3 by 3 block, of `f64` or of lanes ([`Lane`]).

@@ -1,14 +1,15 @@
-//! Numbers of one or two lanes for the smoothing system's block arithmetic:
-//! `f64` for one score of `lambda`, [`F2`] for two scores side by side. A
-//! lane of an [`F2`] goes through the same IEEE operations in the same
-//! order as an `f64` would (no fused multiply-adds), so each score of a
-//! pair has the bits of that score taken alone, while the two lanes share
-//! the instructions (the compiler keeps an `F2` in one SSE2 register).
+//! Numbers of one or two lanes: `f64` for one problem, [`F2`] for two side
+//! by side (two scores of `lambda` in the smoothing system's block
+//! arithmetic, two chunks of the construction sweeps). A lane of an [`F2`]
+//! goes through the same IEEE operations in the same order as an `f64`
+//! would (no fused multiply-adds), so each problem of a pair has the bits of
+//! that problem taken alone, while the two lanes share the instructions (the
+//! compiler keeps an `F2` in one SSE2 register).
 
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 /// A number of one or more lanes, each an `f64`.
-pub(super) trait Lane:
+pub(crate) trait Lane:
     Copy
     + Add<Output = Self>
     + Sub<Output = Self>
@@ -53,7 +54,7 @@ impl Lane for f64 {
 /// Two lanes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(align(16))]
-pub(super) struct F2(pub(super) [f64; 2]);
+pub(crate) struct F2(pub(crate) [f64; 2]);
 
 impl Lane for F2 {
     const LANES: usize = 2;
@@ -107,21 +108,21 @@ impl Neg for F2 {
 }
 
 /// Lane `i` of a 3-vector of lanes.
-pub(super) fn lane3<T: Lane>(v: &[T; 3], i: usize) -> [f64; 3] {
+pub(crate) fn lane3<T: Lane>(v: &[T; 3], i: usize) -> [f64; 3] {
     v.map(|x| x.lane(i))
 }
 
 /// Lane `i` of a 3 by 3 matrix of lanes.
-pub(super) fn lane33<T: Lane>(m: &[[T; 3]; 3], i: usize) -> [[f64; 3]; 3] {
+pub(crate) fn lane33<T: Lane>(m: &[[T; 3]; 3], i: usize) -> [[f64; 3]; 3] {
     m.map(|r| r.map(|x| x.lane(i)))
 }
 
 /// Two 3-vectors side by side.
-pub(super) fn pair3(a: &[f64; 3], b: &[f64; 3]) -> [F2; 3] {
+pub(crate) fn pair3(a: &[f64; 3], b: &[f64; 3]) -> [F2; 3] {
     std::array::from_fn(|i| F2([a[i], b[i]]))
 }
 
 /// Two 3 by 3 matrices side by side.
-pub(super) fn pair33(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[F2; 3]; 3] {
+pub(crate) fn pair33(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[F2; 3]; 3] {
     std::array::from_fn(|i| pair3(&a[i], &b[i]))
 }
