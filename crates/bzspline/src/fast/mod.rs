@@ -8,6 +8,8 @@
 //!   buffer);
 //! - [`chunks`]: the system cut into overlapping chunks, solved one after
 //!   the other or side by side, for large inputs;
+//! - `pair`: two chunks eliminated at once, one in each lane of an SSE2
+//!   register;
 //! - [`through`]: the interpolating variant's system, whole or in chunks;
 //! - [`batch`]: the batch evaluator of a spline's derivatives at many queries;
 //! - [`search`]: the summary of the knots and its index, and the searches of
@@ -17,6 +19,7 @@
 
 pub(crate) mod batch;
 pub(crate) mod chunks;
+mod pair;
 pub(crate) mod search;
 pub(crate) mod sweep;
 pub(crate) mod through;

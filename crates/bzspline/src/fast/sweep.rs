@@ -40,18 +40,19 @@
 
 use super::chunks::{self, Whole};
 use super::Piece;
+use crate::lanes::Lane;
 use crate::method::alpha_terms;
 
 /// Rows between two renormalisations of the continuants: each row multiplies
 /// them by a pivot between `3 * 2^-52` and `32` (widths relative to a span
 /// near 1), so in 8 rows they stay within `2^-400 .. 2^40` of `[1, 2)`, and a
 /// product of two of them far inside a double.
-const RENORM: usize = 8;
+pub(super) const RENORM: usize = 8;
 
 /// Multiplies `p` and `q` by the power of two that brings `p` into `[1, 2)`.
 /// `p` is positive and normal.
 #[inline]
-fn renormalise(p: &mut f64, q: &mut f64) {
+pub(super) fn renormalise(p: &mut f64, q: &mut f64) {
     let e = (p.to_bits() >> 52) & 0x7ff;
     // 2^(1023 - e): the exponent field 2046 - e lies in [1, 2045] for normal p.
     let m = f64::from_bits((2046u64.saturating_sub(e)).max(1) << 52);
@@ -245,9 +246,9 @@ pub(crate) fn build_open_curve<const D: usize>(
 
 /// `(1/a, 1/(1-a))` with one division.
 #[inline(always)]
-fn inverses(a: f64) -> (f64, f64) {
-    let u = 1.0 - a;
-    let iau = 1.0 / (a * u);
+pub(super) fn inverses<L: Lane>(a: L) -> (L, L) {
+    let u = L::splat(1.0) - a;
+    let iau = L::splat(1.0) / (a * u);
     (u * iau, a * iau)
 }
 
@@ -260,16 +261,16 @@ fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
 /// The input of the fused sweeps: `D` right-hand sides (the coordinates of
 /// the points, `values[k][c] * inv_scale[c]`) on one matrix.
 pub(super) struct Sweep<'a, const D: usize> {
-    knots: &'a [f64],
-    values: &'a [[f64; D]],
-    inv_scale: [f64; D],
-    alphas: &'a [f64],
+    pub(super) knots: &'a [f64],
+    pub(super) values: &'a [[f64; D]],
+    pub(super) inv_scale: [f64; D],
+    pub(super) alphas: &'a [f64],
     /// The terms of every alpha when they are all one (`PER` false).
-    uniform: [f64; 4],
+    pub(super) uniform: [f64; 4],
     /// Their [`piece_terms`].
     uniform_piece: [f64; 6],
     /// The power of two the widths are multiplied by.
-    ws: f64,
+    pub(super) ws: f64,
 }
 
 impl<'a, const D: usize> Sweep<'a, D> {
@@ -694,16 +695,16 @@ impl<'a, const D: usize> Sweep<'a, D> {
 /// of leg `k`, the mirrored terms of its alpha).
 #[derive(Clone, Copy)]
 pub(super) struct Elim<const D: usize> {
-    p_prev2: f64,
-    p_prev: f64,
-    y_prev: [f64; D],
-    u_prev: f64,
-    kc: f64,
-    hl: f64,
-    fc: [f64; D],
-    df_l: [f64; D],
-    terms_l: [f64; 4],
-    since: usize,
+    pub(super) p_prev2: f64,
+    pub(super) p_prev: f64,
+    pub(super) y_prev: [f64; D],
+    pub(super) u_prev: f64,
+    pub(super) kc: f64,
+    pub(super) hl: f64,
+    pub(super) fc: [f64; D],
+    pub(super) df_l: [f64; D],
+    pub(super) terms_l: [f64; 4],
+    pub(super) since: usize,
 }
 
 /// The substitution's state between two rows: the last deviation and the
@@ -748,16 +749,16 @@ impl Legs for Fill<'_> {
 /// Row `k` of a sweep in the `2 D` slots `p` and `d` (a spline's copies of
 /// value and knot `k`, a curve's copy of point `k` and its deviation):
 /// `l_k / piv_k`, then the `D` swept right-hand sides.
-struct Aside<'a, const D: usize> {
-    p: &'a mut [f64; D],
-    d: &'a mut [f64; D],
+pub(super) struct Aside<'a, const D: usize> {
+    pub(super) p: &'a mut [f64; D],
+    pub(super) d: &'a mut [f64; D],
 }
 
 impl<'a, const D: usize> Aside<'a, D> {
     /// The slots of the first row of `d` and `p` (a lone row left over by
     /// the pairs), if there is one.
     #[inline(always)]
-    fn first(d: &'a mut [[f64; D]], p: &'a mut [[f64; D]]) -> Option<Self> {
+    pub(super) fn first(d: &'a mut [[f64; D]], p: &'a mut [[f64; D]]) -> Option<Self> {
         d.first_mut()
             .zip(p.first_mut())
             .map(|(d, p)| Aside { p, d })
@@ -774,7 +775,7 @@ impl<'a, const D: usize> Aside<'a, D> {
 
     /// Stores the row.
     #[inline(always)]
-    fn put(&mut self, m: f64, y: [f64; D]) {
+    pub(super) fn put(&mut self, m: f64, y: [f64; D]) {
         self.p[0] = m;
         for (c, &v) in y.iter().enumerate() {
             if c + 1 < D {
@@ -806,10 +807,11 @@ impl<'a, const D: usize> Aside<'a, D> {
 
 /// `A', B1', B2', C'` from `a`, `1/a` and `1/(1-a)`.
 #[inline(always)]
-fn terms_from_inverses(a: f64, ia: f64, iu: f64) -> [f64; 4] {
+pub(super) fn terms_from_inverses<L: Lane>(a: L, ia: L, iu: L) -> [L; 4] {
+    let k = L::splat;
     let r = a * iu;
-    let ir = (1.0 - a) * ia;
-    [r * r, 2.0 * ia + 1.0, 2.0 * iu + 1.0, ir * ir]
+    let ir = (k(1.0) - a) * ia;
+    [r * r, k(2.0) * ia + k(1.0), k(2.0) * iu + k(1.0), ir * ir]
 }
 
 #[cfg(test)]
