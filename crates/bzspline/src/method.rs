@@ -55,6 +55,7 @@
 //! takes `G = P - d` as control values: [`OpenSystem::through`],
 //! [`ClosedSystem::through`], [`through_controls`].
 
+use crate::lanes::Lane;
 use crate::tridiag::{CyclicThomas, Thomas};
 
 /// A power of two close to `max |v|` (1 for an all-zero input), so that values
@@ -196,8 +197,9 @@ pub(crate) fn piece_coefs_with(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 
 /// `p B1' + q B2' - 1` (which is `2p/a + 2q/(1-b)`), `q (1 - C')`, with the signs
 /// of [`row`]; diagonally dominant on `[1/3, 2/3]`, diagonal at alpha = 1/2.
 #[inline]
-pub(crate) fn through_row(p: f64, q: f64, al: f64, b1: f64, b2: f64, cr: f64) -> (f64, f64, f64) {
-    (p * (1.0 - al), p * b1 + q * b2 - 1.0, q * (1.0 - cr))
+pub(crate) fn through_row<L: Lane>(p: L, q: L, al: L, b1: L, b2: L, cr: L) -> (L, L, L) {
+    let one = L::splat(1.0);
+    (p * (one - al), p * b1 + q * b2 - one, q * (one - cr))
 }
 
 /// Row `i` of the row-scaled continuity system for the knot between legs of

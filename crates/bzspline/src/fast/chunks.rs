@@ -173,7 +173,7 @@ pub(crate) fn plan(knots: &[f64], alphas: &[f64], uniform: Option<f64>, ws: f64)
 /// Whether chunks `a` and `b`, one after the other, are swept side by side
 /// ([`super::pair`]): neither at an end of the system, and rows of the same
 /// count below, in and above their own legs.
-fn pairable(a: &Chunk, b: &Chunk, m: usize) -> bool {
+pub(crate) fn pairable(a: &Chunk, b: &Chunk, m: usize) -> bool {
     let shape = |c: &Chunk| (c.start - c.lo, c.end - c.start, c.hi - c.end);
     a.start > 0 && b.hi < m && shape(a) == shape(b)
 }
@@ -183,7 +183,7 @@ fn pairable(a: &Chunk, b: &Chunk, m: usize) -> bool {
 /// the larger of each pair's, so that [`pairable`] holds for every such pair
 /// whose own legs are as many, and for no other two chunks; an overlap longer
 /// than needed only takes the truncation further below rounding.
-fn pad_pairs(chunks: &mut [Chunk], m: usize) {
+pub(crate) fn pad_pairs(chunks: &mut [Chunk], m: usize) {
     let mut i = 1;
     while i + 2 < chunks.len() {
         let (a, b) = (chunks[i], chunks[i + 1]);

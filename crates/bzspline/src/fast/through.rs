@@ -4,9 +4,12 @@
 //! it and eliminated for every coordinate of a curve at once; from
 //! [`chunks::CHUNKED_MIN`] legs the same sweeps over overlapping chunks
 //! (§16), side by side with the `rayon` feature, the same bits on any number
-//! of threads.
+//! of threads. The chunks the plan pads to one shape go through the forward
+//! sweep two at a time, one in each lane of an SSE2 register, so that their
+//! two chains of divisions overlap (each chunk gets the bits it gets alone).
 
 use super::chunks::{self, Chunk};
+use crate::lanes::{Lane, F2};
 use crate::method::{alpha_terms, neighbour_weights, power_of_two_scale, through_row};
 
 /// The rows of the system: `knots` and `values` (`n` each, validated, `D`
@@ -91,6 +94,79 @@ impl<const D: usize> Rows<'_, D> {
         }
     }
 
+    /// [`Rows::forward`] of two chunks of one shape side by side, one in each
+    /// lane of an [`F2`]: each lane takes the operations of its chunk's
+    /// forward sweep in their order (the same bits), while the two chains of
+    /// divisions overlap.
+    #[inline(always)]
+    fn forward_two<const PER: bool>(
+        &self,
+        [a, b]: [Chunk; 2],
+        [out_a, out_b]: [&mut [Swept<D>]; 2],
+    ) {
+        let legs = if PER { self.alphas } else { self.knots };
+        let (Some(kna), Some(vsa), Some(ala), Some(knb), Some(vsb), Some(alb)) = (
+            self.knots.get(a.lo..=a.hi),
+            self.values.get(a.lo..=a.hi),
+            legs.get(a.lo + 1..a.hi),
+            self.knots.get(b.lo..=b.hi),
+            self.values.get(b.lo..=b.hi),
+            legs.get(b.lo + 1..b.hi),
+        ) else {
+            return;
+        };
+        let (
+            Some((&[ka0, ka1], kna)),
+            Some((&[va0, va1], vsa)),
+            Some((&[kb0, kb1], knb)),
+            Some((&[vb0, vb1], vsb)),
+        ) = (
+            kna.split_first_chunk(),
+            vsa.split_first_chunk(),
+            knb.split_first_chunk(),
+            vsb.split_first_chunk(),
+        )
+        else {
+            return;
+        };
+        let two = |x: f64, y: f64| F2([x, y]);
+        let inv: [F2; D] = std::array::from_fn(|c| F2::splat(self.inv[c]));
+        let scaled = |x: [f64; D], y: [f64; D]| -> [F2; D] {
+            std::array::from_fn(|c| two(x[c], y[c]) * inv[c])
+        };
+        let terms =
+            |x: [f64; 4], y: [f64; 4]| -> [F2; 4] { std::array::from_fn(|i| two(x[i], y[i])) };
+        let one = self.uniform.unwrap_or_default();
+        let one = terms(one, one);
+        let (mut kc, mut hl) = (two(ka1, kb1), two(ka1, kb1) - two(ka0, kb0));
+        let (mut fl, mut fc) = (scaled(va0, vb0), scaled(va1, vb1));
+        let mut left = terms(self.terms(a.lo), self.terms(b.lo));
+        let (mut cp, mut rp) = (F2::splat(0.0), [F2::splat(0.0); D]);
+        let lane_a = kna.iter().zip(vsa).zip(ala).zip(out_a);
+        let lane_b = knb.iter().zip(vsb).zip(alb).zip(out_b);
+        for ((((&kra, &vra), &aa), oa), (((&krb, &vrb), &ab), ob)) in lane_a.zip(lane_b) {
+            let right = if PER {
+                terms(alpha_terms(aa), alpha_terms(ab))
+            } else {
+                one
+            };
+            let kr = two(kra, krb);
+            let hr = kr - kc;
+            let fr = scaled(vra, vrb);
+            let (p, q) = weights_two(hl, hr);
+            let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
+            let m = di - l * cp;
+            cp = up / m;
+            for c in 0..D {
+                let rhs = q * (fr[c] - fc[c]) - p * (fc[c] - fl[c]);
+                rp[c] = (rhs - l * rp[c]) / m;
+            }
+            *oa = (cp.0[0], std::array::from_fn(|c| rp[c].0[0]));
+            *ob = (cp.0[1], std::array::from_fn(|c| rp[c].0[1]));
+            (kc, hl, fl, fc, left) = (kr, hr, fc, fr, right);
+        }
+    }
+
     /// The damping factors of row `k` (§16): `|lower| / (diag - |upper|)`
     /// and `|upper| / (diag - |lower|)`, both in `[0, 1]` by the dominance
     /// of every term (§11); anything else counts as 1, no damping.
@@ -101,6 +177,21 @@ impl<const D: usize> Rows<'_, D> {
             sane(lo.abs() / (di - up.abs())),
             sane(up.abs() / (di - lo.abs())),
         )
+    }
+}
+
+/// [`neighbour_weights`] of both lanes.
+#[inline(always)]
+fn weights_two(hl: F2, hr: F2) -> (F2, F2) {
+    let sum = hl + hr;
+    if sum.0[0].is_finite() && sum.0[1].is_finite() {
+        (hr / sum, hl / sum)
+    } else {
+        let (a, b) = (
+            neighbour_weights(hl.0[0], hr.0[0]),
+            neighbour_weights(hl.0[1], hr.0[1]),
+        );
+        (F2([a.0, b.0]), F2([a.1, b.1]))
     }
 }
 
@@ -133,6 +224,19 @@ fn solve_all<const D: usize>(
     scale: [f64; D],
     out: &mut [[f64; D]],
 ) -> Option<[f64; D]> {
+    solve_paired(knots, values, (alphas, uniform), scale, out, true)
+}
+
+/// [`solve_all`], with the forward sweeps of chunks of one shape two at a
+/// time when `paired` (each chunk gets the same bits either way).
+fn solve_paired<const D: usize>(
+    knots: &[f64],
+    values: &[[f64; D]],
+    (alphas, uniform): (&[f64], Option<f64>),
+    scale: [f64; D],
+    out: &mut [[f64; D]],
+    paired: bool,
+) -> Option<[f64; D]> {
     let n = knots.len();
     if n < 2 || values.len() != n || out.len() != n || (uniform.is_none() && alphas.len() != n - 1)
     {
@@ -148,6 +252,7 @@ fn solve_all<const D: usize>(
     };
     let m = n - 1;
     let mut plan = chunks::cut(m, |k| rows.damping(k));
+    chunks::pad_pairs(&mut plan, m);
     if plan.is_empty() {
         plan.push(Chunk {
             lo: 0,
@@ -165,13 +270,42 @@ fn solve_all<const D: usize>(
         jobs.push((c, mine, Some([0.0; D])));
         rest = later;
     }
-    chunks::each(n, &mut jobs, Vec::new, |scratch, (c, mine, max)| {
-        *max = solve(&rows, *c, scale, mine, scratch);
+    // Chunks the plan padded to one shape go through the forward sweep two
+    // at a time.
+    let mut units = Vec::with_capacity(plan.len());
+    let mut jobs = jobs.iter_mut().peekable();
+    while let Some(job) = jobs.next() {
+        match jobs.next_if(|next| paired && chunks::pairable(&job.0, &next.0, m)) {
+            Some(other) => units.push([Some(job), Some(other)]),
+            None => units.push([Some(job), None]),
+        }
+    }
+    let scratch = || [Vec::new(), Vec::new()];
+    chunks::each(n, &mut units, scratch, |[sa, sb], unit| match unit {
+        [Some((a, out_a, max_a)), Some((b, out_b, max_b))] => {
+            // Rows `lo + 1 ..= hi - 1` of each.
+            for (s, c) in [(&mut *sa, *a), (&mut *sb, *b)] {
+                s.resize(c.hi - c.lo - 1, (0.0, [0.0; D]));
+            }
+            if rows.uniform.is_some() {
+                rows.forward_two::<false>([*a, *b], [&mut *sa, &mut *sb]);
+            } else {
+                rows.forward_two::<true>([*a, *b], [&mut *sa, &mut *sb]);
+            }
+            *max_a = backward(&rows, *a, scale, out_a, sa);
+            *max_b = backward(&rows, *b, scale, out_b, sb);
+        }
+        [Some((c, mine, max)), _] => *max = solve(&rows, *c, scale, mine, sa),
+        _ => {}
     });
-    jobs.iter().try_fold([0.0f64; D], |m, &(_, _, max)| {
-        let max = max?;
-        Some(std::array::from_fn(|c| m[c].max(max[c])))
-    })
+    units
+        .iter()
+        .flatten()
+        .flatten()
+        .try_fold([0.0f64; D], |m, (_, _, max)| {
+            let max = (*max)?;
+            Some(std::array::from_fn(|c| m[c].max(max[c])))
+        })
 }
 
 /// The control points of the open curve through `points` (`dim`
@@ -237,12 +371,6 @@ fn solve<const D: usize>(
     out: &mut [[f64; D]],
     scratch: &mut Vec<Swept<D>>,
 ) -> Option<[f64; D]> {
-    let n = rows.knots.len();
-    let first = *c.kept().start();
-    if out.len() != c.kept().count() {
-        // Not reached: the plan covers the knots once.
-        return None;
-    }
     scratch.clear();
     scratch.reserve(c.hi - c.lo);
     if rows.uniform.is_some() {
@@ -250,6 +378,26 @@ fn solve<const D: usize>(
     } else {
         rows.forward::<true>(c.lo, c.hi, scratch);
     }
+    backward(rows, c, scale, out, scratch)
+}
+
+/// The backward sweep of chunk `c` over the rows its forward sweep left in
+/// `swept`, writing the control values of the knots it keeps into `out`: the
+/// largest magnitude of each coordinate's, or `None` when one is not finite.
+fn backward<const D: usize>(
+    rows: &Rows<'_, D>,
+    c: Chunk,
+    scale: [f64; D],
+    out: &mut [[f64; D]],
+    swept: &[Swept<D>],
+) -> Option<[f64; D]> {
+    let n = rows.knots.len();
+    let first = *c.kept().start();
+    if out.len() != c.kept().count() {
+        // Not reached: the plan covers the knots once.
+        return None;
+    }
+    let scratch = swept;
     // Backward: d_k = r'_k - c'_k d_{k+1}, then G_k = P_k - d_k; the rows
     // past the kept knots (`end + 1 ..= hi - 1`) only carry d down. The kept
     // rows are knots `kmin..=kmax`, `scratch[k - lo - 1]` each.
@@ -426,6 +574,48 @@ mod tests {
             })
             .collect();
         assert!(runs.iter().all(|r| *r == runs[0]));
+    }
+
+    #[test]
+    fn paired_forward_sweeps_give_each_chunk_s_bits() {
+        let n = 9 * chunks::CHUNK + 321;
+        for grid in 0..2u8 {
+            for kind in 0..5u8 {
+                let (knots, v, a, uniform) = case(n, grid, kind, 40 + u64::from(kind));
+                let m = n - 1;
+                let rows = Rows {
+                    knots: &knots,
+                    values: v.as_chunks::<1>().0,
+                    inv: [1.0],
+                    alphas: &a,
+                    uniform: uniform.map(alpha_terms),
+                };
+                let mut plan = chunks::cut(m, |k| rows.damping(k));
+                chunks::pad_pairs(&mut plan, m);
+                let pairs = plan
+                    .windows(2)
+                    .filter(|w| chunks::pairable(&w[0], &w[1], m));
+                assert!(pairs.count() >= 3, "grid {grid}, alphas {kind}: {plan:?}");
+                let points: Vec<[f64; 2]> = v.iter().map(|&y| [y, y * y * 1e3]).collect();
+                let solved = |paired: bool| {
+                    let mut one = vec![[0.0]; n];
+                    let mut two = vec![[0.0; 2]; n];
+                    let values = v.as_chunks::<1>().0;
+                    solve_paired(&knots, values, (&a, uniform), [2.0], &mut one, paired);
+                    solve_paired(
+                        &knots,
+                        &points,
+                        (&a, uniform),
+                        [1.0, 4096.0],
+                        &mut two,
+                        paired,
+                    );
+                    let bits = one.iter().flatten().chain(two.iter().flatten());
+                    bits.map(|x| x.to_bits()).collect::<Vec<u64>>()
+                };
+                assert!(solved(true) == solved(false), "grid {grid}, alphas {kind}");
+            }
+        }
     }
 
     #[test]
