@@ -29,6 +29,8 @@ pub(crate) trait Lane:
     fn load(s: &[f64]) -> Self;
     /// The lanes into the first `LANES` values of `s`.
     fn store(self, s: &mut [f64]);
+    /// Lane `i` from `f(i)`.
+    fn from_lanes(f: impl FnMut(usize) -> f64) -> Self;
 }
 
 impl Lane for f64 {
@@ -48,6 +50,10 @@ impl Lane for f64 {
     #[inline(always)]
     fn store(self, s: &mut [f64]) {
         s[0] = self;
+    }
+    #[inline(always)]
+    fn from_lanes(mut f: impl FnMut(usize) -> f64) -> f64 {
+        f(0)
     }
 }
 
@@ -73,6 +79,10 @@ impl Lane for F2 {
     #[inline(always)]
     fn store(self, s: &mut [f64]) {
         s[..2].copy_from_slice(&self.0);
+    }
+    #[inline(always)]
+    fn from_lanes(mut f: impl FnMut(usize) -> f64) -> F2 {
+        F2([f(0), f(1)])
     }
 }
 

@@ -21,8 +21,8 @@
 //! each would get alone: on one core, about two thirds of the elimination's
 //! instructions.
 
-use super::pair::{Elim2, Pair};
-use super::sweep::{Fill, Sweep};
+use super::pair::Pair;
+use super::sweep::{Elim, Fill, Sweep};
 use super::Piece;
 use crate::method::alpha_terms;
 
@@ -480,7 +480,7 @@ fn solve_pair<const D: usize, const PER: bool, const KNOT: bool>(
     let (Some(ea), Some(eb)) = (pair.a.top::<PER>(), pair.b.top::<PER>()) else {
         return;
     };
-    let Some(mut elim) = Elim2::new(&ea, &eb) else {
+    let Some(mut elim) = Elim::pair(&ea, &eb) else {
         return;
     };
     let (Some(own_a), Some(own_b)) = (

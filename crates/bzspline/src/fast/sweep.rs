@@ -40,7 +40,7 @@
 
 use super::chunks::{self, Whole};
 use super::Piece;
-use crate::lanes::Lane;
+use crate::lanes::{Lane, F2};
 use crate::method::alpha_terms;
 
 /// Rows between two renormalisations of the continuants: each row multiplies
@@ -49,15 +49,17 @@ use crate::method::alpha_terms;
 /// product of two of them far inside a double.
 pub(super) const RENORM: usize = 8;
 
-/// Multiplies `p` and `q` by the power of two that brings `p` into `[1, 2)`.
-/// `p` is positive and normal.
+/// Multiplies `p` and `q` by the power of two that brings `p` into `[1, 2)`,
+/// lane by lane. `p` is positive and normal.
 #[inline]
-pub(super) fn renormalise(p: &mut f64, q: &mut f64) {
-    let e = (p.to_bits() >> 52) & 0x7ff;
-    // 2^(1023 - e): the exponent field 2046 - e lies in [1, 2045] for normal p.
-    let m = f64::from_bits((2046u64.saturating_sub(e)).max(1) << 52);
-    *p *= m;
-    *q *= m;
+fn renormalise<L: Lane>(p: &mut L, q: &mut L) {
+    let m = L::from_lanes(|i| {
+        let e = (p.lane(i).to_bits() >> 52) & 0x7ff;
+        // 2^(1023 - e): the exponent field 2046 - e lies in [1, 2045] for normal p.
+        f64::from_bits((2046u64.saturating_sub(e)).max(1) << 52)
+    });
+    *p = *p * m;
+    *q = *q * m;
 }
 
 /// `A', B1', B2', C'` of one alpha with one division: `1/a = (1-a) / (a (1-a))`,
@@ -254,7 +256,7 @@ pub(super) fn inverses<L: Lane>(a: L) -> (L, L) {
 
 /// `a - b` coordinate by coordinate.
 #[inline(always)]
-fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
+fn sub<L: Lane, const D: usize>(a: [L; D], b: [L; D]) -> [L; D] {
     core::array::from_fn(|c| a[c] - b[c])
 }
 
@@ -376,7 +378,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
     /// The elimination's state before its first row, `n - 2`: the last
     /// deviation is zero. `None` for fewer than two knots.
     #[inline(always)]
-    pub(super) fn top<const PER: bool>(&self) -> Option<Elim<D>> {
+    pub(super) fn top<const PER: bool>(&self) -> Option<Elim<f64, D>> {
         let (knots, values, alphas) = (self.knots, self.values, self.alphas);
         let m = knots.len().checked_sub(1)?;
         let (Some(&k0), Some(&k1), Some(&v0), Some(&v1), Some(&a0)) = (
@@ -416,7 +418,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
     #[inline(always)]
     pub(super) fn eliminate<const PER: bool>(
         &self,
-        st: &mut Elim<D>,
+        st: &mut Elim<f64, D>,
         r0: usize,
         rows: (&mut [[f64; D]], &mut [[f64; D]]),
     ) {
@@ -433,18 +435,7 @@ impl<'a, const D: usize> Sweep<'a, D> {
         ) else {
             return;
         };
-        let Elim {
-            mut p_prev2,
-            mut p_prev,
-            mut y_prev,
-            mut u_prev,
-            mut kc,
-            mut hl,
-            mut fc,
-            mut df_l,
-            mut terms_l,
-            mut since,
-        } = *st;
+        let mut e = *st;
         // Pairs from the end, each in the order of the sweep (`[1]` then
         // `[0]`); the lone row left over, `r0`, in front.
         let (lk, kn) = kn.as_rchunks::<2>();
@@ -455,100 +446,21 @@ impl<'a, const D: usize> Sweep<'a, D> {
         // Slices of one length zipped and walked from the end: one index.
         let pairs = pd.iter_mut().zip(pp).zip(kn).zip(vs).zip(al).rev();
         for (((([d0, d1], [p0, p1]), kn), vs), al) in pairs {
-            let slots = [Aside { p: p1, d: d1 }, Aside { p: p0, d: d0 }];
             // Rows k and k - 1.
-            let h1 = (kc - kn[1]) * ws;
-            let h2 = (kn[1] - kn[0]) * ws;
-            kc = kn[0];
-            let (f1, f2) = (self.scaled(vs[1]), self.scaled(vs[0]));
-            let (t1, t2) = (self.mirrored::<PER>(al[1]), self.mirrored::<PER>(al[0]));
-            let l1 = -h1 * terms_l[0];
-            let d1 = h1 * terms_l[1] + hl * t1[2];
-            let u1 = -hl * t1[3];
-            let (df1, df2) = (sub(f1, fc), sub(f2, f1));
-            let l2 = -h2 * t1[0];
-            let d2 = h2 * t1[1] + h1 * t2[2];
-            let u2 = -h1 * t2[3];
-            let e1 = l1 * u_prev;
-            let e2 = l2 * u1;
-            // P_k and P_{k-1} both from P_{k+1}, P_{k+2}: one multiply-subtract
-            // on the chain for two rows.
-            let p1 = d1 * p_prev - e1 * p_prev2;
-            let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
-            // One division for both pivots' reciprocals.
-            let rr = 1.0 / (p1 * p2);
-            let inv1 = p_prev * p2 * rr;
-            let inv2 = p1 * p1 * rr;
-            let (m1, m2) = (l1 * inv1, l2 * inv2);
-            let mut y1 = [0.0; D];
-            let mut y2 = [0.0; D];
-            for c in 0..D {
-                let g1 = (hl * df1[c] - h1 * df_l[c]) * inv1;
-                let g2 = (h1 * df2[c] - h2 * df1[c]) * inv2;
-                y1[c] = g1 - m1 * y_prev[c];
-                y2[c] = (g2 - m2 * g1) + (m2 * m1) * y_prev[c];
-            }
-            let [mut s1, mut s2] = slots;
-            s1.put(u1 * inv1, y1);
-            s2.put(u2 * inv2, y2);
-            p_prev2 = p1;
-            p_prev = p2;
-            since += 2;
-            if since >= RENORM {
-                renormalise(&mut p_prev, &mut p_prev2);
-                since = 0;
-            }
-            y_prev = y2;
-            u_prev = u2;
-            hl = h2;
-            df_l = df2;
-            fc = f2;
-            terms_l = t2;
+            let f = (self.scaled(vs[1]), self.scaled(vs[0]));
+            let t = (self.mirrored::<PER>(al[1]), self.mirrored::<PER>(al[0]));
+            let [(w1, y1), (w2, y2)] = e.two_rows((kn[1], kn[0]), f, t, ws);
+            Aside { p: p1, d: d1 }.put(w1, y1);
+            Aside { p: p0, d: d0 }.put(w2, y2);
         }
         if let (Some(mut slot), Some(&kr), Some(&vr), Some(&ar)) =
             (Aside::first(ld, lp), lk.first(), lv.first(), la.first())
         {
             // Row r0 when the count is odd.
-            let hr = (kc - kr) * ws;
-            let fr = self.scaled(vr);
-            let terms_r = self.mirrored::<PER>(ar);
-            let l = -hr * terms_l[0];
-            let d = hr * terms_l[1] + hl * terms_r[2];
-            let u = -hl * terms_r[3];
-            let p = d * p_prev - (l * u_prev) * p_prev2;
-            let inv = p_prev / p;
-            let df_r = sub(fr, fc);
-            let y = core::array::from_fn(|c| {
-                (hl * df_r[c] - hr * df_l[c]) * inv - (l * inv) * y_prev[c]
-            });
-            slot.put(u * inv, y);
-            p_prev2 = p_prev;
-            p_prev = p;
-            since += 1;
-            if since >= RENORM {
-                renormalise(&mut p_prev, &mut p_prev2);
-                since = 0;
-            }
-            y_prev = y;
-            u_prev = u;
-            kc = kr;
-            hl = hr;
-            df_l = df_r;
-            fc = fr;
-            terms_l = terms_r;
+            let (w, y) = e.one_row(kr, self.scaled(vr), self.mirrored::<PER>(ar), ws);
+            slot.put(w, y);
         }
-        *st = Elim {
-            p_prev2,
-            p_prev,
-            y_prev,
-            u_prev,
-            kc,
-            hl,
-            fc,
-            df_l,
-            terms_l,
-            since,
-        };
+        *st = e;
     }
 
     /// The substitution's state before its first row: the first deviation
@@ -693,18 +605,137 @@ impl<'a, const D: usize> Sweep<'a, D> {
 /// continuants, the last swept right-hand side and upper coefficient, and
 /// what row `k` shares with row `k + 1` (knot `k`, the width and value step
 /// of leg `k`, the mirrored terms of its alpha).
+/// `L` holds one number of each of the chunks eliminated side by side
+/// (`f64` for one).
 #[derive(Clone, Copy)]
-pub(super) struct Elim<const D: usize> {
-    pub(super) p_prev2: f64,
-    pub(super) p_prev: f64,
-    pub(super) y_prev: [f64; D],
-    pub(super) u_prev: f64,
-    pub(super) kc: f64,
-    pub(super) hl: f64,
-    pub(super) fc: [f64; D],
-    pub(super) df_l: [f64; D],
-    pub(super) terms_l: [f64; 4],
-    pub(super) since: usize,
+pub(super) struct Elim<L, const D: usize> {
+    p_prev2: L,
+    p_prev: L,
+    y_prev: [L; D],
+    u_prev: L,
+    kc: L,
+    hl: L,
+    fc: [L; D],
+    df_l: [L; D],
+    terms_l: [L; 4],
+    since: usize,
+}
+
+impl<const D: usize> Elim<f64, D> {
+    /// Two states side by side, `a` in the first lane; `None` unless both
+    /// have gone through the same number of rows since their last
+    /// renormalisation.
+    pub(super) fn pair(a: &Self, b: &Self) -> Option<Elim<F2, D>> {
+        let two = |x: f64, y: f64| F2([x, y]);
+        let each = |x: [f64; D], y: [f64; D]| core::array::from_fn(|c| two(x[c], y[c]));
+        (a.since == b.since).then(|| Elim {
+            p_prev2: two(a.p_prev2, b.p_prev2),
+            p_prev: two(a.p_prev, b.p_prev),
+            y_prev: each(a.y_prev, b.y_prev),
+            u_prev: two(a.u_prev, b.u_prev),
+            kc: two(a.kc, b.kc),
+            hl: two(a.hl, b.hl),
+            fc: each(a.fc, b.fc),
+            df_l: each(a.df_l, b.df_l),
+            terms_l: core::array::from_fn(|i| two(a.terms_l[i], b.terms_l[i])),
+            since: a.since,
+        })
+    }
+}
+
+impl<L: Lane, const D: usize> Elim<L, D> {
+    /// Rows `k` and `k - 1` of the elimination (of the mirrored system, see
+    /// [`Sweep::eliminate`]), from knots `k - 1` and `k - 2` (`k1`, `k0`),
+    /// the scaled values there (`f1`, `f2`) and the mirrored terms of alphas
+    /// `k - 1` and `k - 2` (`t1`, `t2`); the widths are multiplied by `ws`.
+    /// The rows to keep, `(u_k / piv_k, y_k)` and the same of row `k - 1`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)] // a pair of rows' inputs
+    pub(super) fn two_rows(
+        &mut self,
+        (k1, k0): (L, L),
+        (f1, f2): ([L; D], [L; D]),
+        (t1, t2): ([L; 4], [L; 4]),
+        ws: L,
+    ) -> [(L, [L; D]); 2] {
+        let h1 = (self.kc - k1) * ws;
+        let h2 = (k1 - k0) * ws;
+        self.kc = k0;
+        let (hl, terms_l) = (self.hl, self.terms_l);
+        let l1 = -h1 * terms_l[0];
+        let d1 = h1 * terms_l[1] + hl * t1[2];
+        let u1 = -hl * t1[3];
+        let (df1, df2) = (sub(f1, self.fc), sub(f2, f1));
+        let l2 = -h2 * t1[0];
+        let d2 = h2 * t1[1] + h1 * t2[2];
+        let u2 = -h1 * t2[3];
+        let e1 = l1 * self.u_prev;
+        let e2 = l2 * u1;
+        // P_k and P_{k-1} both from P_{k+1}, P_{k+2}: one multiply-subtract
+        // on the chain for two rows.
+        let (p_prev, p_prev2) = (self.p_prev, self.p_prev2);
+        let p1 = d1 * p_prev - e1 * p_prev2;
+        let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
+        // One division for both pivots' reciprocals.
+        let rr = L::splat(1.0) / (p1 * p2);
+        let inv1 = p_prev * p2 * rr;
+        let inv2 = p1 * p1 * rr;
+        let (m1, m2) = (l1 * inv1, l2 * inv2);
+        let mut y1 = [L::splat(0.0); D];
+        let mut y2 = [L::splat(0.0); D];
+        for c in 0..D {
+            let g1 = (hl * df1[c] - h1 * self.df_l[c]) * inv1;
+            let g2 = (h1 * df2[c] - h2 * df1[c]) * inv2;
+            y1[c] = g1 - m1 * self.y_prev[c];
+            y2[c] = (g2 - m2 * g1) + (m2 * m1) * self.y_prev[c];
+        }
+        self.p_prev2 = p1;
+        self.p_prev = p2;
+        self.since += 2;
+        if self.since >= RENORM {
+            renormalise(&mut self.p_prev, &mut self.p_prev2);
+            self.since = 0;
+        }
+        self.y_prev = y2;
+        self.u_prev = u2;
+        self.hl = h2;
+        self.df_l = df2;
+        self.fc = f2;
+        self.terms_l = t2;
+        [(u1 * inv1, y1), (u2 * inv2, y2)]
+    }
+
+    /// One row `k` of the elimination, from knot `k - 1` (`kr`), the scaled
+    /// value there and the mirrored terms of alpha `k - 1`: the row to keep.
+    #[inline(always)]
+    pub(super) fn one_row(&mut self, kr: L, fr: [L; D], terms_r: [L; 4], ws: L) -> (L, [L; D]) {
+        let (hl, terms_l) = (self.hl, self.terms_l);
+        let hr = (self.kc - kr) * ws;
+        let l = -hr * terms_l[0];
+        let d = hr * terms_l[1] + hl * terms_r[2];
+        let u = -hl * terms_r[3];
+        let p = d * self.p_prev - (l * self.u_prev) * self.p_prev2;
+        let inv = self.p_prev / p;
+        let df_r = sub(fr, self.fc);
+        let (df_l, y_prev) = (self.df_l, self.y_prev);
+        let y =
+            core::array::from_fn(|c| (hl * df_r[c] - hr * df_l[c]) * inv - (l * inv) * y_prev[c]);
+        self.p_prev2 = self.p_prev;
+        self.p_prev = p;
+        self.since += 1;
+        if self.since >= RENORM {
+            renormalise(&mut self.p_prev, &mut self.p_prev2);
+            self.since = 0;
+        }
+        self.y_prev = y;
+        self.u_prev = u;
+        self.kc = kr;
+        self.hl = hr;
+        self.df_l = df_r;
+        self.fc = fr;
+        self.terms_l = terms_r;
+        (u * inv, y)
+    }
 }
 
 /// The substitution's state between two rows: the last deviation and the
