@@ -73,24 +73,10 @@ impl<const D: usize> Rows<'_, D> {
         };
         let scaled = |v: [f64; D]| -> [f64; D] { std::array::from_fn(|c| v[c] * self.inv[c]) };
         let one = self.uniform.unwrap_or_default();
-        let (mut kc, mut hl) = (k1, k1 - k0);
-        let (mut fl, mut fc) = (scaled(v0), scaled(v1));
-        let mut left = self.terms(lo);
-        let (mut cp, mut rp) = (0.0, [0.0; D]);
+        let mut st = Forward::start((k0, k1), (scaled(v0), scaled(v1)), self.terms(lo));
         for ((&kr, &vr), &a) in kn.iter().zip(vs).zip(al) {
             let right = if PER { alpha_terms(a) } else { one };
-            let hr = kr - kc;
-            let fr = scaled(vr);
-            let (p, q) = neighbour_weights(hl, hr);
-            let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
-            let m = di - l * cp;
-            cp = up / m;
-            for c in 0..D {
-                let rhs = q * (fr[c] - fc[c]) - p * (fc[c] - fl[c]);
-                rp[c] = (rhs - l * rp[c]) / m;
-            }
-            out.push((cp, rp));
-            (kc, hl, fl, fc, left) = (kr, hr, fc, fr, right);
+            out.push(st.row(kr, scaled(vr), right, neighbour_weights));
         }
     }
 
@@ -138,10 +124,9 @@ impl<const D: usize> Rows<'_, D> {
             |x: [f64; 4], y: [f64; 4]| -> [F2; 4] { std::array::from_fn(|i| two(x[i], y[i])) };
         let one = self.uniform.unwrap_or_default();
         let one = terms(one, one);
-        let (mut kc, mut hl) = (two(ka1, kb1), two(ka1, kb1) - two(ka0, kb0));
-        let (mut fl, mut fc) = (scaled(va0, vb0), scaled(va1, vb1));
-        let mut left = terms(self.terms(a.lo), self.terms(b.lo));
-        let (mut cp, mut rp) = (F2::splat(0.0), [F2::splat(0.0); D]);
+        let left = terms(self.terms(a.lo), self.terms(b.lo));
+        let f = (scaled(va0, vb0), scaled(va1, vb1));
+        let mut st = Forward::start((two(ka0, kb0), two(ka1, kb1)), f, left);
         let lane_a = kna.iter().zip(vsa).zip(ala).zip(out_a);
         let lane_b = knb.iter().zip(vsb).zip(alb).zip(out_b);
         for ((((&kra, &vra), &aa), oa), (((&krb, &vrb), &ab), ob)) in lane_a.zip(lane_b) {
@@ -150,20 +135,9 @@ impl<const D: usize> Rows<'_, D> {
             } else {
                 one
             };
-            let kr = two(kra, krb);
-            let hr = kr - kc;
-            let fr = scaled(vra, vrb);
-            let (p, q) = weights_two(hl, hr);
-            let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
-            let m = di - l * cp;
-            cp = up / m;
-            for c in 0..D {
-                let rhs = q * (fr[c] - fc[c]) - p * (fc[c] - fl[c]);
-                rp[c] = (rhs - l * rp[c]) / m;
-            }
+            let (cp, rp) = st.row(two(kra, krb), scaled(vra, vrb), right, weights_two);
             *oa = (cp.0[0], std::array::from_fn(|c| rp[c].0[0]));
             *ob = (cp.0[1], std::array::from_fn(|c| rp[c].0[1]));
-            (kc, hl, fl, fc, left) = (kr, hr, fc, fr, right);
         }
     }
 
@@ -177,6 +151,62 @@ impl<const D: usize> Rows<'_, D> {
             sane(lo.abs() / (di - up.abs())),
             sane(up.abs() / (di - lo.abs())),
         )
+    }
+}
+
+/// The forward sweep's state between rows, `L` a number of each chunk swept
+/// side by side: the last knot, width, two scaled values and alpha terms, and
+/// the last row's `c'` and `r'`.
+struct Forward<L, const D: usize> {
+    kc: L,
+    hl: L,
+    fl: [L; D],
+    fc: [L; D],
+    left: [L; 4],
+    cp: L,
+    rp: [L; D],
+}
+
+impl<L: Lane, const D: usize> Forward<L, D> {
+    /// Before the first row: knots `lo`, `lo + 1`, the scaled values there,
+    /// the terms of alpha `lo`; the deviation at `lo` taken as zero.
+    #[inline(always)]
+    fn start((k0, k1): (L, L), (f0, f1): ([L; D], [L; D]), left: [L; 4]) -> Self {
+        Forward {
+            kc: k1,
+            hl: k1 - k0,
+            fl: f0,
+            fc: f1,
+            left,
+            cp: L::splat(0.0),
+            rp: [L::splat(0.0); D],
+        }
+    }
+
+    /// The next row, from the knot and scaled value past it and the terms of
+    /// the alpha between: [`Rows::matrix`]'s row with the right-hand side
+    /// `q (f_{k+1} - f_k) - p (f_k - f_{k-1})`, eliminated; its `c'` and `r'`.
+    /// `weights` is [`neighbour_weights`] in the lanes.
+    #[inline(always)]
+    fn row(
+        &mut self,
+        kr: L,
+        fr: [L; D],
+        right: [L; 4],
+        weights: fn(L, L) -> (L, L),
+    ) -> (L, [L; D]) {
+        let hr = kr - self.kc;
+        let (p, q) = weights(self.hl, hr);
+        let left = self.left;
+        let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
+        let m = di - l * self.cp;
+        self.cp = up / m;
+        for c in 0..D {
+            let rhs = q * (fr[c] - self.fc[c]) - p * (self.fc[c] - self.fl[c]);
+            self.rp[c] = (rhs - l * self.rp[c]) / m;
+        }
+        (self.kc, self.hl, self.fl, self.fc, self.left) = (kr, hr, self.fc, fr, right);
+        (self.cp, self.rp)
     }
 }
 
