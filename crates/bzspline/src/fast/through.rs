@@ -201,9 +201,10 @@ impl<L: Lane, const D: usize> Forward<L, D> {
         let (l, di, up) = through_row(p, q, left[0], left[1], right[2], right[3]);
         let m = di - l * self.cp;
         self.cp = up / m;
-        for c in 0..D {
-            let rhs = q * (fr[c] - self.fc[c]) - p * (self.fc[c] - self.fl[c]);
-            self.rp[c] = (rhs - l * self.rp[c]) / m;
+        let each = self.rp.iter_mut().zip(&fr).zip(&self.fc).zip(&self.fl);
+        for (((rp, &fr), &fc), &fl) in each {
+            let rhs = q * (fr - fc) - p * (fc - fl);
+            *rp = (rhs - l * *rp) / m;
         }
         (self.kc, self.hl, self.fl, self.fc, self.left) = (kr, hr, self.fc, fr, right);
         (self.cp, self.rp)
