@@ -609,10 +609,11 @@ fn gcv_of(p: &Problem<'_>, trace: Option<f64>, phis: &[Vec<f64>]) -> f64 {
     let Some(trace) = trace else {
         return f64::INFINITY;
     };
-    let n = p.weights.len();
     let mut rss = 0.0;
     for ((scale, y), phi) in p.coords.iter().zip(phis) {
-        let s: f64 = (0..n).map(|i| p.weights[i] * (y[i] - phi[i]).powi(2)).sum();
+        let s: f64 = (p.weights.iter().zip(y).zip(phi))
+            .map(|((w, y), phi)| w * (y - phi).powi(2))
+            .sum();
         rss += s * scale * scale;
     }
     let s = gcv_score(rss * p.mean_w / p.coords.len() as f64, trace, p.count);

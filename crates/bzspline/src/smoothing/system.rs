@@ -71,9 +71,32 @@ pub(super) fn link_mul<T: Lane>(b: &M3<T>, p: &M3<T>) -> M3<T> {
         ]
     };
     [
-        comb(b[0][2], &p[2], T::splat(0.0), &p[0]),
+        p[2].map(|v| b[0][2] * v),
         comb(b[1][1], &p[1], b[1][2], &p[2]),
         comb(b[2][0], &p[0], b[2][1], &p[1]),
+    ]
+}
+
+/// `B v` for a link block `B` (five entries: see [`Grid::link`]): the
+/// products with its zeros left out, which leaves every sum as [`apply`]
+/// forms it (adding a product with zero changes no finite sum but the sign
+/// of a zero one).
+#[inline(always)]
+fn link_apply<T: Lane>(b: &M3<T>, v: &[T; 3]) -> [T; 3] {
+    [
+        b[0][2] * v[2],
+        b[1][1] * v[1] + b[1][2] * v[2],
+        b[2][0] * v[0] + b[2][1] * v[1],
+    ]
+}
+
+/// `B^T v` for a link block `B`, as [`link_apply`] for [`apply_t`].
+#[inline(always)]
+fn link_apply_t<T: Lane>(b: &M3<T>, v: &[T; 3]) -> [T; 3] {
+    [
+        b[2][0] * v[2],
+        b[1][1] * v[1] + b[2][1] * v[2],
+        b[0][2] * v[0] + b[1][2] * v[1],
     ]
 }
 
@@ -654,7 +677,7 @@ impl Head {
     ) {
         let sz = g.head_size();
         let tail = sz - 3;
-        let bt = apply_t(&g.link(g.head + 1, self.lambda), next);
+        let bt = link_apply_t(&g.link(g.head + 1, self.lambda), next);
         for i in 0..3 {
             z0[tail + i] -= bt[i];
         }
@@ -784,7 +807,7 @@ impl Sweeps {
             };
             let zs = &mut self.z[D * b * bz..D * (b + 1) * bz];
             for c in 0..D {
-                let lz = apply(&link, &sz[c]);
+                let lz = link_apply(&link, &sz[c]);
                 let zb = [T::splat(g.w(k) * ys[c][k]) - lz[0], -lz[1], -lz[2]];
                 sz[c] = apply(&si, &zb);
                 store3(&zb, &mut zs[c * bz..(c + 1) * bz]);
@@ -838,7 +861,7 @@ impl Sweeps {
             let link = g.link(k + 1, lambda);
             for c in 0..D {
                 let mut rhs = z_at(b, c);
-                let bt = apply_t(&link, &next[c]);
+                let bt = link_apply_t(&link, &next[c]);
                 for i in 0..3 {
                     rhs[i] -= bt[i];
                 }
