@@ -386,12 +386,13 @@ impl Solution {
         data: Data<'_>,
     ) -> Result<Solution, Error> {
         let (controls, fitted, rss) = controls(&mut f, coords, data)?;
+        let (dof, cov) = f.trace_and_covariances();
         Ok(Solution {
             controls,
             fitted,
             rss,
-            dof: f.trace(),
-            cov: f.covariances(),
+            dof,
+            cov,
         })
     }
 }

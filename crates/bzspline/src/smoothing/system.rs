@@ -318,6 +318,11 @@ pub(crate) trait System {
     fn trace(&self) -> f64;
     /// The posterior covariances a [`super::Posterior`] keeps, one a knot.
     fn covariances(&self) -> Vec<[f64; 7]>;
+    /// [`System::trace`] and [`System::covariances`], with the bits of
+    /// each (a system may form both in one pass).
+    fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>) {
+        (self.trace(), self.covariances())
+    }
     /// What one score of `lambda` needs: factors for it, solves for the knot
     /// values of each coordinate `ys[c]` into `phis[c]` (of length N, as the
     /// data) and returns the trace; `None` when singular. `d` is scratch.
@@ -388,7 +393,10 @@ impl System for Factored<'_> {
         Factored::trace(self)
     }
     fn covariances(&self) -> Vec<[f64; 7]> {
-        Factored::covariances(self)
+        Factored::trace_and_covariances(self).1
+    }
+    fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>) {
+        Factored::trace_and_covariances(self)
     }
     fn evaluate(
         &mut self,
@@ -1056,7 +1064,9 @@ impl<'a> Factored<'a> {
     /// Z(d_k, d_{k+1})]` (the last four zero at `N - 1`; `d_0 = d_{N-1} = 0`
     /// have none). The off-diagonal blocks follow from `Z L = L^-T D^-1`
     /// being block upper triangular: `Z_{b+1,b} = -Z_{b+1} L_{b+1,b}`.
-    pub(crate) fn covariances(&self) -> Vec<[f64; 7]> {
+    /// With them, the trace of [`Factored::trace`], summed from the same
+    /// blocks in the same order: its bits.
+    pub(crate) fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>) {
         let g = self.grid;
         let (lambda, head_inv) = (self.head.lambda, &self.head.inv);
         let inv = |b: usize| load33::<f64>(&self.sweeps.inv[9 * b..9 * (b + 1)]);
@@ -1065,6 +1075,7 @@ impl<'a> Factored<'a> {
         let last = n - g.head - 2;
         let mut zm = inv(last);
         out[n - 1][0] = zm[0][0];
+        let mut tr = g.w(n - 1) * zm[0][0];
         for b in (0..last).rev() {
             let k = g.head + 1 + b;
             // Z_{k+1,k} = -Z_{k+1} L: rows knot k+1, columns knot k.
@@ -1079,7 +1090,9 @@ impl<'a> Factored<'a> {
                 -cross[0][1],
                 -cross[1][1],
             ];
+            tr += g.w(k) * zm[0][0];
         }
+        let tr = self.head.trace(g, &zm, tr);
         // The head: with L = B S_head^-1 (3 x size, B meeting the head's last
         // knot only), Z_head = S_head^-1 + L^T Z L and Z_{head+1,head} = -Z L.
         let sz = g.head_size();
@@ -1124,7 +1137,7 @@ impl<'a> Factored<'a> {
                 out[k][6] = if g.head + 1 == n - 1 { 0.0 } else { at(d, 1) };
             }
         }
-        out
+        (tr, out)
     }
 
     /// The trace of the influence matrix, `sum_j w_j (H^-1)[phi_j, phi_j]`,
