@@ -11,7 +11,9 @@
 //! sorted queries (about 1.9 ns per query), a branchless binary search on 16
 //! queries at a time (about 30 ns per random query), a one-core memory stream
 //! (about 39 GB/s) and the page faults of a fresh allocation (about 3 ns per
-//! f64); beside them, the scaling stream on two threads at once. None of these uses bzspline: they say how fast this machine is at the
+//! f64); beside them, the scaling stream on two threads at once, and a
+//! construction's own traffic (16 bytes read and 48 written a point) with no
+//! arithmetic: the floor of a rebuild in place with plain stores. None of these uses bzspline: they say how fast this machine is at the
 //! work the targets were scaled from, so that `bench/compare.py` can scale the
 //! targets to it.
 //!
@@ -223,6 +225,20 @@ fn scale_into(dst: &mut [f64], src: &[f64]) {
     }
 }
 
+/// The memory traffic of a construction with no arithmetic: a point's `x`
+/// and `y` read (16 bytes) and its piece (32 bytes) and copies of both (16)
+/// written with plain stores, as a rebuild in place writes them (each line
+/// written is first read for ownership).
+fn construction_stream(x: &[f64], y: &[f64], out: (&mut [[f64; 4]], &mut [f64], &mut [f64])) {
+    let (pieces, xs, ys) = out;
+    let points = x.iter().zip(y).zip(xs.iter_mut().zip(ys.iter_mut()));
+    for (p, ((&a, &b), (xo, yo))) in pieces.iter_mut().zip(points) {
+        *p = [a, b, b, a];
+        *xo = a;
+        *yo = b;
+    }
+}
+
 fn main() {
     let args = args_or_exit("baselines", 3, true);
     let (n, m, mr, r) = (args.n, args.m, args.mr, args.repeats);
@@ -270,6 +286,19 @@ fn main() {
         });
         black_box(&dst);
     });
+    drop(dst);
+    // A construction's own traffic (64 bytes a point) over a quarter as many
+    // points as a stream has doubles.
+    let points = len / 4;
+    let (x, y) = (&src[..points], &src[points..2 * points]);
+    let (mut pieces, mut xs, mut ys) =
+        (vec![[0.0; 4]; points], vec![0.0; points], vec![0.0; points]);
+    let construct = median_ns(r, || {
+        construction_stream(x, y, (&mut pieces, &mut xs, &mut ys));
+        black_box((&pieces, &xs, &ys));
+    });
+    drop((pieces, xs, ys));
+    let mut dst = vec![0.0; len];
     // Writing a buffer that is already mapped, against writing a fresh one
     // (its page faults); the release of the fresh one is not timed.
     let fresh = f_median(r, &mut Vec::new(), || black_box(vec![1.0f64; len]));
@@ -287,7 +316,8 @@ fn main() {
          \"thomas_max_residual\": {}, \"thomas_off_chain_max_residual\": {}, \
          \"horner_walk_sorted_ns_per_query\": {}, \"search16_random_ns_per_query\": {}, \
          \"stream_read_gb_per_s\": {}, \"stream_scale_gb_per_s\": {}, \
-         \"stream_scale_two_threads_gb_per_s\": {}, \"fresh_alloc_ns_per_f64\": {}}}",
+         \"stream_scale_two_threads_gb_per_s\": {}, \"construction_stream_ns_per_point\": {}, \
+         \"fresh_alloc_ns_per_f64\": {}}}",
         f(plain / n as f64),
         f(off / n as f64),
         e(plain_res),
@@ -297,6 +327,7 @@ fn main() {
         gb(8.0 * len as f64, read),
         gb(16.0 * len as f64, scale),
         gb(16.0 * len as f64, scale_two),
+        f(construct / points as f64),
         f(((fresh - fill) / len as f64).max(0.0)),
     );
 }
