@@ -57,7 +57,9 @@ pub(super) fn quick_check(
     if !(span.is_finite() && span > 0.0) {
         return None;
     }
-    let thr = span * MIN_RELATIVE_INTERVAL;
+    // `w >= thr` and `w > 0` in one test: `thr` at least the least positive
+    // double (the product underflows to 0 only for a subnormal span).
+    let thr = (span * MIN_RELATIVE_INTERVAL).max(f64::from_bits(1));
     let (list, one) = alphas.parts();
     let alphas_ok = match one {
         Some(a) => (ALPHA_MIN..=ALPHA_MAX).contains(&a),
@@ -95,6 +97,7 @@ struct Stretches<'a> {
     values: &'a [f64],
     /// One per interval, or none for one alpha (checked apart).
     alphas: &'a [f64],
+    /// The least width accepted, positive.
     thr: f64,
 }
 
@@ -116,12 +119,12 @@ impl Stretches<'_> {
             *e = l[0];
             for j in 0..STRIDE {
                 let d = r[j] - l[j];
-                lanes[j % 4] &= (d >= thr) & (d > 0.0);
+                lanes[j % 4] &= d >= thr;
             }
         }
         for (l, r) in lr.iter().zip(rr) {
             let d = r - l;
-            lanes[0] &= (d >= thr) & (d > 0.0);
+            lanes[0] &= d >= thr;
         }
         // The stretches the loop did not reach (the last knot's included).
         let tail = w.start + (w.end - w.start) / STRIDE * STRIDE;
