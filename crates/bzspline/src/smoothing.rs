@@ -737,9 +737,17 @@ impl<'a, S: System + Send> Evaluator<'a, S> {
         let hi = f64::from(decade(n) + 3);
         let mut twin = self.twin();
         let ts: Vec<f64> = (0..=(hi - lo) as usize).map(|i| lo + i as f64).collect();
-        let (first, second) = ts.split_at(ts.len() / 2);
-        let (mut scan, rest) = self.pair(twin.as_mut(), |e| e.scores(first), |e| e.scores(second));
-        scan.extend(rest);
+        // Half on each thread, or all two at a time on one (halves of odd
+        // length would leave a score alone in each).
+        let mut scan = if twin.is_some() {
+            let (first, second) = ts.split_at(ts.len() / 2);
+            let (mut scan, rest) =
+                self.pair(twin.as_mut(), |e| e.scores(first), |e| e.scores(second));
+            scan.extend(rest);
+            scan
+        } else {
+            self.scores(&ts)
+        };
         // Where the score still falls towards interpolation, follow it down
         // (it levels off there; a dozen decades is far past that).
         for _ in 0..12 {
