@@ -1286,4 +1286,54 @@ mod tests {
         }
         assert!(cases > 1500, "{cases} cases compared");
     }
+
+    /// The link blocks' products without their zeros are the dense
+    /// products, every entry the same number (a zero's sign aside), on the
+    /// blocks of random grids (every knot, the last one's padding included)
+    /// and random vectors and pivots.
+    #[test]
+    fn link_products_are_the_dense_ones() {
+        let mut next = rng(5);
+        let mut cases = 0;
+        for seed in 0..20u64 {
+            let (grid, _) = case(seed);
+            for k in grid.head + 1..grid.n() {
+                let lambda = 10f64.powf(12.0 * next() - 9.0);
+                let b = grid.link(k, lambda);
+                let v: [f64; 3] = std::array::from_fn(|_| next() - 0.5);
+                let p: M3 = std::array::from_fn(|_| std::array::from_fn(|_| next() - 0.5));
+                let at = format!("seed {seed}, knot {k}");
+                assert_eq!(link_apply(&b, &v), apply(&b, &v), "{at}");
+                assert_eq!(link_apply_t(&b, &v), apply_t(&b, &v), "{at}");
+                assert_eq!(link_mul(&b, &p), mul(&b, &p), "{at}");
+                cases += 1;
+            }
+        }
+        assert!(cases > 5000, "{cases} blocks compared");
+    }
+
+    /// The trace summed beside the covariances has the bits of the trace
+    /// taken alone, and its covariances' diagonal gives it again.
+    #[test]
+    fn the_trace_beside_the_covariances_is_the_trace() {
+        let mut cases = 0;
+        for seed in 0..40u64 {
+            let (grid, _) = case(seed);
+            for t in [-12.0, -7.0, -3.5, -1.0, 0.0, 2.0, 6.0] {
+                let mut f = Factored::new(&grid);
+                if !f.factor(10f64.powf(t)) {
+                    continue;
+                }
+                let (tr, cov) = f.trace_and_covariances();
+                assert_eq!(tr.to_bits(), f.trace().to_bits(), "seed {seed}, t {t}");
+                let from_cov: f64 = (0..grid.n()).map(|k| grid.w(k) * cov[k][0]).sum();
+                assert!(
+                    (from_cov - tr).abs() <= 1e-9 * tr.abs(),
+                    "seed {seed}, t {t}: {from_cov} against {tr}"
+                );
+                cases += 1;
+            }
+        }
+        assert!(cases > 200, "{cases} cases compared");
+    }
 }
