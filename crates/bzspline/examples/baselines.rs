@@ -380,4 +380,22 @@ mod tests {
         let v: Vec<f64> = (0..1027).map(f64::from).collect();
         assert_eq!(sum4(&v), 1026.0 * 1027.0 / 2.0);
     }
+
+    #[test]
+    fn the_construction_stream_writes_every_point() {
+        let n = 1029;
+        let x: Vec<f64> = (0..n).map(f64::from).collect();
+        let y: Vec<f64> = x.iter().map(|v| -v).collect();
+        let (mut pieces, mut xs, mut ys) = (
+            vec![[f64::NAN; 4]; n as usize],
+            vec![0.0; n as usize],
+            vec![0.0; n as usize],
+        );
+        construction_stream(&x, &y, (&mut pieces, &mut xs, &mut ys));
+        assert_eq!((xs, ys), (x.clone(), y.clone()));
+        assert!(pieces
+            .iter()
+            .zip(x.iter().zip(&y))
+            .all(|(p, (&a, &b))| *p == [a, b, b, a]));
+    }
 }
