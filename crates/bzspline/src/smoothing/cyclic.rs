@@ -283,7 +283,7 @@ impl System for CyclicFactored<'_> {
         tr
     }
 
-    fn covariances(&self) -> Vec<[f64; 7]> {
+    fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>) {
         let n = self.grid.n();
         let (diag, below) = self.chain_inverse();
         let s = &self.border;
@@ -314,6 +314,6 @@ impl System for CyclicFactored<'_> {
         let y = neg(&mul(&self.u[n - 2], s));
         out.push(entries(&zk(n - 1), &transpose(&y)));
         out.push([s[0][0], s[0][1], s[1][1], 0.0, 0.0, 0.0, 0.0]);
-        out
+        (self.trace(), out)
     }
 }

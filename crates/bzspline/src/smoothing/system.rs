@@ -316,13 +316,10 @@ pub(crate) trait System {
     fn solve(&mut self, y: &[f64], phi: &mut [f64], d: &mut [f64]);
     /// The trace of the influence matrix.
     fn trace(&self) -> f64;
-    /// The posterior covariances a [`super::Posterior`] keeps, one a knot.
-    fn covariances(&self) -> Vec<[f64; 7]>;
-    /// [`System::trace`] and [`System::covariances`], with the bits of
-    /// each (a system may form both in one pass).
-    fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>) {
-        (self.trace(), self.covariances())
-    }
+    /// [`System::trace`], with its bits, and the posterior covariances a
+    /// [`super::Posterior`] keeps, one a knot (a system may form both in
+    /// one pass).
+    fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>);
     /// What one score of `lambda` needs: factors for it, solves for the knot
     /// values of each coordinate `ys[c]` into `phis[c]` (of length N, as the
     /// data) and returns the trace; `None` when singular. `d` is scratch.
@@ -391,9 +388,6 @@ impl System for Factored<'_> {
     }
     fn trace(&self) -> f64 {
         Factored::trace(self)
-    }
-    fn covariances(&self) -> Vec<[f64; 7]> {
-        Factored::trace_and_covariances(self).1
     }
     fn trace_and_covariances(&self) -> (f64, Vec<[f64; 7]>) {
         Factored::trace_and_covariances(self)
