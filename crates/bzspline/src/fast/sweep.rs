@@ -689,13 +689,7 @@ impl<L: Lane, const D: usize> Elim<L, D> {
             y1[c] = g1 - m1 * self.y_prev[c];
             y2[c] = (g2 - m2 * g1) + (m2 * m1) * self.y_prev[c];
         }
-        self.p_prev2 = p1;
-        self.p_prev = p2;
-        self.since += 2;
-        if self.since >= RENORM {
-            renormalise(&mut self.p_prev, &mut self.p_prev2);
-            self.since = 0;
-        }
+        self.advance(2, p1, p2);
         self.y_prev = y2;
         self.u_prev = u2;
         self.hl = h2;
@@ -703,6 +697,19 @@ impl<L: Lane, const D: usize> Elim<L, D> {
         self.fc = f2;
         self.terms_l = t2;
         [(u1 * inv1, y1), (u2 * inv2, y2)]
+    }
+
+    /// The last two pivots after `rows` more rows, `p_prev2` then `p_prev`,
+    /// renormalised every [`RENORM`] rows.
+    #[inline(always)]
+    fn advance(&mut self, rows: usize, p_prev2: L, p_prev: L) {
+        self.p_prev2 = p_prev2;
+        self.p_prev = p_prev;
+        self.since += rows;
+        if self.since >= RENORM {
+            renormalise(&mut self.p_prev, &mut self.p_prev2);
+            self.since = 0;
+        }
     }
 
     /// One row `k` of the elimination, from knot `k - 1` (`kr`), the scaled
@@ -720,13 +727,7 @@ impl<L: Lane, const D: usize> Elim<L, D> {
         let (df_l, y_prev) = (self.df_l, self.y_prev);
         let y =
             core::array::from_fn(|c| (hl * df_r[c] - hr * df_l[c]) * inv - (l * inv) * y_prev[c]);
-        self.p_prev2 = self.p_prev;
-        self.p_prev = p;
-        self.since += 1;
-        if self.since >= RENORM {
-            renormalise(&mut self.p_prev, &mut self.p_prev2);
-            self.since = 0;
-        }
+        self.advance(1, self.p_prev, p);
         self.y_prev = y;
         self.u_prev = u;
         self.kc = kr;
