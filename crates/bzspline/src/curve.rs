@@ -286,13 +286,32 @@ pub struct Nearest {
 }
 
 /// Euclidean norm without overflow or underflow in the squares.
+#[inline]
 fn norm(v: &[f64]) -> f64 {
+    let (m, s) = norm_parts(v);
+    norm_of(m, s.map_or(0.0, f64::sqrt))
+}
+
+/// The largest magnitude `m` of `v` and, unless `m` is zero or not finite,
+/// the sum of the squares of `v / m`: what [`norm`] takes the square root
+/// of.
+#[inline]
+fn norm_parts(v: &[f64]) -> (f64, Option<f64>) {
     let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if m == 0.0 || !m.is_finite() {
-        return m;
+        return (m, None);
     }
-    let s: f64 = v.iter().map(|x| (x / m) * (x / m)).sum();
-    m * s.sqrt()
+    (m, Some(v.iter().map(|x| (x / m) * (x / m)).sum()))
+}
+
+/// [`norm`] from [`norm_parts`]'s `m` and the square root of its sum.
+#[inline(always)]
+fn norm_of(m: f64, root: f64) -> f64 {
+    if m == 0.0 || !m.is_finite() {
+        m
+    } else {
+        m * root
+    }
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
