@@ -414,6 +414,22 @@ impl Curve {
             }
             return;
         }
+        if self.closed && (1..=3).contains(&dim) {
+            let uniform = uniform.or_else(|| {
+                self.alphas
+                    .first()
+                    .copied()
+                    .filter(|&a| self.alphas.iter().all(|&b| b == a))
+            });
+            let fused = match dim {
+                1 => self.solve_ring::<1>(points, uniform),
+                2 => self.solve_ring::<2>(points, uniform),
+                _ => self.solve_ring::<3>(points, uniform),
+            };
+            if fused {
+                return;
+            }
+        }
         self.points.clear();
         self.points.extend_from_slice(points);
         let widths: Vec<f64> = self
@@ -517,6 +533,27 @@ impl Curve {
             &mut self.d,
             &mut self.points,
         );
+    }
+
+    /// [`fast::ring::build_closed_curve`] in `D` dimensions: `false`, and the
+    /// curve unchanged, when the ring is too short for it.
+    pub(super) fn solve_ring<const D: usize>(
+        &mut self,
+        points: &[f64],
+        uniform: Option<f64>,
+    ) -> bool {
+        let inv = core::array::from_fn(|c| self.inv_scales.get(c).copied().unwrap_or(1.0));
+        let parts = self.pieces.parts_mut();
+        fast::ring::build_closed_curve::<D>(
+            parts.knots,
+            points,
+            inv,
+            &self.alphas,
+            uniform,
+            parts.coefs,
+            &mut self.d,
+            &mut self.points,
+        )
     }
 
     /// Coordinate `c` of knot point `i` (the curve's point at knot `i`) in the

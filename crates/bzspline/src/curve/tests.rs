@@ -113,6 +113,74 @@ fn fused_open_curves_match_the_coordinate_by_coordinate_solve() {
     }
 }
 
+#[test]
+fn closed_curves_through_the_open_sweeps_match_the_cyclic_solve() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    for dim in 1..=3 {
+        for n in [3usize, 5, 40, 64, 65, 200, 1001, 70_001] {
+            for (param, uniform) in [
+                (Param::Uniform, true),
+                (Param::Chordal, false),
+                (Param::Centripetal, true),
+            ] {
+                let pts: Vec<f64> = (0..n * dim)
+                    .map(|i| (rng.next() - 0.5) * [1.0, 1e-200, 3e250][i % dim])
+                    .collect();
+                let alphas: Vec<f64> = (0..n)
+                    .map(|_| ALPHA_MIN + (ALPHA_MAX - ALPHA_MIN) * rng.next())
+                    .collect();
+                let b = Curve::builder(&pts, dim).closed(true).param(param.clone());
+                let built = if uniform {
+                    b.alpha(alphas[0])
+                } else {
+                    b.alphas(&alphas)
+                }
+                .build()
+                .unwrap();
+                let widths: Vec<f64> = built.knots().windows(2).map(|w| w[1] - w[0]).collect();
+                let mut slow = built.clone();
+                slow.solve_general(&widths);
+                let mut fast = built.clone();
+                let one = uniform.then_some(alphas[0]);
+                let ring = match dim {
+                    1 => fast.solve_ring::<1>(&pts, one),
+                    2 => fast.solve_ring::<2>(&pts, one),
+                    _ => fast.solve_ring::<3>(&pts, one),
+                };
+                // Rings long enough for the ends' responses to lie apart
+                // (about 20 rows each at these alphas), not the shortest.
+                assert!(ring || n < 200, "dim {dim} n {n} {param:?}");
+                assert!(!ring || n > 5, "dim {dim} n {n} {param:?}");
+                if !ring {
+                    continue;
+                }
+                assert_eq!(fast.points, pts);
+                assert_eq!(fast.d.len(), slow.d.len());
+                // Scaled numbers lie in [-2, 2]: compare them absolutely.
+                let tol = 1e-14;
+                for (i, (p, q)) in fast.d.iter().zip(&slow.d).enumerate() {
+                    assert!(
+                        (p - q).abs() <= tol,
+                        "dim {dim} n {n} {param:?}: deviation {i}: want {q}, got {p}"
+                    );
+                }
+                let (fc, sc) = (fast.pieces.coefs(), slow.pieces.coefs());
+                assert_eq!(fc.len(), sc.len());
+                for (i, (Piece(p), Piece(q))) in fc.iter().zip(sc).enumerate() {
+                    for j in 0..4 {
+                        assert!(
+                            (p[j] - q[j]).abs() <= 4.0 * tol,
+                            "dim {dim} n {n} {param:?}: piece {i} coef {j}: want {}, got {}",
+                            q[j],
+                            p[j]
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 const SQUARE: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 
 #[test]

@@ -41,10 +41,10 @@ pub(crate) const CHUNKED_MIN: usize = 4 * CHUNK;
 const PARALLEL_MIN: usize = 131_072;
 
 /// The most rows of overlap on either side of a cut.
-const MAX_OVERLAP: usize = 512;
+pub(super) const MAX_OVERLAP: usize = 512;
 
 /// The product of the rows' damping factors an overlap must reach: `2^-64`.
-const TRUNCATION: f64 = 1.0 / 18_446_744_073_709_551_616.0;
+pub(super) const TRUNCATION: f64 = 1.0 / 18_446_744_073_709_551_616.0;
 
 /// One chunk: it keeps legs `start..end` and solves the system of knots
 /// `lo..=hi`, whose end deviations are taken as zero.
@@ -88,6 +88,12 @@ pub(crate) struct Whole<'a, const D: usize> {
 fn damping(knots: &[f64], ws: f64, left: [f64; 4], right: [f64; 4], k: usize) -> (f64, f64) {
     let hl = (knots[k] - knots[k - 1]) * ws;
     let hr = (knots[k + 1] - knots[k]) * ws;
+    damping_of(hl, hr, left, right)
+}
+
+/// [`damping`] of a row with widths `hl` and `hr` (already multiplied by a
+/// power of two that brings them near 1) on its left and right.
+pub(super) fn damping_of(hl: f64, hr: f64, left: [f64; 4], right: [f64; 4]) -> (f64, f64) {
     let [al, b1, _, _] = left;
     let [_, _, b2, cr] = right;
     let down = hr * al / (hr * b1 + hl * (b2 - cr));

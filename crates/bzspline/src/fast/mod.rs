@@ -10,6 +10,7 @@
 //!   the other or side by side, for large inputs;
 //! - `pair`: two chunks eliminated at once, one in each lane of an SSE2
 //!   register;
+//! - [`ring`]: a closed curve's cyclic system through the open sweeps;
 //! - [`through`]: the interpolating variant's system, whole or in chunks;
 //! - [`batch`]: the batch evaluator of a spline's derivatives at many queries;
 //! - [`search`]: the summary of the knots and its index, and the searches of
@@ -20,6 +21,7 @@
 pub(crate) mod batch;
 pub(crate) mod chunks;
 mod pair;
+pub(crate) mod ring;
 pub(crate) mod search;
 pub(crate) mod sweep;
 pub(crate) mod through;
