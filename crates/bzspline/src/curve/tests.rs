@@ -150,7 +150,10 @@ fn closed_curves_through_the_open_sweeps_match_the_cyclic_solve() {
                 // Rings long enough for the ends' responses to lie apart
                 // (about 20 rows each at these alphas), not the shortest.
                 assert!(ring || n < 200, "dim {dim} n {n} {param:?}");
-                assert!(!ring || n > 5, "dim {dim} n {n} {param:?}");
+                assert!(
+                    !ring || n >= crate::fast::ring::RING_MIN,
+                    "dim {dim} n {n} {param:?}"
+                );
                 if !ring {
                     continue;
                 }

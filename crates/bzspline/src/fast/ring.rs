@@ -27,8 +27,9 @@ use crate::tridiag::Thomas;
 /// The fewest points of a ring solved this way. The response to each end
 /// reaches 21 knots at alpha 1/2 on even knots (fewer where the rows damp
 /// more), so shorter rings seldom have the two apart, and a failed attempt
-/// costs its walks; they go through the cyclic system's own solve.
-pub(crate) const RING_MIN: usize = 24;
+/// costs its walks (a 30-point ring took a third longer); they go through
+/// the cyclic system's own solve.
+pub(crate) const RING_MIN: usize = 48;
 
 /// The closed curve of `n = knots.len() - 1` points: `knots` (`tau_0 ..=
 /// tau_n`, validated, `tau_n` closing the ring), `points` (`n D`, scaled by
