@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 cargo build --release -q -p bzspline --example instructions
 bin=target/release/examples/instructions
 modes=("$@")
-[ ${#modes[@]} -gt 0 ] || modes=(build build_alphas through sorted random curve flatten ceval seval)
+[ ${#modes[@]} -gt 0 ] || modes=(build build_alphas through sorted random curve closed flatten ceval seval)
 count() {
   valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" "$1" "$2" 2>&1 >/dev/null |
     sed -n 's/.*Collected : \([0-9]*\).*/\1/p'

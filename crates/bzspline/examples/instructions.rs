@@ -16,7 +16,8 @@
 //! `build` (rebuild with one alpha), `build_alphas` (one alpha per interval),
 //! `through` (the interpolating variant, fresh), `sorted` and `random`
 //! (10^6 batch queries), `curve` (a planar curve rebuilt into its own
-//! allocations), `flatten` (a 10^5-point spiral to 1e-3 of its size), `ceval`
+//! allocations), `closed` (the same points closed into a ring, rebuilt the
+//! same way), `flatten` (a 10^5-point spiral to 1e-3 of its size), `ceval`
 //! (10^6 single `Curve::eval_into` in order), `seval` (10^5 single
 //! `Spline::eval` in random order). It prints the divisor to use.
 
@@ -50,9 +51,10 @@ fn main() {
     } = Data::new(&mut rng, N, M, M);
     let pts: Vec<[f64; 2]> = knots.iter().zip(&values).map(|(x, y)| [*x, *y]).collect();
     let spiral = common::spiral(&mut rng, N);
-    let (Ok(mut s), Ok(mut c), Ok(sc)) = (
+    let (Ok(mut s), Ok(mut c), Ok(mut cc), Ok(sc)) = (
         Spline::new(&knots, &values),
         Curve::open(&pts),
+        Curve::closed(&pts),
         Curve::open(&spiral),
     ) else {
         eprintln!("instructions: the data did not build");
@@ -76,6 +78,10 @@ fn main() {
             "through" => black_box(Spline::through(&knots, &values, Alphas::default())).is_ok(),
             "sorted" => s.eval_many(black_box(&sorted), &mut out).is_ok(),
             "random" => s.eval_many(black_box(&random), &mut out).is_ok(),
+            "closed" => CurveBuilder::new(black_box(pts.as_flattened()), 2)
+                .closed(true)
+                .build_into(&mut cc)
+                .is_ok(),
             "curve" => CurveBuilder::new(black_box(pts.as_flattened()), 2)
                 .build_into(&mut c)
                 .is_ok(),

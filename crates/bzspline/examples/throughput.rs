@@ -99,7 +99,13 @@ fn main() {
     };
     // The same curve built again into its own allocations, as `rebuild` does
     // for the spline.
-    let curve_rebuild = rebuild_ns(r, &pts);
+    let curve_rebuild = rebuild_ns(r, &pts, false);
+    // The same points closed into a ring, fresh and built again.
+    let closed_build = {
+        let mut keep = Vec::new();
+        f_median(r, &mut keep, || Curve::closed(&pts))
+    };
+    let closed_rebuild = rebuild_ns(r, &pts, true);
     // Flattening as the target states it: a 1e5-point planar curve (a jittered
     // spiral of 100 turns) to a tolerance of 1e-3 of its size (the diagonal of
     // its bounding box), against building the same curve.
@@ -110,7 +116,7 @@ fn main() {
     };
     // Built again into its own allocations: the build without page faults,
     // the stricter measure to hold the flattening against.
-    let spiral_rebuild = rebuild_ns(r, &spiral);
+    let spiral_rebuild = rebuild_ns(r, &spiral, false);
     let (spiral_flatten, spiral_vertices) = match Curve::open(&spiral) {
         Ok(c) => {
             let b = c.bbox();
@@ -224,6 +230,7 @@ fn main() {
          \"curve2d_construct_ns_per_point\": {}, \"curve2d_rebuild_ns_per_point\": {}, \
          \"curve2d_through_ns_per_point\": {}, \
          \"curve2d_move_point_ns\": {}, \
+         \"closed2d_construct_ns_per_point\": {}, \"closed2d_rebuild_ns_per_point\": {}, \
          \"spiral_1e5_construct_ns_per_point\": {}, \"spiral_1e5_rebuild_ns_per_point\": {}, \
          \"spiral_1e5_flatten_ns_per_point\": {}, \"spiral_1e5_flatten_vertices\": {}}}",
         num(reuse / n as f64),
@@ -248,6 +255,8 @@ fn main() {
         num(curve_rebuild / n as f64),
         num(curve_through / n as f64),
         num(curve_move),
+        num(closed_build / n as f64),
+        num(closed_rebuild / n as f64),
         num(spiral_build / SPIRAL as f64),
         num(spiral_rebuild / SPIRAL as f64),
         num(spiral_flatten / SPIRAL as f64),
@@ -255,14 +264,22 @@ fn main() {
     );
 }
 
-/// Median time of building the planar curve through `pts` again into its own
-/// allocations (`CurveBuilder::build_into`); NaN when it cannot be built.
-fn rebuild_ns(repeats: usize, pts: &[[f64; 2]]) -> f64 {
-    match Curve::open(pts) {
+/// Median time of building the planar curve on `pts` (open, or `closed`
+/// into a ring) again into its own allocations (`CurveBuilder::build_into`);
+/// NaN when it cannot be built.
+fn rebuild_ns(repeats: usize, pts: &[[f64; 2]], closed: bool) -> f64 {
+    let built = if closed {
+        Curve::closed(pts)
+    } else {
+        Curve::open(pts)
+    };
+    match built {
         Ok(mut c) => {
             let flat = pts.as_flattened();
             median_ns(repeats, || {
-                let res = CurveBuilder::new(black_box(flat), 2).build_into(&mut c);
+                let res = CurveBuilder::new(black_box(flat), 2)
+                    .closed(closed)
+                    .build_into(&mut c);
                 black_box(res.is_ok());
             })
         }
