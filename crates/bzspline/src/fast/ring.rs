@@ -86,7 +86,7 @@ pub(crate) fn build_closed_curve<const D: usize>(
     // most 1 in magnitude (§16), both near 1 only where neither end row damps.
     let (wa0, wb_last) = (wa[0], wb[0]);
     let det = 1.0 - wa0 * wb_last;
-    if !(det >= 0.25) {
+    if det.is_nan() || det < 0.25 {
         return false;
     }
     // The open system: the copies at both ends around the ring's knots.
