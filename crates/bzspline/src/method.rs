@@ -207,9 +207,17 @@ pub(crate) fn through_row<L: Lane>(p: L, q: L, al: L, b1: L, b2: L, cr: L) -> (L
 #[inline]
 pub(crate) fn row(hl: f64, hr: f64, al: f64, ar: f64) -> (f64, f64, f64, f64) {
     let (p, q) = neighbour_weights(hl, hr);
-    let [a, b1, _, _] = alpha_terms(al);
-    let [_, _, b2, c] = alpha_terms(ar);
-    (-p * a, p * b1 + q * b2, -q * c, p)
+    let (lower, diag, upper) = row_of_terms(p, q, alpha_terms(al), alpha_terms(ar));
+    (lower, diag, upper, p)
+}
+
+/// [`row`] from the neighbour weights `p`, `q` and the [`alpha_terms`] of the
+/// alphas on the left and the right: `(lower, diag, upper)`.
+#[inline]
+pub(crate) fn row_of_terms(p: f64, q: f64, left: [f64; 4], right: [f64; 4]) -> (f64, f64, f64) {
+    let [a, b1, _, _] = left;
+    let [_, _, b2, c] = right;
+    (-p * a, p * b1 + q * b2, -q * c)
 }
 
 /// The factored cyclic system of a closed curve.

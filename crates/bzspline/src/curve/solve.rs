@@ -5,8 +5,8 @@
 use super::{norm, norm_of, norm_parts, Curve, ParamKind};
 use crate::error::Error;
 use crate::fast::{self, Piece};
-use crate::method::scale_for_max;
 use crate::method::{alpha_terms, piece_coefs_with, through_controls, ClosedSystem, OpenSystem};
+use crate::method::{power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::traits::ParamCurve;
 use crate::validate::{check_knots, Alphas};
@@ -215,9 +215,10 @@ pub(super) struct Input<'a> {
 
 /// The control points of the curve through `points` at the parameters
 /// `knots` (§11): an open curve's system in the fused sweeps (in chunks when
-/// long), a closed curve's cyclic one assembled and factored. `None` when a
-/// control value leaves the range of a double.
-fn through_points(
+/// long), a closed curve's cyclic one through the same sweeps
+/// ([`fast::ring`]) or, when the ring is short, assembled and factored.
+/// `None` when a control value leaves the range of a double.
+pub(super) fn through_points(
     knots: &[f64],
     points: &[f64],
     dim: usize,
@@ -228,12 +229,35 @@ fn through_points(
     if !closed {
         return fast::through::curve_controls(knots, points, dim, given, uniform);
     }
+    let ring = match dim {
+        1 => ring_controls::<1>(knots, points, given, uniform),
+        2 => ring_controls::<2>(knots, points, given, uniform),
+        3 => ring_controls::<3>(knots, points, given, uniform),
+        _ => None,
+    };
+    if let Some(solved) = ring {
+        return solved;
+    }
     let widths: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
     let resolved = match uniform {
         Some(a) => vec![a; widths.len()],
         None => given.to_vec(),
     };
     through_controls(&widths, &resolved, points, dim, closed)
+}
+
+/// [`fast::ring::closed_controls`] of points of `D` coordinates (flat), each
+/// coordinate scaled by the power of two of its largest magnitude.
+pub(super) fn ring_controls<const D: usize>(
+    knots: &[f64],
+    points: &[f64],
+    alphas: &[f64],
+    uniform: Option<f64>,
+) -> Option<Option<Vec<f64>>> {
+    let (pts, _) = points.as_chunks::<D>();
+    let scale = core::array::from_fn(|c| power_of_two_scale(pts.iter().map(|p| &p[c])));
+    let solved = fast::ring::closed_controls::<D>(knots, pts, alphas, uniform, scale)?;
+    Some(solved.map(|g| g.into_flattened()))
 }
 
 impl Curve {

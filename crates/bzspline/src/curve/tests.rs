@@ -184,6 +184,62 @@ fn closed_curves_through_the_open_sweeps_match_the_cyclic_solve() {
     }
 }
 
+#[test]
+fn closed_curves_through_their_points_match_the_cyclic_solve() {
+    let mut rng = Rng(0x0123_4567_89ab_cdef);
+    for dim in 1..=3 {
+        for n in [3usize, 47, 48, 200, 1001, 70_001] {
+            for alphas_kind in 0..3 {
+                // Widths over three decades; coordinates of different
+                // magnitudes in each dimension.
+                let mut knots = vec![0.0];
+                for _ in 0..n {
+                    let w = 10f64.powf(3.0 * rng.next() - 1.5);
+                    knots.push(knots.last().unwrap() + w);
+                }
+                let pts: Vec<f64> = (0..n * dim)
+                    .map(|i| (rng.next() - 0.5) * [1.0, 1e-200, 3e250][i % dim])
+                    .collect();
+                let one = [0.5, ALPHA_MIN + (ALPHA_MAX - ALPHA_MIN) * rng.next()];
+                let per: Vec<f64> = (0..n)
+                    .map(|_| ALPHA_MIN + (ALPHA_MAX - ALPHA_MIN) * rng.next())
+                    .collect();
+                let (alphas, resolved) = match alphas_kind {
+                    0 | 1 => (Alphas::Uniform(one[alphas_kind]), vec![one[alphas_kind]; n]),
+                    _ => (Alphas::PerInterval(&per), per.clone()),
+                };
+                let widths: Vec<f64> = knots.windows(2).map(|w| w[1] - w[0]).collect();
+                let want =
+                    crate::method::through_controls(&widths, &resolved, &pts, dim, true).unwrap();
+                let got = super::solve::through_points(&knots, &pts, dim, true, alphas).unwrap();
+                let (given, uniform) = alphas.parts();
+                let ring = match dim {
+                    1 => super::solve::ring_controls::<1>(&knots, &pts, given, uniform),
+                    2 => super::solve::ring_controls::<2>(&knots, &pts, given, uniform),
+                    _ => super::solve::ring_controls::<3>(&knots, &pts, given, uniform),
+                };
+                // Long rings go through the open sweeps.
+                assert!(
+                    ring.is_some() || n < 200,
+                    "dim {dim} n {n} alphas {alphas_kind}"
+                );
+                assert!(ring.is_none() || n >= crate::fast::ring::RING_MIN);
+                assert_eq!(got.len(), want.len());
+                for c in 0..dim {
+                    let m = (0..n).fold(0.0f64, |m, i| m.max(pts[i * dim + c].abs()));
+                    for i in 0..n {
+                        let (g, w) = (got[i * dim + c], want[i * dim + c]);
+                        assert!(
+                            (g - w).abs() <= 1e-13 * m,
+                            "dim {dim} n {n} alphas {alphas_kind}: control {i}.{c}: want {w}, got {g}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
 const SQUARE: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 
 #[test]

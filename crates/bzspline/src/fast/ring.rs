@@ -1,7 +1,8 @@
-//! A closed curve's cyclic system solved by the open curve's fused sweeps.
+//! Closed curves' cyclic systems solved by the open curve's fused sweeps:
+//! the method's system (§7) and the interpolating variant's (§11).
 //!
-//! Row `i` of the cyclic system couples knot `i` to knots `i - 1` and
-//! `i + 1` around the ring. Laid out as an open system over the ring's knots
+//! Row `i` of a cyclic system couples knot `i` to knots `i - 1` and `i + 1`
+//! around the ring. Laid out as an open system over the ring's knots
 //! `0 ..= n - 1` between two extra end knots, a copy of knot `n - 1` before
 //! knot 0 (at `tau_0 - h_{n-1}`) and a copy of knot 0 after knot `n - 1` (at
 //! `tau_n`), every row of the ring is a row of the open system with its own
@@ -13,15 +14,15 @@
 //! §16), and is taken over the rows that bring it below `2^-64`, as between
 //! two chunks. With the two responses apart (the ring longer than both),
 //! `a = y_{n-1} + b w_b(n-1)` and `b = y_0 + a w_a(0)`, a two-by-two system;
-//! the deviations near the ends are corrected and the pieces of their legs
-//! formed again. Everything else is the open curve's construction, in chunks
-//! and on several threads when long. The result agrees with the cyclic
-//! system's own solve ([`crate::tridiag::CyclicThomas`]) to rounding.
+//! the deviations near the ends are corrected (and the pieces of their legs
+//! formed again). Everything else is the open curve's sweeps, in chunks and on
+//! several threads when long. The results agree with the cyclic systems' own
+//! solve ([`crate::tridiag::CyclicThomas`]) to rounding.
 
-use super::chunks::{damping_of, MAX_OVERLAP, TRUNCATION};
+use super::chunks::{MAX_OVERLAP, TRUNCATION};
 use super::sweep::{self, build_open_curve};
-use super::{inverse_power_of_two, Piece};
-use crate::method::{alpha_terms, row};
+use super::{inverse_power_of_two, through, Piece};
+use crate::method::{alpha_terms, neighbour_weights, row_of_terms, through_row};
 use crate::tridiag::Thomas;
 
 /// The fewest points of a ring solved this way. The response to each end
@@ -57,38 +58,10 @@ pub(crate) fn build_closed_curve<const D: usize>(
     if n < RING_MIN || pts.len() != n || (uniform.is_none() && alphas.len() != n) {
         return false;
     }
-    let (Some(&t0), Some(&t_last), Some(&t_end)) = (knots.first(), knots.get(n - 1), knots.last())
-    else {
+    let Some(ends) = Ends::of(knots, alphas, uniform, System::Method) else {
         return false;
     };
-    let closing = t_end - t_last;
-    let before = t0 - closing;
-    if t0 - before != closing {
-        return false;
-    }
-    let ring = Ring {
-        knots,
-        alphas,
-        uniform,
-        terms: uniform.map(alpha_terms),
-    };
-    let ws = inverse_power_of_two(t_end - before);
-    let Some(ra) = ring.reach(ws, true, n) else {
-        return false;
-    };
-    let Some(rb) = ring.reach(ws, false, n - ra) else {
-        return false;
-    };
-    let (Some(wa), Some(wb)) = (ring.response(ra, true), ring.response(rb, false)) else {
-        return false;
-    };
-    // The two-by-two system's determinant: each response at its end is at
-    // most 1 in magnitude (§16), both near 1 only where neither end row damps.
-    let (wa0, wb_last) = (wa[0], wb[0]);
-    let det = 1.0 - wa0 * wb_last;
-    if det.is_nan() || det < 0.25 {
-        return false;
-    }
+    let (before, ws) = (ends.before, ends.ws);
     // The open system: the copies at both ends around the ring's knots.
     let mut ext_knots = Vec::with_capacity(n + 2);
     ext_knots.push(before);
@@ -128,20 +101,14 @@ pub(crate) fn build_closed_curve<const D: usize>(
     coefs.truncate(n * D);
     // The end deviations, and the deviations they move.
     for c in 0..D {
-        let (y0, y_last) = (dev[c], dev[(n - 1) * D + c]);
-        let a = (y_last + wb_last * y0) / det;
-        let b = y0 + a * wa0;
-        for (i, w) in wa.iter().enumerate() {
-            dev[i * D + c] += a * w;
-        }
-        for (j, w) in wb.iter().enumerate() {
-            dev[(n - 1 - j) * D + c] += b * w;
-        }
+        ends.correct(n, &mut dev[c..], D);
     }
-    // The legs whose deviations moved: the first ones, the last ones and
-    // the closing leg.
+    // The legs whose deviations moved: the first ones, the last ones (and
+    // the one before them) and the closing leg.
     let scaled = |i: usize| -> [f64; D] { core::array::from_fn(|c| pts[i][c] * inv_scale[c]) };
-    let legs = (0..wa.len()).chain(n - 1 - wb.len()..n);
+    let legs = ends
+        .moved(n)
+        .chain(core::iter::once(n - 1 - ends.last.len()));
     for k in legs {
         let j = if k + 1 == n { 0 } else { k + 1 };
         let a = uniform.unwrap_or_else(|| alphas[k]);
@@ -154,13 +121,166 @@ pub(crate) fn build_closed_curve<const D: usize>(
     true
 }
 
-/// The rows of the ring.
+/// The control points of the closed curve through `points` (`n` of them)
+/// at `knots` (`tau_0 ..= tau_n`, validated) with `alphas` (`n`, the closing
+/// leg last) unless `uniform` gives the one alpha: the interpolating
+/// variant's cyclic system (§11) through the open one's sweeps
+/// ([`through`]), each coordinate scaled by its `scale` while it is solved.
+/// `None` where [`build_closed_curve`] would return `false` (the caller
+/// solves the cyclic system itself); `Some(None)` when a control value leaves
+/// the range of a double.
+pub(crate) fn closed_controls<const D: usize>(
+    knots: &[f64],
+    points: &[[f64; D]],
+    alphas: &[f64],
+    uniform: Option<f64>,
+    scale: [f64; D],
+) -> Option<Option<Vec<[f64; D]>>> {
+    let n = knots.len().saturating_sub(1);
+    if points.len() != n {
+        return None;
+    }
+    let ends = Ends::of(knots, alphas, uniform, System::Through)?;
+    let mut ext_knots = Vec::with_capacity(n + 2);
+    ext_knots.push(ends.before);
+    ext_knots.extend_from_slice(knots);
+    let mut ext_points = Vec::with_capacity(n + 2);
+    ext_points.push(points[n - 1]);
+    ext_points.extend_from_slice(points);
+    ext_points.push(points[0]);
+    let ext_alphas: Vec<f64> = match uniform {
+        Some(_) => Vec::new(),
+        None => core::iter::once(alphas[n - 1])
+            .chain(alphas.iter().copied())
+            .collect(),
+    };
+    let mut out = vec![[0.0; D]; n + 2];
+    if through::solve_all(
+        &ext_knots,
+        &ext_points,
+        &ext_alphas,
+        uniform,
+        scale,
+        &mut out,
+    )
+    .is_none()
+    {
+        return Some(None);
+    }
+    let ring = &mut out[1..=n];
+    let mut d = vec![0.0; n];
+    for c in 0..D {
+        // The open system's deviations from its control values (`G = (P /
+        // scale - d) scale`, the power of two exact), put right at the ends.
+        let inv = 1.0 / scale[c];
+        for ((d, g), p) in d.iter_mut().zip(&*ring).zip(points) {
+            *d = p[c] * inv - g[c] * inv;
+        }
+        ends.correct(n, &mut d, 1);
+        for i in ends.moved(n) {
+            let g = (points[i][c] * inv - d[i]) * scale[c];
+            if !g.is_finite() {
+                return Some(None);
+            }
+            ring[i][c] = g;
+        }
+    }
+    out.truncate(n + 1);
+    out.remove(0);
+    Some(Some(out))
+}
+
+/// Which cyclic system.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum System {
+    /// The method's, (16) around the ring (§7).
+    Method,
+    /// The interpolating variant's, `T + K` (§11).
+    Through,
+}
+
+/// The two ends of a ring laid out as an open system: the copy of knot
+/// `n - 1` before knot 0 and the power of two for its widths, the responses
+/// to a unit deviation at the first end (at knots `0, 1, ..`) and at the last
+/// (at knots `n - 1, n - 2, ..`), and the determinant of the two-by-two
+/// system for the end deviations.
+struct Ends {
+    before: f64,
+    ws: f64,
+    first: Vec<f64>,
+    last: Vec<f64>,
+    det: f64,
+}
+
+impl Ends {
+    /// The ends of the ring of `knots` (`tau_0 ..= tau_n`) for `system`;
+    /// `None` when the ring is shorter than [`RING_MIN`] or than its two
+    /// responses together, neither end row damps, or the copy of knot
+    /// `n - 1` cannot keep its width exactly.
+    fn of(knots: &[f64], alphas: &[f64], uniform: Option<f64>, system: System) -> Option<Ends> {
+        let n = knots.len().checked_sub(1)?;
+        if n < RING_MIN || (uniform.is_none() && alphas.len() != n) {
+            return None;
+        }
+        let (&t0, &t_last, &t_end) = (knots.first()?, knots.get(n - 1)?, knots.last()?);
+        let closing = t_end - t_last;
+        let before = t0 - closing;
+        if t0 - before != closing {
+            return None;
+        }
+        let ring = Ring {
+            knots,
+            alphas,
+            terms: uniform.map(alpha_terms),
+            system,
+        };
+        let ra = ring.reach(true, n)?;
+        let rb = ring.reach(false, n - ra)?;
+        let (first, last) = (ring.response(ra, true)?, ring.response(rb, false)?);
+        // Each response at its end is at most 1 in magnitude (§16), both near
+        // 1 only where neither end row damps.
+        let det = 1.0 - first[0] * last[0];
+        if det.is_nan() || det < 0.25 {
+            return None;
+        }
+        Some(Ends {
+            before,
+            ws: inverse_power_of_two(t_end - before),
+            first,
+            last,
+            det,
+        })
+    }
+
+    /// Corrects the deviations of the open system, `y[i * stride]` the one
+    /// of knot `i` of `n`, to the ring's: `y_i + a w_a(i) + b w_b(i)`.
+    fn correct(&self, n: usize, y: &mut [f64], stride: usize) {
+        let (wa0, wb0) = (self.first[0], self.last[0]);
+        let (y0, y_last) = (y[0], y[(n - 1) * stride]);
+        let a = (y_last + wb0 * y0) / self.det;
+        let b = y0 + a * wa0;
+        for (i, w) in self.first.iter().enumerate() {
+            y[i * stride] += a * w;
+        }
+        for (j, w) in self.last.iter().enumerate() {
+            y[(n - 1 - j) * stride] += b * w;
+        }
+    }
+
+    /// The knots whose deviations [`Ends::correct`] moves: `0 ..` and
+    /// `.. n - 1`.
+    fn moved(&self, n: usize) -> impl Iterator<Item = usize> {
+        (0..self.first.len()).chain(n - self.last.len()..n)
+    }
+}
+
+/// The rows of a ring.
 struct Ring<'a> {
     knots: &'a [f64],
     alphas: &'a [f64],
-    uniform: Option<f64>,
     /// The terms of the one alpha.
     terms: Option<[f64; 4]>,
+    system: System,
 }
 
 impl Ring<'_> {
@@ -168,36 +288,42 @@ impl Ring<'_> {
         self.knots.len() - 1
     }
 
-    fn alpha(&self, leg: usize) -> f64 {
-        self.uniform.unwrap_or_else(|| self.alphas[leg])
+    fn terms(&self, leg: usize) -> [f64; 4] {
+        self.terms.unwrap_or_else(|| alpha_terms(self.alphas[leg]))
     }
 
     fn width(&self, leg: usize) -> f64 {
         self.knots[leg + 1] - self.knots[leg]
     }
 
-    /// Row `i` of the ring: legs `i - 1` (around the ring) and `i`.
-    fn legs(&self, i: usize) -> (usize, usize) {
-        ((i + self.n() - 1) % self.n(), i)
-    }
-
-    /// The damping factors of row `i` (see [`damping_of`]).
-    fn damping(&self, ws: f64, i: usize) -> (f64, f64) {
-        let (l, r) = self.legs(i);
-        let terms = |leg: usize| self.terms.unwrap_or_else(|| alpha_terms(self.alphas[leg]));
-        damping_of(self.width(l) * ws, self.width(r) * ws, terms(l), terms(r))
+    /// Row `i` of the ring (legs `i - 1`, around the ring, and `i`), row-
+    /// scaled: `(lower, diag, upper)`.
+    fn row(&self, i: usize) -> (f64, f64, f64) {
+        let (l, r) = ((i + self.n() - 1) % self.n(), i);
+        let (p, q) = neighbour_weights(self.width(l), self.width(r));
+        let (left, right) = (self.terms(l), self.terms(r));
+        match self.system {
+            System::Method => row_of_terms(p, q, left, right),
+            System::Through => through_row(p, q, left[0], left[1], right[2], right[3]),
+        }
     }
 
     /// The knots from the first end (`first`: knots `0, 1, ..`) or the last
     /// (`n - 1, n - 2, ..`) that a unit deviation at that end moves by more
-    /// than `2^-64`, by the rows' damping: their count, `None` past
-    /// [`MAX_OVERLAP`] or `most`.
-    fn reach(&self, ws: f64, first: bool, most: usize) -> Option<usize> {
+    /// than `2^-64`, by the rows' damping factors (§16: `|lower| / (diag -
+    /// |upper|)` from below, `|upper| / (diag - |lower|)` from above; 1 when
+    /// out of `[0, 1]`): their count, `None` past [`MAX_OVERLAP`] or `most`.
+    fn reach(&self, first: bool, most: usize) -> Option<usize> {
         let n = self.n();
         let mut product = 1.0;
         for s in 0..MAX_OVERLAP.min(most) {
-            let (down, up) = self.damping(ws, if first { s } else { n - 1 - s });
-            product *= if first { down } else { up };
+            let (lo, di, up) = self.row(if first { s } else { n - 1 - s });
+            let r = if first {
+                lo.abs() / (di - up.abs())
+            } else {
+                up.abs() / (di - lo.abs())
+            };
+            product *= if (0.0..=1.0).contains(&r) { r } else { 1.0 };
             if product <= TRUNCATION {
                 return Some(s + 1);
             }
@@ -212,15 +338,12 @@ impl Ring<'_> {
     /// `None` when a pivot fails.
     fn response(&self, rows: usize, first: bool) -> Option<Vec<f64>> {
         let n = self.n();
-        let at = |s: usize| if first { s } else { n - 1 - s };
         // Rows from the end inward.
         let row_of = |s: usize| {
-            let (l, r) = self.legs(at(s));
-            let (lower, diag, upper, _) =
-                row(self.width(l), self.width(r), self.alpha(l), self.alpha(r));
             if first {
-                (lower, diag, upper)
+                self.row(s)
             } else {
+                let (lower, diag, upper) = self.row(n - 1 - s);
                 (upper, diag, lower)
             }
         };

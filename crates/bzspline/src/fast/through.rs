@@ -247,7 +247,7 @@ pub(crate) fn controls(
 
 /// [`controls`] of `D` coordinates at once, each scaled by its own `scale`,
 /// with the largest magnitude of each coordinate's control values.
-fn solve_all<const D: usize>(
+pub(super) fn solve_all<const D: usize>(
     knots: &[f64],
     values: &[[f64; D]],
     alphas: &[f64],
