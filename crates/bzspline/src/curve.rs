@@ -19,7 +19,10 @@
 //! row-scaled continuity equation of the open spline holds at every knot with
 //! indices taken cyclically, `d` is fixed nowhere, and the system is cyclic
 //! tridiagonal and diagonally dominant in the theorem's range. It is solved in
-//! O(n) by the cyclic Thomas algorithm (`tridiag.rs`). The curve is C1 across the
+//! O(n): from 48 points in one to three dimensions by the open curve's sweeps
+//! over the ring between copies of its last and first points, the two end
+//! deviations put right from each end's response (`docs/method.md` §16), else
+//! by the cyclic Thomas algorithm (`tridiag.rs`). The curve is C1 across the
 //! closing knot too. A closed curve answers at every finite parameter: it is
 //! periodic with period `tau_n - tau_0`.
 //!
