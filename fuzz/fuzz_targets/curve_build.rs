@@ -24,7 +24,9 @@ fuzz_target!(|bytes: &[u8]| {
         1 => 4,
         f => usize::from(f % 3) + 1,
     };
-    let n = usize::from(r.u8() % 33);
+    // Up to 32 points, or up to 256 in steps of 8 (rings long enough for
+    // the open sweeps, from 48 points).
+    let n = usize::from(r.u8() % 33) * if flags & 0x40 != 0 { 8 } else { 1 };
     let magnitude = r.pow10(-300, 300);
     let mut points = Vec::with_capacity(n * dim.max(1));
     for i in 0..n * dim.max(1) {
