@@ -88,27 +88,33 @@ fn fused_open_curves_match_the_coordinate_by_coordinate_solve() {
                 let widths: Vec<f64> = fast.knots().windows(2).map(|w| w[1] - w[0]).collect();
                 let mut slow = fast.clone();
                 slow.solve_general(&widths);
-                // Scaled numbers lie in [-2, 2]: compare them absolutely.
-                let tol = 1e-13;
-                for (i, (p, q)) in fast.d.iter().zip(&slow.d).enumerate() {
-                    assert!(
-                        (p - q).abs() <= tol,
-                        "dim {dim} n {n} {param:?}: deviation {i}: want {q}, got {p}"
-                    );
-                }
-                let (fc, sc) = (fast.pieces.coefs(), slow.pieces.coefs());
-                assert_eq!(fc.len(), sc.len());
-                for (i, (Piece(p), Piece(q))) in fc.iter().zip(sc).enumerate() {
-                    for j in 0..4 {
-                        assert!(
-                            (p[j] - q[j]).abs() <= 4.0 * tol,
-                            "dim {dim} n {n} {param:?}: piece {i} coef {j}: want {}, got {}",
-                            q[j],
-                            p[j]
-                        );
-                    }
-                }
+                let what = format!("dim {dim} n {n} {param:?}");
+                assert_solved_alike(&fast, &slow, 1e-13, &what);
             }
+        }
+    }
+}
+
+/// The deviations of `fast` within `tol` of `slow`'s and the pieces within
+/// `4 tol` (scaled numbers lie in [-2, 2]: compared absolutely).
+fn assert_solved_alike(fast: &Curve, slow: &Curve, tol: f64, what: &str) {
+    assert_eq!(fast.d.len(), slow.d.len(), "{what}");
+    for (i, (p, q)) in fast.d.iter().zip(&slow.d).enumerate() {
+        assert!(
+            (p - q).abs() <= tol,
+            "{what}: deviation {i}: want {q}, got {p}"
+        );
+    }
+    let (fc, sc) = (fast.pieces.coefs(), slow.pieces.coefs());
+    assert_eq!(fc.len(), sc.len(), "{what}");
+    for (i, (Piece(p), Piece(q))) in fc.iter().zip(sc).enumerate() {
+        for j in 0..4 {
+            assert!(
+                (p[j] - q[j]).abs() <= 4.0 * tol,
+                "{what}: piece {i} coef {j}: want {}, got {}",
+                q[j],
+                p[j]
+            );
         }
     }
 }
@@ -158,27 +164,8 @@ fn closed_curves_through_the_open_sweeps_match_the_cyclic_solve() {
                     continue;
                 }
                 assert_eq!(fast.points, pts);
-                assert_eq!(fast.d.len(), slow.d.len());
-                // Scaled numbers lie in [-2, 2]: compare them absolutely.
-                let tol = 1e-14;
-                for (i, (p, q)) in fast.d.iter().zip(&slow.d).enumerate() {
-                    assert!(
-                        (p - q).abs() <= tol,
-                        "dim {dim} n {n} {param:?}: deviation {i}: want {q}, got {p}"
-                    );
-                }
-                let (fc, sc) = (fast.pieces.coefs(), slow.pieces.coefs());
-                assert_eq!(fc.len(), sc.len());
-                for (i, (Piece(p), Piece(q))) in fc.iter().zip(sc).enumerate() {
-                    for j in 0..4 {
-                        assert!(
-                            (p[j] - q[j]).abs() <= 4.0 * tol,
-                            "dim {dim} n {n} {param:?}: piece {i} coef {j}: want {}, got {}",
-                            q[j],
-                            p[j]
-                        );
-                    }
-                }
+                let what = format!("dim {dim} n {n} {param:?}");
+                assert_solved_alike(&fast, &slow, 1e-14, &what);
             }
         }
     }

@@ -88,12 +88,6 @@ pub(crate) struct Whole<'a, const D: usize> {
 fn damping(knots: &[f64], ws: f64, left: [f64; 4], right: [f64; 4], k: usize) -> (f64, f64) {
     let hl = (knots[k] - knots[k - 1]) * ws;
     let hr = (knots[k + 1] - knots[k]) * ws;
-    damping_of(hl, hr, left, right)
-}
-
-/// [`damping`] of a row with widths `hl` and `hr` (already multiplied by a
-/// power of two that brings them near 1) on its left and right.
-pub(super) fn damping_of(hl: f64, hr: f64, left: [f64; 4], right: [f64; 4]) -> (f64, f64) {
     let [al, b1, _, _] = left;
     let [_, _, b2, cr] = right;
     let down = hr * al / (hr * b1 + hl * (b2 - cr));
