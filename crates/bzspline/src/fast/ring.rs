@@ -61,33 +61,22 @@ pub(crate) fn build_closed_curve<const D: usize>(
     let Some(ends) = Ends::of(knots, alphas, uniform, System::Method) else {
         return false;
     };
-    let (before, ws) = (ends.before, ends.ws);
     // The open system: the copies at both ends around the ring's knots.
-    let mut ext_knots = Vec::with_capacity(n + 2);
-    ext_knots.push(before);
-    ext_knots.extend_from_slice(knots);
-    let mut ext_points = Vec::with_capacity((n + 2) * D);
-    ext_points.extend_from_slice(&points[(n - 1) * D..]);
-    ext_points.extend_from_slice(points);
-    ext_points.extend_from_slice(&points[..D]);
+    let ext_knots = ends.knots(knots);
+    let ext_points = around(pts);
     // With one alpha no alpha is read: the knots pace the sweeps.
-    let ext_alphas: Vec<f64> = match uniform {
-        Some(_) => Vec::new(),
-        None => core::iter::once(alphas[n - 1])
-            .chain(alphas.iter().copied())
-            .collect(),
-    };
+    let ext_alphas = ends.alphas(alphas, uniform);
     let paced = match uniform {
         Some(_) => &ext_knots[..=n],
         None => &ext_alphas[..],
     };
     build_open_curve::<D>(
         &ext_knots,
-        &ext_points,
+        ext_points.as_flattened(),
         inv_scale,
         paced,
         uniform,
-        ws,
+        ends.ws,
         coefs,
         dev,
         points_out,
@@ -141,19 +130,9 @@ pub(crate) fn closed_controls<const D: usize>(
         return None;
     }
     let ends = Ends::of(knots, alphas, uniform, System::Through)?;
-    let mut ext_knots = Vec::with_capacity(n + 2);
-    ext_knots.push(ends.before);
-    ext_knots.extend_from_slice(knots);
-    let mut ext_points = Vec::with_capacity(n + 2);
-    ext_points.push(points[n - 1]);
-    ext_points.extend_from_slice(points);
-    ext_points.push(points[0]);
-    let ext_alphas: Vec<f64> = match uniform {
-        Some(_) => Vec::new(),
-        None => core::iter::once(alphas[n - 1])
-            .chain(alphas.iter().copied())
-            .collect(),
-    };
+    let ext_knots = ends.knots(knots);
+    let ext_points = around(points);
+    let ext_alphas = ends.alphas(alphas, uniform);
     let mut out = vec![[0.0; D]; n + 2];
     if through::solve_all(
         &ext_knots,
@@ -188,6 +167,16 @@ pub(crate) fn closed_controls<const D: usize>(
     out.truncate(n + 1);
     out.remove(0);
     Some(Some(out))
+}
+
+/// The ring's points between copies of its last and its first: the open
+/// system's points.
+fn around<T: Copy>(points: &[T]) -> Vec<T> {
+    let mut ext = Vec::with_capacity(points.len() + 2);
+    ext.extend(points.last().copied());
+    ext.extend_from_slice(points);
+    ext.extend(points.first().copied());
+    ext
 }
 
 /// Which cyclic system.
@@ -250,6 +239,26 @@ impl Ends {
             last,
             det,
         })
+    }
+
+    /// The open system's knots: the copy of knot `n - 1`, then the ring's
+    /// `tau_0 ..= tau_n` (`tau_n` the copy of knot 0).
+    fn knots(&self, knots: &[f64]) -> Vec<f64> {
+        let mut ext = Vec::with_capacity(knots.len() + 1);
+        ext.push(self.before);
+        ext.extend_from_slice(knots);
+        ext
+    }
+
+    /// The open system's alphas, the closing leg's first (none with one
+    /// alpha).
+    fn alphas(&self, alphas: &[f64], uniform: Option<f64>) -> Vec<f64> {
+        match (uniform, alphas.last()) {
+            (None, Some(&last)) => core::iter::once(last)
+                .chain(alphas.iter().copied())
+                .collect(),
+            _ => Vec::new(),
+        }
     }
 
     /// Corrects the deviations of the open system, `y[i * stride]` the one
