@@ -55,7 +55,7 @@ pub(crate) fn build_closed_curve<const D: usize>(
 ) -> bool {
     let n = knots.len().saturating_sub(1);
     let (pts, _) = points.as_chunks::<D>();
-    if n < RING_MIN || pts.len() != n || (uniform.is_none() && alphas.len() != n) {
+    if pts.len() != n {
         return false;
     }
     let Some(ends) = Ends::of(knots, alphas, uniform, System::Method) else {
@@ -150,10 +150,11 @@ pub(crate) fn closed_controls<const D: usize>(
     let mut d = vec![0.0; n];
     for c in 0..D {
         // The open system's deviations from its control values (`G = (P /
-        // scale - d) scale`, the power of two exact), put right at the ends.
+        // scale - d) scale`, the power of two exact) at the knots the ends
+        // move, which include the two the correction reads, put right.
         let inv = 1.0 / scale[c];
-        for ((d, g), p) in d.iter_mut().zip(&*ring).zip(points) {
-            *d = p[c] * inv - g[c] * inv;
+        for i in ends.moved(n) {
+            d[i] = points[i][c] * inv - ring[i][c] * inv;
         }
         ends.correct(n, &mut d, 1);
         for i in ends.moved(n) {
@@ -262,7 +263,8 @@ impl Ends {
     }
 
     /// Corrects the deviations of the open system, `y[i * stride]` the one
-    /// of knot `i` of `n`, to the ring's: `y_i + a w_a(i) + b w_b(i)`.
+    /// of knot `i` of `n`, to the ring's: `y_i + a w_a(i) + b w_b(i)`. Reads
+    /// and writes only the knots of [`Ends::moved`].
     fn correct(&self, n: usize, y: &mut [f64], stride: usize) {
         let (wa0, wb0) = (self.first[0], self.last[0]);
         let (y0, y_last) = (y[0], y[(n - 1) * stride]);
