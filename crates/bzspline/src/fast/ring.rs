@@ -2,22 +2,23 @@
 //! the method's system (§7) and the interpolating variant's (§11).
 //!
 //! Row `i` of a cyclic system couples knot `i` to knots `i - 1` and `i + 1`
-//! around the ring. Laid out as an open system over the ring's knots
-//! `0 ..= n - 1` between two extra end knots, a copy of knot `n - 1` before
-//! knot 0 (at `tau_0 - h_{n-1}`) and a copy of knot 0 after knot `n - 1` (at
-//! `tau_n`), every row of the ring is a row of the open system with its own
-//! widths and alphas; only the two end deviations, which the open sweeps take
-//! as zero, should be `d_{n-1}` and `d_0`. The system is linear, so the true
-//! deviations are the open ones `y` plus `a` times the response `w_a` to a
-//! unit deviation at the first end and `b` times `w_b` at the last; each
-//! response decays from its end by the rows' damping factors (`docs/method.md`
-//! §16), and is taken over the rows that bring it below `2^-64`, as between
-//! two chunks. With the two responses apart (the ring longer than both),
-//! `a = y_{n-1} + b w_b(n-1)` and `b = y_0 + a w_a(0)`, a two-by-two system;
-//! the deviations near the ends are corrected (and the pieces of their legs
-//! formed again). Everything else is the open curve's sweeps, in chunks and on
-//! several threads when long. The results agree with the cyclic systems' own
-//! solve ([`crate::tridiag::CyclicThomas`]) to rounding.
+//! around the ring. The ring's knots `0 ..= n - 1` with its legs but the
+//! closing one are an open system, whose rows are the ring's rows `1 ..= n - 2`
+//! and whose end deviations, at knots 0 and `n - 1`, the open sweeps take as
+//! zero. The system is linear, so the ring's deviations are the open ones `y`
+//! plus `a` at knot 0 and `a` times the response `w'` of the rows to a unit
+//! deviation there, and `b` at knot `n - 1` and `b` times the response `w''`
+//! to one there; each response decays from its end by the rows' damping
+//! factors (`docs/method.md` §16), and is taken over the knots that bring it
+//! below `2^-64`, as between two chunks. With the two responses apart (the
+//! ring longer than both), the ring's rows 0 and `n - 1`, the two the open
+//! system lacks, give `a` and `b` from a two-by-two system; the deviations
+//! near the ends are corrected, the pieces of their legs formed again and the
+//! closing leg's appended. The open system reads the ring's own knots, points
+//! and alphas in place, and its outputs are the ring's: nothing is copied or
+//! moved. Everything else is the open curve's sweeps, in chunks and on several
+//! threads when long. The results agree with the cyclic systems' own solve
+//! ([`crate::tridiag::CyclicThomas`]) to rounding.
 
 use super::chunks::{MAX_OVERLAP, TRUNCATION};
 use super::sweep::{self, build_open_curve};
@@ -40,8 +41,7 @@ pub(crate) const RING_MIN: usize = 48;
 /// pieces, leg by leg), `dev` (`n D` scaled deviations) and `points_out` (a
 /// copy of `points`), and returns `true`; returns `false` and changes nothing
 /// when the ring is shorter than [`RING_MIN`] or than its two end responses
-/// together, neither end row damps, or the copy of knot `n - 1` before knot 0
-/// cannot keep its width exactly.
+/// together, or its end rows damp too little for the two-by-two system.
 #[allow(clippy::too_many_arguments)] // the parts of a curve, validated
 pub(crate) fn build_closed_curve<const D: usize>(
     knots: &[f64],
@@ -61,50 +61,41 @@ pub(crate) fn build_closed_curve<const D: usize>(
     let Some(ends) = Ends::of(knots, alphas, uniform, System::Method) else {
         return false;
     };
-    // The open system: the copies at both ends around the ring's knots.
-    let ext_knots = ends.knots(knots);
-    let ext_points = around(pts);
-    // With one alpha no alpha is read: the knots pace the sweeps.
-    let ext_alphas = ends.alphas(alphas, uniform);
+    // The open system: the ring's knots and legs but the closing one. With
+    // one alpha no alpha is read: the knots pace the sweeps.
+    let open = &knots[..n];
     let paced = match uniform {
-        Some(_) => &ext_knots[..=n],
-        None => &ext_alphas[..],
+        Some(_) => &knots[..n - 1],
+        None => &alphas[..n - 1],
     };
+    // Room for the closing leg, so that appending it moves nothing.
+    coefs.reserve_exact((n * D).saturating_sub(coefs.len()));
     build_open_curve::<D>(
-        &ext_knots,
-        ext_points.as_flattened(),
+        open,
+        points,
         inv_scale,
         paced,
         uniform,
-        ends.ws,
+        inverse_power_of_two(open[n - 1] - open[0]),
         coefs,
         dev,
         points_out,
     );
-    // The ring's knots and legs, moved to the front.
-    for v in [&mut *dev, &mut *points_out] {
-        v.copy_within(D..(n + 1) * D, 0);
-        v.truncate(n * D);
-    }
-    coefs.copy_within(D..(n + 1) * D, 0);
-    coefs.truncate(n * D);
+    coefs.resize(n * D, Piece::default());
+    let scaled = |i: usize| -> [f64; D] { core::array::from_fn(|c| pts[i][c] * inv_scale[c]) };
     // The end deviations, and the deviations they move.
     for c in 0..D {
-        ends.correct(n, &mut dev[c..], D);
+        ends.correct(n, &mut dev[c..], D, |i| pts[i][c] * inv_scale[c]);
     }
-    // The legs whose deviations moved: the first ones, the last ones (and
-    // the one before them) and the closing leg.
-    let scaled = |i: usize| -> [f64; D] { core::array::from_fn(|c| pts[i][c] * inv_scale[c]) };
-    let legs = ends
-        .moved(n)
-        .chain(core::iter::once(n - 1 - ends.last.len()));
-    for k in legs {
+    // The legs whose deviations moved, the closing leg among them.
+    let one = uniform.map(|a| sweep::leg_terms(a, true));
+    for k in ends.legs(n) {
         let j = if k + 1 == n { 0 } else { k + 1 };
-        let a = uniform.unwrap_or_else(|| alphas[k]);
+        let terms = one.unwrap_or_else(|| sweep::leg_terms(alphas[k], false));
         let (f0, f1) = (scaled(k), scaled(j));
         for c in 0..D {
             let (d0, d1) = (dev[k * D + c], dev[j * D + c]);
-            coefs[k * D + c] = Piece(sweep::leg_piece(f0[c], f1[c], d0, d1, a, uniform.is_some()));
+            coefs[k * D + c] = Piece(sweep::leg_piece(f0[c], f1[c], d0, d1, terms));
         }
     }
     true
@@ -130,54 +121,33 @@ pub(crate) fn closed_controls<const D: usize>(
         return None;
     }
     let ends = Ends::of(knots, alphas, uniform, System::Through)?;
-    let ext_knots = ends.knots(knots);
-    let ext_points = around(points);
-    let ext_alphas = ends.alphas(alphas, uniform);
-    let mut out = vec![[0.0; D]; n + 2];
-    if through::solve_all(
-        &ext_knots,
-        &ext_points,
-        &ext_alphas,
-        uniform,
-        scale,
-        &mut out,
-    )
-    .is_none()
-    {
+    let paced = match uniform {
+        Some(_) => &[][..],
+        None => &alphas[..n - 1],
+    };
+    let mut out = vec![[0.0; D]; n];
+    if through::solve_all(&knots[..n], points, paced, uniform, scale, &mut out).is_none() {
         return Some(None);
     }
-    let ring = &mut out[1..=n];
     let mut d = vec![0.0; n];
     for c in 0..D {
         // The open system's deviations from its control values (`G = (P /
         // scale - d) scale`, the power of two exact) at the knots the ends
-        // move, which include the two the correction reads, put right.
+        // move, which include the four the correction reads, put right.
         let inv = 1.0 / scale[c];
         for i in ends.moved(n) {
-            d[i] = points[i][c] * inv - ring[i][c] * inv;
+            d[i] = points[i][c] * inv - out[i][c] * inv;
         }
-        ends.correct(n, &mut d, 1);
+        ends.correct(n, &mut d, 1, |i| points[i][c] * inv);
         for i in ends.moved(n) {
             let g = (points[i][c] * inv - d[i]) * scale[c];
             if !g.is_finite() {
                 return Some(None);
             }
-            ring[i][c] = g;
+            out[i][c] = g;
         }
     }
-    out.truncate(n + 1);
-    out.remove(0);
     Some(Some(out))
-}
-
-/// The ring's points between copies of its last and its first: the open
-/// system's points.
-fn around<T: Copy>(points: &[T]) -> Vec<T> {
-    let mut ext = Vec::with_capacity(points.len() + 2);
-    ext.extend(points.last().copied());
-    ext.extend_from_slice(points);
-    ext.extend(points.first().copied());
-    ext
 }
 
 /// Which cyclic system.
@@ -189,33 +159,32 @@ enum System {
     Through,
 }
 
-/// The two ends of a ring laid out as an open system: the copy of knot
-/// `n - 1` before knot 0 and the power of two for its widths, the responses
-/// to a unit deviation at the first end (at knots `0, 1, ..`) and at the last
-/// (at knots `n - 1, n - 2, ..`), and the determinant of the two-by-two
-/// system for the end deviations.
+/// The two ends of a ring's open system, knots 0 and `n - 1`: the responses
+/// of the deviations of knots `1, 2, ..` to a unit deviation at knot 0 and
+/// of knots `n - 2, n - 3, ..` to one at knot `n - 1`, and the ring's rows 0
+/// and `n - 1` with the two-by-two system they give for the deviations at
+/// the two knots.
 struct Ends {
-    before: f64,
-    ws: f64,
     first: Vec<f64>,
     last: Vec<f64>,
-    det: f64,
+    /// Rows 0 and `n - 1`: `(lower, diag, upper)`.
+    rows: [(f64, f64, f64); 2],
+    /// Their neighbour weights `(p, q)`, which weigh their right-hand sides.
+    weights: [(f64, f64); 2],
+    /// The diagonal of the two-by-two system, whose off-diagonal is the lower
+    /// of row 0 and the upper of row `n - 1`, and its determinant's inverse.
+    diag: [f64; 2],
+    inv_det: f64,
 }
 
 impl Ends {
     /// The ends of the ring of `knots` (`tau_0 ..= tau_n`) for `system`;
     /// `None` when the ring is shorter than [`RING_MIN`] or than its two
-    /// responses together, neither end row damps, or the copy of knot
-    /// `n - 1` cannot keep its width exactly.
+    /// responses together, or the two-by-two system's determinant is below a
+    /// quarter of its diagonal's product (its rows damp too little).
     fn of(knots: &[f64], alphas: &[f64], uniform: Option<f64>, system: System) -> Option<Ends> {
         let n = knots.len().checked_sub(1)?;
         if n < RING_MIN || (uniform.is_none() && alphas.len() != n) {
-            return None;
-        }
-        let (&t0, &t_last, &t_end) = (knots.first()?, knots.get(n - 1)?, knots.last()?);
-        let closing = t_end - t_last;
-        let before = t0 - closing;
-        if t0 - before != closing {
             return None;
         }
         let ring = Ring {
@@ -224,64 +193,70 @@ impl Ends {
             terms: uniform.map(alpha_terms),
             system,
         };
-        let ra = ring.reach(true, n)?;
-        let rb = ring.reach(false, n - ra)?;
-        let (first, last) = (ring.response(ra, true)?, ring.response(rb, false)?);
-        // Each response at its end is at most 1 in magnitude (§16), both near
-        // 1 only where neither end row damps.
-        let det = 1.0 - first[0] * last[0];
-        if det.is_nan() || det < 0.25 {
+        let down = ring.reach(true, n - 2)?;
+        let up = ring.reach(false, n - 2 - down.len())?;
+        let (first, last) = (response(&down)?, response(&up)?);
+        let ((r0, w0), (r1, w1)) = (ring.weighted_row(0), ring.weighted_row(n - 1));
+        let rows = [r0, r1];
+        let [(lo0, di0, up0), (lo1, di1, up1)] = rows;
+        // Row 0 meets `w'` at knot 1, row `n - 1` meets `w''` at knot
+        // `n - 2`; `w'` is zero at knot `n - 2` and `w''` at knot 1.
+        let diag = [di0 + up0 * first[0], di1 + lo1 * last[0]];
+        let det = diag[0] * diag[1] - lo0 * up1;
+        // Each response's first value is below 1 in magnitude (§16), so the
+        // diagonal dominates; `det` falls below a quarter of the diagonal's
+        // product only where both end rows hardly damp.
+        if !(diag[0] > 0.0 && diag[1] > 0.0 && det.is_finite() && det >= 0.25 * (diag[0] * diag[1]))
+        {
             return None;
         }
         Some(Ends {
-            before,
-            ws: inverse_power_of_two(t_end - before),
             first,
             last,
-            det,
+            rows,
+            weights: [w0, w1],
+            diag,
+            inv_det: 1.0 / det,
         })
     }
 
-    /// The open system's knots: the copy of knot `n - 1`, then the ring's
-    /// `tau_0 ..= tau_n` (`tau_n` the copy of knot 0).
-    fn knots(&self, knots: &[f64]) -> Vec<f64> {
-        let mut ext = Vec::with_capacity(knots.len() + 1);
-        ext.push(self.before);
-        ext.extend_from_slice(knots);
-        ext
-    }
-
-    /// The open system's alphas, the closing leg's first (none with one
-    /// alpha).
-    fn alphas(&self, alphas: &[f64], uniform: Option<f64>) -> Vec<f64> {
-        match (uniform, alphas.last()) {
-            (None, Some(&last)) => core::iter::once(last)
-                .chain(alphas.iter().copied())
-                .collect(),
-            _ => Vec::new(),
-        }
-    }
-
-    /// Corrects the deviations of the open system, `y[i * stride]` the one
-    /// of knot `i` of `n`, to the ring's: `y_i + a w_a(i) + b w_b(i)`. Reads
-    /// and writes only the knots of [`Ends::moved`].
-    fn correct(&self, n: usize, y: &mut [f64], stride: usize) {
-        let (wa0, wb0) = (self.first[0], self.last[0]);
-        let (y0, y_last) = (y[0], y[(n - 1) * stride]);
-        let a = (y_last + wb0 * y0) / self.det;
-        let b = y0 + a * wa0;
+    /// Corrects the open system's deviations, `y[i * stride]` the one of
+    /// knot `i` of `n`, to the ring's, `f(i)` the scaled coordinate of point
+    /// `i`: the residuals of rows 0 and `n - 1` give the deviations to add
+    /// at knots 0 (`a`) and `n - 1` (`b`), and every knot moves by `a w' +
+    /// b w''`. Reads and writes only the knots of [`Ends::moved`].
+    fn correct(&self, n: usize, y: &mut [f64], stride: usize, f: impl Fn(usize) -> f64) {
+        let at = |i: usize| y[i * stride];
+        let residual =
+            |(lo, di, up): (f64, f64, f64), (p, q): (f64, f64), [l, i, r]: [usize; 3]| {
+                let rhs = q * (f(r) - f(i)) - p * (f(i) - f(l));
+                rhs - (lo * at(l) + di * at(i) + up * at(r))
+            };
+        let g0 = residual(self.rows[0], self.weights[0], [n - 1, 0, 1]);
+        let g1 = residual(self.rows[1], self.weights[1], [n - 2, n - 1, 0]);
+        let (lo0, up1) = (self.rows[0].0, self.rows[1].2);
+        let a = (g0 * self.diag[1] - lo0 * g1) * self.inv_det;
+        let b = (self.diag[0] * g1 - up1 * g0) * self.inv_det;
+        y[0] += a;
+        y[(n - 1) * stride] += b;
         for (i, w) in self.first.iter().enumerate() {
-            y[i * stride] += a * w;
+            y[(1 + i) * stride] += a * w;
         }
         for (j, w) in self.last.iter().enumerate() {
-            y[(n - 1 - j) * stride] += b * w;
+            y[(n - 2 - j) * stride] += b * w;
         }
     }
 
     /// The knots whose deviations [`Ends::correct`] moves: `0 ..` and
     /// `.. n - 1`.
     fn moved(&self, n: usize) -> impl Iterator<Item = usize> {
-        (0..self.first.len()).chain(n - self.last.len()..n)
+        (0..=self.first.len()).chain(n - 1 - self.last.len()..n)
+    }
+
+    /// The legs with a knot of [`Ends::moved`] at either end, the closing
+    /// leg `n - 1` last.
+    fn legs(&self, n: usize) -> impl Iterator<Item = usize> {
+        (0..=self.first.len()).chain(n - 2 - self.last.len()..n)
     }
 }
 
@@ -307,60 +282,76 @@ impl Ring<'_> {
         self.knots[leg + 1] - self.knots[leg]
     }
 
-    /// Row `i` of the ring (legs `i - 1`, around the ring, and `i`), row-
-    /// scaled: `(lower, diag, upper)`.
-    fn row(&self, i: usize) -> (f64, f64, f64) {
-        let (l, r) = ((i + self.n() - 1) % self.n(), i);
-        let (p, q) = neighbour_weights(self.width(l), self.width(r));
-        let (left, right) = (self.terms(l), self.terms(r));
-        match self.system {
-            System::Method => row_of_terms(p, q, left, right),
-            System::Through => through_row(p, q, left[0], left[1], right[2], right[3]),
+    /// The leg before knot `i`, around the ring.
+    fn before(&self, i: usize) -> usize {
+        if i == 0 {
+            self.n() - 1
+        } else {
+            i - 1
         }
     }
 
-    /// The knots from the first end (`first`: knots `0, 1, ..`) or the last
-    /// (`n - 1, n - 2, ..`) that a unit deviation at that end moves by more
-    /// than `2^-64`, by the rows' damping factors (§16: `|lower| / (diag -
-    /// |upper|)` from below, `|upper| / (diag - |lower|)` from above; 1 when
-    /// out of `[0, 1]`): their count, `None` past [`MAX_OVERLAP`] or `most`.
-    fn reach(&self, first: bool, most: usize) -> Option<usize> {
-        let n = self.n();
+    /// Row `i` of the ring (legs `i - 1`, around the ring, and `i`), row-
+    /// scaled: `(lower, diag, upper)`.
+    fn row(&self, i: usize) -> (f64, f64, f64) {
+        self.weighted_row(i).0
+    }
+
+    /// [`Ring::row`] and the neighbour weights `(p, q)` that scale it (of
+    /// the widths of legs `i - 1` and `i`), which weigh its right-hand side.
+    fn weighted_row(&self, i: usize) -> ((f64, f64, f64), (f64, f64)) {
+        let l = self.before(i);
+        let (p, q) = neighbour_weights(self.width(l), self.width(i));
+        let (left, right) = (self.terms(l), self.terms(i));
+        let row = match self.system {
+            System::Method => row_of_terms(p, q, left, right),
+            System::Through => through_row(p, q, left[0], left[1], right[2], right[3]),
+        };
+        (row, (p, q))
+    }
+
+    /// Row `s` in from one end of the open system: row `1 + s` from knot 0
+    /// (`first`), else row `n - 2 - s` from knot `n - 1` with its lower and
+    /// upper traded, so that `lower` always reaches towards that end.
+    fn inward(&self, first: bool, s: usize) -> (f64, f64, f64) {
+        if first {
+            self.row(1 + s)
+        } else {
+            let (lower, diag, upper) = self.row(self.n() - 2 - s);
+            (upper, diag, lower)
+        }
+    }
+
+    /// The rows in from knot 0 (`first`: rows `1, 2, ..`) or from knot
+    /// `n - 1` (rows `n - 2, n - 3, ..`, as [`Ring::inward`] gives them) of
+    /// the knots that a unit deviation at that knot moves by more than
+    /// `2^-64`, by the rows' damping factors (§16: `|lower| / (diag -
+    /// |upper|)` towards that end; 1 when out of `[0, 1]`). `None` past
+    /// [`MAX_OVERLAP`] or `most` rows.
+    fn reach(&self, first: bool, most: usize) -> Option<Vec<(f64, f64, f64)>> {
+        // Tens of rows at most alphas (21 at alpha 1/2 on even knots).
+        let mut rows = Vec::with_capacity(64);
         let mut product = 1.0;
         for s in 0..MAX_OVERLAP.min(most) {
-            let (lo, di, up) = self.row(if first { s } else { n - 1 - s });
-            let r = if first {
-                lo.abs() / (di - up.abs())
-            } else {
-                up.abs() / (di - lo.abs())
-            };
+            let row = self.inward(first, s);
+            rows.push(row);
+            let (lo, di, up) = row;
+            let r = lo.abs() / (di - up.abs());
             product *= if (0.0..=1.0).contains(&r) { r } else { 1.0 };
             if product <= TRUNCATION {
-                return Some(s + 1);
+                return Some(rows);
             }
         }
         None
     }
+}
 
-    /// The response of the ring's deviations to a unit deviation at the
-    /// first end (before knot 0, `first`) or at the last (after knot
-    /// `n - 1`): its values at the first `rows` knots from that end (`0, 1,
-    /// ..` or `n - 1, n - 2, ..`), the response beyond them taken as zero.
-    /// `None` when a pivot fails.
-    fn response(&self, rows: usize, first: bool) -> Option<Vec<f64>> {
-        let n = self.n();
-        // Rows from the end inward.
-        let row_of = |s: usize| {
-            if first {
-                self.row(s)
-            } else {
-                let (lower, diag, upper) = self.row(n - 1 - s);
-                (upper, diag, lower)
-            }
-        };
-        let thomas = Thomas::factor_rows(rows, row_of)?;
-        let mut w = vec![0.0; rows];
-        w[0] = -row_of(0).0;
-        thomas.solve_in_place(&mut w).then_some(w)
-    }
+/// The response of the open system's deviations to a unit deviation at one
+/// end, at the knots of `rows` (from [`Ring::reach`]), the response beyond
+/// them taken as zero. `None` when a pivot fails.
+fn response(rows: &[(f64, f64, f64)]) -> Option<Vec<f64>> {
+    let thomas = Thomas::factor_rows(rows.len(), |s| rows[s])?;
+    let mut w = vec![0.0; rows.len()];
+    w[0] = -rows.first()?.0;
+    thomas.solve_in_place(&mut w).then_some(w)
 }

@@ -246,18 +246,23 @@ pub(crate) fn build_open_curve<const D: usize>(
     }
 }
 
-/// The piece of one leg from its scaled values `f0`, `f1`, deviations `d0`,
-/// `d1` and alpha `a`, as the sweeps form it: with the exact [`alpha_terms`]
-/// when `uniform` (every leg has this alpha), else its terms from
-/// [`inverses`].
-pub(crate) fn leg_piece(f0: f64, f1: f64, d0: f64, d1: f64, a: f64, uniform: bool) -> [f64; 4] {
+/// The terms [`leg_piece`] forms the pieces of a leg of alpha `a` with, as
+/// the sweeps form them: from the exact [`alpha_terms`] when `uniform` (every
+/// leg has this alpha), else from [`inverses`].
+pub(crate) fn leg_terms(a: f64, uniform: bool) -> [f64; 6] {
     let terms = if uniform {
         alpha_terms(a)
     } else {
         let (ia, iu) = inverses(a);
         terms_from_inverses(a, ia, iu)
     };
-    piece(f0, f1, d0, d1, piece_terms(terms))
+    piece_terms(terms)
+}
+
+/// The piece of one leg from its scaled values `f0`, `f1`, deviations `d0`,
+/// `d1` and the [`leg_terms`] of its alpha, as the sweeps form it.
+pub(crate) fn leg_piece(f0: f64, f1: f64, d0: f64, d1: f64, terms: [f64; 6]) -> [f64; 4] {
+    piece(f0, f1, d0, d1, terms)
 }
 
 /// `(1/a, 1/(1-a))` with one division.
