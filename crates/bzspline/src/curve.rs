@@ -20,9 +20,10 @@
 //! indices taken cyclically, `d` is fixed nowhere, and the system is cyclic
 //! tridiagonal and diagonally dominant in the theorem's range. It is solved in
 //! O(n): from 48 points in one to three dimensions by the open curve's sweeps
-//! over the ring between copies of its last and first points, the two end
-//! deviations put right from each end's response (`docs/method.md` §16), else
-//! by the cyclic Thomas algorithm (`tridiag.rs`). The curve is C1 across the
+//! over the ring's points with every leg but the closing one, the deviations
+//! at the two ends found from each end's response and the ring's two
+//! remaining rows (`docs/method.md` §16), else by the cyclic Thomas algorithm
+//! (`tridiag.rs`). The curve is C1 across the
 //! closing knot too. A closed curve answers at every finite parameter: it is
 //! periodic with period `tau_n - tau_0`.
 //!
