@@ -244,17 +244,25 @@ impl ClosedSystem {
             Vec::with_capacity(n),
             Vec::with_capacity(n),
         );
+        // Each leg's terms are formed once (once in all for one alpha) and
+        // serve the rows on both sides of it, the closing leg's the first
+        // row's left.
+        let uniform = alphas
+            .first()
+            .filter(|&&a| alphas.iter().all(|&b| b == a))
+            .map(|&a| alpha_terms(a));
+        let terms = |k: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[k]));
+        let mut left = if n > 0 { terms(n - 1) } else { [0.0; 4] };
         for i in 0..n {
-            let l = (i + n - 1) % n;
-            let (lo, di, up, p) = if through {
-                let (p, q) = neighbour_weights(widths[l], widths[i]);
-                let [al, b1, _, _] = alpha_terms(alphas[l]);
-                let [_, _, b2, cr] = alpha_terms(alphas[i]);
-                let (lo, di, up) = through_row(p, q, al, b1, b2, cr);
-                (lo, di, up, p)
+            let l = if i == 0 { n - 1 } else { i - 1 };
+            let (p, q) = neighbour_weights(widths[l], widths[i]);
+            let right = terms(i);
+            let (lo, di, up) = if through {
+                through_row(p, q, left[0], left[1], right[2], right[3])
             } else {
-                row(widths[l], widths[i], alphas[l], alphas[i])
+                row_of_terms(p, q, left, right)
             };
+            left = right;
             lower.push(lo);
             diag.push(di);
             upper.push(up);

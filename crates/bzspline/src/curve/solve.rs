@@ -470,7 +470,10 @@ impl Curve {
     /// the fused sweep is tested against.
     pub(super) fn solve_general(&mut self, widths: &[f64]) {
         let (n, dim) = (self.points.len() / self.dim(), self.dim());
-        self.d = vec![0.0; n * dim];
+        // The curve's own deviations and pieces are written over, their
+        // allocations kept for a rebuild.
+        self.d.clear();
+        self.d.resize(n * dim, 0.0);
         let mut col = vec![0.0; n];
         let mut dev = Vec::with_capacity(n);
         if self.closed {
@@ -500,7 +503,9 @@ impl Curve {
         // Every segment: the alpha terms formed once per leg (once in all for
         // one alpha), the closing leg of a closed curve last.
         let legs = self.len();
-        let mut coefs = Vec::with_capacity(legs * dim);
+        let mut coefs = core::mem::take(self.pieces.parts_mut().coefs);
+        coefs.clear();
+        coefs.reserve_exact(legs * dim);
         let uniform = self
             .alphas
             .first()
