@@ -85,6 +85,16 @@ pub(crate) struct OpenSystem {
     thomas: Thomas,
 }
 
+/// The alpha of every leg when `alphas` are all one (`None` when they
+/// differ or there are none).
+#[inline]
+pub(crate) fn one_alpha(alphas: &[f64]) -> Option<f64> {
+    alphas
+        .first()
+        .copied()
+        .filter(|&a| alphas.iter().all(|&b| b == a))
+}
+
 /// `a^2 / (1-a)^2`, `2/a + 1`, `2/(1-a) + 1`, `(1-a)^2 / a^2` for one alpha.
 #[inline]
 pub(crate) fn alpha_terms(a: f64) -> [f64; 4] {
@@ -126,10 +136,7 @@ impl OpenSystem {
         let mut p_all = Vec::with_capacity(m);
         // Each leg's terms are formed once (once in all for one alpha) and
         // serve the rows on both sides of it.
-        let uniform = alphas
-            .first()
-            .filter(|&&a| alphas.iter().all(|&b| b == a))
-            .map(|&a| alpha_terms(a));
+        let uniform = one_alpha(alphas).map(alpha_terms);
         let terms = |k: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[k]));
         let mut left = if m > 0 { terms(0) } else { [0.0; 4] };
         // Diagonal dominance with a strictly dominant first row (it has no lower
@@ -247,10 +254,7 @@ impl ClosedSystem {
         // Each leg's terms are formed once (once in all for one alpha) and
         // serve the rows on both sides of it, the closing leg's the first
         // row's left.
-        let uniform = alphas
-            .first()
-            .filter(|&&a| alphas.iter().all(|&b| b == a))
-            .map(|&a| alpha_terms(a));
+        let uniform = one_alpha(alphas).map(alpha_terms);
         let terms = |k: usize| uniform.unwrap_or_else(|| alpha_terms(alphas[k]));
         let mut left = if n > 0 { terms(n - 1) } else { [0.0; 4] };
         for i in 0..n {

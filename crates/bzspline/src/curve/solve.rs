@@ -6,7 +6,7 @@ use super::{norm, norm_of, norm_parts, Curve, ParamKind};
 use crate::error::Error;
 use crate::fast::{self, Piece};
 use crate::method::{alpha_terms, piece_coefs_with, through_controls, ClosedSystem, OpenSystem};
-use crate::method::{power_of_two_scale, scale_for_max};
+use crate::method::{one_alpha, power_of_two_scale, scale_for_max};
 use crate::pieces::Pieces;
 use crate::traits::ParamCurve;
 use crate::validate::{check_knots, Alphas};
@@ -425,12 +425,7 @@ impl Curve {
         if !self.closed && (1..=3).contains(&dim) {
             // One fused sweep for all coordinates (the arithmetic of
             // `Spline`'s construction).
-            let uniform = uniform.or_else(|| {
-                self.alphas
-                    .first()
-                    .copied()
-                    .filter(|&a| self.alphas.iter().all(|&b| b == a))
-            });
+            let uniform = uniform.or_else(|| one_alpha(&self.alphas));
             match dim {
                 1 => self.solve_fused::<1>(points, uniform),
                 2 => self.solve_fused::<2>(points, uniform),
@@ -439,12 +434,7 @@ impl Curve {
             return;
         }
         if self.closed && (1..=3).contains(&dim) {
-            let uniform = uniform.or_else(|| {
-                self.alphas
-                    .first()
-                    .copied()
-                    .filter(|&a| self.alphas.iter().all(|&b| b == a))
-            });
+            let uniform = uniform.or_else(|| one_alpha(&self.alphas));
             let fused = match dim {
                 1 => self.solve_ring::<1>(points, uniform),
                 2 => self.solve_ring::<2>(points, uniform),
@@ -506,11 +496,7 @@ impl Curve {
         let mut coefs = core::mem::take(self.pieces.parts_mut().coefs);
         coefs.clear();
         coefs.reserve_exact(legs * dim);
-        let uniform = self
-            .alphas
-            .first()
-            .filter(|&&a| self.alphas.iter().all(|&b| b == a))
-            .map(|&a| alpha_terms(a));
+        let uniform = one_alpha(&self.alphas).map(alpha_terms);
         for k in 0..legs {
             let j = if k + 1 == n { 0 } else { k + 1 };
             let terms = uniform.unwrap_or_else(|| alpha_terms(self.alphas[k]));
