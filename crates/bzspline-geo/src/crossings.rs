@@ -28,16 +28,26 @@ pub(crate) struct SegId {
 /// so that the tree holds a fraction of the segments.
 const RUN: usize = 8;
 
-/// A run of up to [`RUN`] segments from segment `start`, in the order of the
-/// lines and of their segments: a run goes on into the next lines when its
-/// own ends, so that short lines (a mosaic's arcs have a few positions each)
-/// share entries of the tree. Arcs are numbered as the rings that hold
-/// them are walked, so the lines of a run mostly lie side by side.
-struct Item {
-    start: SegId,
-    /// The run holds a segment of a line in `dirty`.
-    dirty: bool,
+/// A run of up to [`RUN`] consecutive segments, in the order of the lines and
+/// of their segments: a run goes on into the next line when its own ends and
+/// the two lines meet (share an end position), so that short lines (a
+/// mosaic's arcs have a few positions each, numbered as the rings that hold
+/// them are walked) share entries of the tree, and a run's box stays about
+/// its segments' size.
+///
+/// The run's segments are gathered once, with their boxes and whether their
+/// lines are dirty: the pairs of two runs then compare boxes without going
+/// back to the lines (reading a segment through [`Arcs`] costs more than
+/// comparing its box, in the hottest loop of a coverage's first round).
+struct Run {
+    len: usize,
+    ids: [SegId; RUN],
+    boxes: [Bbox; RUN],
+    dirty: [bool; RUN],
+    /// The box of the whole run.
     env: Bbox,
+    /// The run holds a segment of a line in `dirty`.
+    any_dirty: bool,
 }
 
 /// A box with its lower and upper corners: the few comparisons a segment's
@@ -74,63 +84,80 @@ impl Bbox {
     }
 }
 
-/// The segments of `lines` from `start` on, across the lines, in order.
-fn segs_from(lines: &Arcs, start: SegId) -> impl Iterator<Item = SegId> + '_ {
-    (start.line as usize..lines.len()).flat_map(move |li| {
-        let first = if li == start.line as usize {
-            start.seg
-        } else {
-            0
+impl Run {
+    /// The run of `lines` from segment `start` (a segment past the end of
+    /// its line starts the run at the next line's first): its first [`RUN`]
+    /// segments across the lines, in order, going on into a line only where
+    /// it shares an end with the line before (an arc of the same ring, say):
+    /// a run that jumped to a line elsewhere would take a box over both
+    /// places and meet most of the tree. Empty past the last segment.
+    fn gather(lines: &Arcs, dirty: &[bool], start: SegId) -> Run {
+        let empty = Bbox {
+            lo: [0.0; 2],
+            hi: [0.0; 2],
         };
-        let n = lines[li].len().saturating_sub(1) as u32;
-        (first..n).map(move |seg| SegId {
-            line: li as u32,
-            seg,
-        })
-    })
-}
-
-impl Item {
-    /// The run of `lines` from segment `start`.
-    fn of(lines: &Arcs, dirty: &[bool], start: SegId) -> Item {
-        // The segments `segs_from` gives, a line's slice at a time (an
-        // iterator of segments each indexing its line again costs twice
-        // as much here, the hottest loop of a coverage's first round).
-        let mut env: Option<Bbox> = None;
-        let mut any_dirty = false;
-        let mut left = RUN;
+        let mut run = Run {
+            len: 0,
+            ids: [start; RUN],
+            boxes: [empty; RUN],
+            dirty: [false; RUN],
+            env: empty,
+            any_dirty: false,
+        };
+        // The end positions of the last line the run took segments from.
+        let mut ends: Option<((u64, u64), (u64, u64))> = None;
         let mut first = start.seg as usize;
         for li in start.line as usize..lines.len() {
             let l = &lines[li];
             let n = l.len().saturating_sub(1);
-            if first < n {
-                let take = (n - first).min(left);
-                for w in l[first..=first + take].windows(2) {
-                    let e = seg_env(w[0], w[1]);
-                    env.get_or_insert(e).merge(&e);
-                }
-                any_dirty |= dirty[li];
-                left -= take;
-                if left == 0 {
+            if first >= n {
+                first = 0;
+                continue;
+            }
+            let (a, b) = (key(l[0]), key(l[n]));
+            if let Some((p, q)) = ends {
+                if !(a == p || a == q || b == p || b == q) {
                     break;
                 }
             }
+            ends = Some((a, b));
+            let take = (n - first).min(RUN - run.len);
+            for (k, w) in l[first..=first + take].windows(2).enumerate() {
+                let e = seg_env(w[0], w[1]);
+                if run.len == 0 {
+                    run.env = e;
+                } else {
+                    run.env.merge(&e);
+                }
+                run.ids[run.len] = SegId {
+                    line: li as u32,
+                    seg: (first + k) as u32,
+                };
+                run.boxes[run.len] = e;
+                run.dirty[run.len] = dirty[li];
+                run.len += 1;
+            }
+            run.any_dirty |= dirty[li];
+            if run.len == RUN {
+                break;
+            }
             first = 0;
         }
-        Item {
-            start,
-            dirty: any_dirty,
-            // A run starts at a segment, so it holds at least that one.
-            env: env.unwrap_or(Bbox {
-                lo: [0.0; 2],
-                hi: [0.0; 2],
-            }),
-        }
+        run
     }
 
-    /// The run's segments.
-    fn segs<'a>(&self, lines: &'a Arcs) -> impl Iterator<Item = SegId> + 'a {
-        segs_from(lines, self.start).take(RUN)
+    /// The first segment.
+    fn start(&self) -> SegId {
+        self.ids[0]
+    }
+
+    /// The segment after the last, as [`Run::gather`] takes it.
+    fn next(&self) -> SegId {
+        let last = self.ids[self.len - 1];
+        SegId {
+            line: last.line,
+            seg: last.seg + 1,
+        }
     }
 
     /// The run's box in single precision, rounded outward so that it holds
@@ -154,7 +181,7 @@ struct Runs {
 }
 
 impl Runs {
-    fn new(runs: impl Iterator<Item = Item>, count: usize) -> Runs {
+    fn new(runs: impl Iterator<Item = Run>, count: usize) -> Runs {
         // Lines are numbered in u32 and a run holds several positions, so
         // the count of runs fits.
         let mut builder = RTreeBuilder::<f32>::new(count as u32);
@@ -162,7 +189,7 @@ impl Runs {
         for r in runs {
             let (x0, y0, x1, y1) = r.env32();
             builder.add(x0, y0, x1, y1);
-            ids.push(r.start);
+            ids.push(r.start());
         }
         Runs {
             tree: builder.finish::<HilbertSort>(),
@@ -344,14 +371,16 @@ impl Lines<'_> {
 
     /// Every run of segments, one at a time, each with whether it holds a
     /// segment of a line in `dirty`.
-    fn runs<'s>(&'s self, dirty: &'s [bool]) -> impl Iterator<Item = Item> + 's {
+    fn runs<'s>(&'s self, dirty: &'s [bool]) -> impl Iterator<Item = Run> + 's {
         let lines = self.lines;
-        let mut next = segs_from(lines, SegId { line: 0, seg: 0 });
+        let mut at = SegId { line: 0, seg: 0 };
         std::iter::from_fn(move || {
-            let start = next.next()?;
-            // The run's other segments.
-            next.by_ref().take(RUN - 1).for_each(drop);
-            Some(Item::of(lines, dirty, start))
+            let run = Run::gather(lines, dirty, at);
+            if run.len == 0 {
+                return None;
+            }
+            at = run.next();
+            Some(run)
         })
     }
 
@@ -373,23 +402,20 @@ impl Lines<'_> {
             .map(|(l, _)| l.len().saturating_sub(1))
             .sum();
         let few = changed * 8 < total;
-        let count = if few {
-            self.runs(dirty).filter(|r| r.dirty).count()
-        } else {
-            total.div_ceil(RUN)
-        };
-        let runs = Runs::new(self.runs(dirty).filter(|r| !few || r.dirty), count);
+        // Runs end where lines part, so they are counted.
+        let count = self.runs(dirty).filter(|r| !few || r.any_dirty).count();
+        let runs = Runs::new(self.runs(dirty).filter(|r| !few || r.any_dirty), count);
         let mut out = Vec::new();
-        for p in self.runs(dirty).filter(|r| few || r.dirty) {
+        for p in self.runs(dirty).filter(|r| few || r.any_dirty) {
             let (x0, y0, x1, y1) = p.env32();
             for i in runs.tree.search(x0, y0, x1, y1) {
                 let start = runs.ids[i as usize];
-                let q = Item::of(self.lines, dirty, start);
+                let q = Run::gather(self.lines, dirty, start);
                 // Both dirty: the pair of runs is met from both sides.
-                if p.dirty && q.dirty && start < p.start {
+                if p.any_dirty && q.any_dirty && start < p.start() {
                     continue;
                 }
-                self.run_conflicts(dirty, &p, &q, &mut out);
+                self.run_conflicts(&p, &q, &mut out);
             }
         }
         out.sort_unstable();
@@ -399,23 +425,17 @@ impl Lines<'_> {
 
     /// The conflicting pairs of segments of two runs with at least one
     /// segment on a dirty line.
-    fn run_conflicts(&self, dirty: &[bool], p: &Item, q: &Item, out: &mut Vec<(SegId, SegId)>) {
-        let seg_env_of = |id: SegId| {
-            let l = &self.lines[id.line as usize];
-            seg_env(l[id.seg as usize], l[id.seg as usize + 1])
-        };
-        for a in p.segs(self.lines) {
-            let ep = seg_env_of(a);
-            if !boxes_meet(&ep, &q.env) {
+    fn run_conflicts(&self, p: &Run, q: &Run, out: &mut Vec<(SegId, SegId)>) {
+        for i in 0..p.len {
+            let ep = &p.boxes[i];
+            if !boxes_meet(ep, &q.env) {
                 continue;
             }
-            for b in q.segs(self.lines) {
-                if !(dirty[a.line as usize] || dirty[b.line as usize]) {
+            for j in 0..q.len {
+                if !(p.dirty[i] || q.dirty[j]) || !boxes_meet(ep, &q.boxes[j]) {
                     continue;
                 }
-                if !boxes_meet(&ep, &seg_env_of(b)) {
-                    continue;
-                }
+                let (a, b) = (p.ids[i], q.ids[j]);
                 if self.conflict(a, b) {
                     out.push((a.min(b), a.max(b)));
                 }
@@ -531,13 +551,88 @@ mod tests {
         out
     }
 
+    /// A run goes on into the next line only where that line shares an
+    /// end with the line before; it holds [`RUN`] segments unless a line
+    /// that does not meet it, or the last segment, comes first.
+    #[test]
+    fn runs_go_on_only_into_lines_that_meet() {
+        let mut rng = bzspline_testing::Rng(11);
+        let mut next = move || rng.next();
+        for case in 0..40 {
+            let mut lines: Vec<Vec<Coord>> = Vec::new();
+            for _ in 0..5 + case % 17 {
+                let joined = lines.last().and_then(|l| l.last().copied());
+                let mut p = match joined {
+                    Some(e) if next() < 0.5 => e,
+                    _ => c(next() * 1e3, next() * 1e3),
+                };
+                let mut line = vec![p];
+                for _ in 0..(next() * 6.0) as usize {
+                    p = c(p.x + next(), p.y + next());
+                    line.push(p);
+                }
+                lines.push(line);
+            }
+            let lines = Arcs::from(lines);
+            let none = vec![false; lines.len()];
+            let set = Lines {
+                lines: &lines,
+                closed: &none,
+                curve: &none,
+                nodes: &[],
+            };
+            let meet = |a: usize, b: usize| {
+                let (p, q) = (&lines[a], &lines[b]);
+                let ends = |l: &[Coord]| [key(l[0]), key(l[l.len() - 1])];
+                ends(p).iter().any(|e| ends(q).contains(e))
+            };
+            let mut seen = 0;
+            for run in set.runs(&none) {
+                let ids = &run.ids[..run.len];
+                seen += ids.len();
+                for w in ids.windows(2) {
+                    if w[0].line != w[1].line {
+                        assert!(meet(w[0].line as usize, w[1].line as usize), "case {case}");
+                    }
+                }
+                let after = segs_after(&lines, run.ids[run.len - 1]);
+                if run.len < RUN {
+                    // Stopped by a line that does not meet it, or the end.
+                    if let Some(s) = after {
+                        assert!(!meet(run.ids[run.len - 1].line as usize, s.line as usize));
+                    }
+                }
+            }
+            let total: usize = lines.iter().map(|l| l.len() - 1).sum();
+            assert_eq!(seen, total, "case {case}: every segment in one run");
+        }
+    }
+
+    /// The segment after `id` across the lines, if any.
+    fn segs_after(lines: &Arcs, id: SegId) -> Option<SegId> {
+        let (mut li, mut seg) = (id.line as usize, id.seg as usize + 1);
+        while li < lines.len() {
+            if seg + 1 < lines[li].len() {
+                return Some(SegId {
+                    line: li as u32,
+                    seg: seg as u32,
+                });
+            }
+            li += 1;
+            seg = 0;
+        }
+        None
+    }
+
     #[test]
     fn the_index_finds_what_brute_force_finds_below_single_precision() {
         // Polylines far from the origin (where a single-precision box is
         // about 1 unit coarse) with steps of a thousandth of that: the
         // index's rounded boxes must still offer every pair that meets.
         // Every other case has short lines (a run of the tree then spans
-        // several), and the dirty lines are all, one, or a random third.
+        // several, where they meet), and the dirty lines are all, one, or a
+        // random third. Lines start or end where the line before ends (as
+        // a ring's arcs do) or anywhere.
         let mut rng = bzspline_testing::Rng(7);
         let mut next = move || rng.next();
         for case in 0..60 {
@@ -545,20 +640,28 @@ mod tests {
             let step = if case % 3 == 0 { 1e-3 } else { 0.3 };
             let longest = if case % 2 == 0 { 30.0 } else { 4.0 };
             let count = 12 + case % 13;
-            let lines: Arcs = (0..count)
-                .map(|_| {
-                    let mut p = c(ox + next() * 40.0 * step, oy + next() * 40.0 * step);
-                    (0..1 + (next() * longest) as usize)
-                        .map(|_| {
-                            p = c(
-                                p.x + (next() - 0.5) * step * 8.0,
-                                p.y + (next() - 0.5) * step * 8.0,
-                            );
-                            p
-                        })
-                        .collect::<Vec<_>>()
-                })
-                .collect();
+            let mut lines: Vec<Vec<Coord>> = Vec::new();
+            for _ in 0..count {
+                let joined = lines.last().and_then(|l| l.last().copied());
+                let how = next();
+                let mut p = match joined {
+                    Some(e) if how < 0.6 => e,
+                    _ => c(ox + next() * 40.0 * step, oy + next() * 40.0 * step),
+                };
+                let mut line = vec![p];
+                for _ in 0..(next() * longest) as usize {
+                    p = c(
+                        p.x + (next() - 0.5) * step * 8.0,
+                        p.y + (next() - 0.5) * step * 8.0,
+                    );
+                    line.push(p);
+                }
+                if how < 0.25 {
+                    line.reverse();
+                }
+                lines.push(line);
+            }
+            let lines = Arcs::from(lines);
             let closed = vec![false; lines.len()];
             let nodes = [];
             let set = Lines {
