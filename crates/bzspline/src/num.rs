@@ -27,13 +27,113 @@ impl fmt::Display for Shortest {
         if !v.is_finite() {
             return write!(f, "{v}");
         }
-        let plain = format!("{v}");
-        let exp = format!("{v:e}");
-        f.write_str(if exp.len() < plain.len() {
-            &exp
+        // The shortest digits once, in exponent notation (the plain form
+        // has the same digits), on the stack: `-d.ddddddddddddddddde-308`
+        // at most.
+        let mut buf = Buf::default();
+        fmt::Write::write_fmt(&mut buf, format_args!("{v:e}"))?;
+        let exp_form = buf.as_str()?;
+        let (sign, rest) = match exp_form.strip_prefix('-') {
+            Some(r) => ("-", r),
+            None => ("", exp_form),
+        };
+        let (mantissa, e) = rest.split_once('e').ok_or(fmt::Error)?;
+        let e: i32 = e.parse().map_err(|_| fmt::Error)?;
+        let (lead, tail) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+        // The digits `d1 d2 ..`, of value `0.d1 d2 .. * 10^(e + 1)`.
+        let digits = [lead, tail];
+        let n = (lead.len() + tail.len()) as i32;
+        // The plain form: the digits with the point after `e + 1` of them,
+        // padded with zeros, no point when they are all before it.
+        let plain_len = if e >= 0 {
+            if n <= e + 1 {
+                e + 1
+            } else {
+                n + 1
+            }
         } else {
-            &plain
-        })
+            n + 1 - e
+        };
+        if (exp_form.len() - sign.len()) < plain_len as usize {
+            return f.write_str(exp_form);
+        }
+        f.write_str(sign)?;
+        let all = Digits(digits);
+        if e < 0 {
+            f.write_str("0.")?;
+            zeros(f, (-e - 1) as usize)?;
+            all.write(f, 0, n as usize)
+        } else if n <= e + 1 {
+            all.write(f, 0, n as usize)?;
+            zeros(f, (e + 1 - n) as usize)
+        } else {
+            let point = (e + 1) as usize;
+            all.write(f, 0, point)?;
+            f.write_str(".")?;
+            all.write(f, point, n as usize)
+        }
+    }
+}
+
+/// The digits of a number in two strings, read as one.
+struct Digits<'a>([&'a str; 2]);
+
+impl Digits<'_> {
+    /// Writes digits `from..to`.
+    fn write(&self, f: &mut fmt::Formatter<'_>, from: usize, to: usize) -> fmt::Result {
+        let [a, b] = self.0;
+        let split = a.len();
+        if from < split {
+            f.write_str(&a[from..to.min(split)])?;
+        }
+        if to > split {
+            f.write_str(&b[from.max(split) - split..to - split])?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes `k` zeros.
+fn zeros(f: &mut fmt::Formatter<'_>, mut k: usize) -> fmt::Result {
+    const Z: &str = "00000000000000000000000000000000";
+    while k > 0 {
+        let step = k.min(Z.len());
+        f.write_str(&Z[..step])?;
+        k -= step;
+    }
+    Ok(())
+}
+
+/// A double's text on the stack.
+struct Buf {
+    bytes: [u8; 40],
+    len: usize,
+}
+
+impl Default for Buf {
+    fn default() -> Self {
+        Buf {
+            bytes: [0; 40],
+            len: 0,
+        }
+    }
+}
+
+impl Buf {
+    fn as_str(&self) -> Result<&str, fmt::Error> {
+        core::str::from_utf8(&self.bytes[..self.len]).map_err(|_| fmt::Error)
+    }
+}
+
+impl fmt::Write for Buf {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let end = self.len + s.len();
+        self.bytes
+            .get_mut(self.len..end)
+            .ok_or(fmt::Error)?
+            .copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
     }
 }
 
@@ -64,11 +164,30 @@ mod tests {
                 values.push(v);
             }
         }
+        // Numbers as data holds them: coordinates and measurements with a
+        // few decimals, integers, powers of ten and their neighbours.
+        for k in 0..20_000u64 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let unit = (x >> 11) as f64 / (1u64 << 53) as f64;
+            let e = (k % 48) as i32 - 24;
+            let decimals = 10f64.powi((k % 9) as i32);
+            values.push((unit * 360.0 - 180.0) * 10f64.powi(e));
+            values.push(((unit * 1e6).round() / decimals) * if k % 2 == 0 { 1.0 } else { -1.0 });
+            values.push(10f64.powi(e));
+            values.push(f64::from_bits(10f64.powi(e).to_bits() + 1));
+            values.push(f64::from_bits(10f64.powi(e).to_bits() - 1));
+            values.push((x >> 40) as f64);
+        }
         for v in values {
             let s = Shortest(v).to_string();
             let back: f64 = s.parse().unwrap();
             assert_eq!(back.to_bits(), v.to_bits(), "{v:e} -> {s}");
-            assert!(s.len() <= format!("{v}").len() && s.len() <= format!("{v:e}").len());
+            // Rust's two forms, the shorter (plain on a tie).
+            let (plain, exp) = (format!("{v}"), format!("{v:e}"));
+            let want = if exp.len() < plain.len() { exp } else { plain };
+            assert_eq!(s, want, "{v:e}");
         }
         assert_eq!(Shortest(1e15).to_string(), "1e15");
         assert_eq!(Shortest(-0.0).to_string(), "-0");
