@@ -39,10 +39,12 @@ impl fmt::Display for Shortest {
         };
         let (mantissa, e) = rest.split_once('e').ok_or(fmt::Error)?;
         let e: i32 = e.parse().map_err(|_| fmt::Error)?;
-        let (lead, tail) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-        // The digits `d1 d2 ..`, of value `0.d1 d2 .. * 10^(e + 1)`.
-        let digits = [lead, tail];
-        let n = (lead.len() + tail.len()) as i32;
+        // The digits `d1 d2 ..`, of value `0.d1 d2 .. * 10^(e + 1)`: one
+        // before the point, the rest after it.
+        let lead = mantissa.get(..1).ok_or(fmt::Error)?;
+        let tail = mantissa.get(1..).unwrap_or_default();
+        let tail = tail.strip_prefix('.').unwrap_or(tail);
+        let n = 1 + tail.len() as i32;
         // The plain form: the digits with the point after `e + 1` of them,
         // padded with zeros, no point when they are all before it.
         let plain_len = if e >= 0 {
@@ -58,38 +60,22 @@ impl fmt::Display for Shortest {
             return f.write_str(exp_form);
         }
         f.write_str(sign)?;
-        let all = Digits(digits);
         if e < 0 {
             f.write_str("0.")?;
             zeros(f, (-e - 1) as usize)?;
-            all.write(f, 0, n as usize)
+            f.write_str(lead)?;
+            f.write_str(tail)
         } else if n <= e + 1 {
-            all.write(f, 0, n as usize)?;
+            f.write_str(lead)?;
+            f.write_str(tail)?;
             zeros(f, (e + 1 - n) as usize)
         } else {
-            let point = (e + 1) as usize;
-            all.write(f, 0, point)?;
+            let (whole, fraction) = tail.split_at(e as usize);
+            f.write_str(lead)?;
+            f.write_str(whole)?;
             f.write_str(".")?;
-            all.write(f, point, n as usize)
+            f.write_str(fraction)
         }
-    }
-}
-
-/// The digits of a number in two strings, read as one.
-struct Digits<'a>([&'a str; 2]);
-
-impl Digits<'_> {
-    /// Writes digits `from..to`.
-    fn write(&self, f: &mut fmt::Formatter<'_>, from: usize, to: usize) -> fmt::Result {
-        let [a, b] = self.0;
-        let split = a.len();
-        if from < split {
-            f.write_str(&a[from..to.min(split)])?;
-        }
-        if to > split {
-            f.write_str(&b[from.max(split) - split..to - split])?;
-        }
-        Ok(())
     }
 }
 
