@@ -46,8 +46,6 @@ struct Run {
     dirty: [bool; RUN],
     /// The box of the whole run.
     env: Bbox,
-    /// The run holds a segment of a line in `dirty`.
-    any_dirty: bool,
 }
 
 /// A box with its lower and upper corners: the few comparisons a segment's
@@ -102,7 +100,6 @@ impl Run {
             boxes: [empty; RUN],
             dirty: [false; RUN],
             env: empty,
-            any_dirty: false,
         };
         // The end positions of the last line the run took segments from.
         let mut ends: Option<((u64, u64), (u64, u64))> = None;
@@ -137,13 +134,17 @@ impl Run {
                 run.dirty[run.len] = dirty[li];
                 run.len += 1;
             }
-            run.any_dirty |= dirty[li];
             if run.len == RUN {
                 break;
             }
             first = 0;
         }
         run
+    }
+
+    /// The run holds a segment of a line in `dirty`.
+    fn any_dirty(&self) -> bool {
+        self.dirty[..self.len].contains(&true)
     }
 
     /// The first segment.
@@ -403,16 +404,16 @@ impl Lines<'_> {
             .sum();
         let few = changed * 8 < total;
         // Runs end where lines part, so they are counted.
-        let count = self.runs(dirty).filter(|r| !few || r.any_dirty).count();
-        let runs = Runs::new(self.runs(dirty).filter(|r| !few || r.any_dirty), count);
+        let count = self.runs(dirty).filter(|r| !few || r.any_dirty()).count();
+        let runs = Runs::new(self.runs(dirty).filter(|r| !few || r.any_dirty()), count);
         let mut out = Vec::new();
-        for p in self.runs(dirty).filter(|r| few || r.any_dirty) {
+        for p in self.runs(dirty).filter(|r| few || r.any_dirty()) {
             let (x0, y0, x1, y1) = p.env32();
             for i in runs.tree.search(x0, y0, x1, y1) {
                 let start = runs.ids[i as usize];
                 let q = Run::gather(self.lines, dirty, start);
                 // Both dirty: the pair of runs is met from both sides.
-                if p.any_dirty && q.any_dirty && start < p.start() {
+                if p.any_dirty() && q.any_dirty() && start < p.start() {
                     continue;
                 }
                 self.run_conflicts(&p, &q, &mut out);
