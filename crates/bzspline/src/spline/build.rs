@@ -106,62 +106,89 @@ impl Stretches<'_> {
     /// values at their left ends (and the last value with the last width),
     /// and of their alphas: `Some(max |F|)` of those values when they pass.
     /// `every` gets every `STRIDE`-th knot from `w.start`.
+    ///
+    /// Knots and values are read side by side in one loop (two streams from
+    /// memory at once, where a loop over each in turn read one), into four
+    /// [`Lanes`] so that the loop vectorises; every 1,024 knots the summary
+    /// takes its share while they are in the cache.
     fn widths(&self, w: std::ops::Range<usize>, every: &mut [f64]) -> Option<f64> {
+        /// Knots read between two visits to the summary.
+        const BLOCK: usize = 64 * STRIDE;
         let (knots, n, thr) = (self.knots, self.knots.len(), self.thr);
-        // Widths in four lanes, so that the loop vectorises; a stretch of
-        // `STRIDE` knots at a time, whose first goes into the summary.
-        let mut lanes = [true; 4];
+        let mut lanes = Lanes {
+            least: [f64::MAX; 4],
+            most: [0.0; 4],
+            zero: [0.0; 4],
+        };
         let (left, right) = (&knots[w.start..w.end], &knots[w.start + 1..=w.end]);
-        let (lc, rc) = (left.chunks_exact(STRIDE), right.chunks_exact(STRIDE));
-        let (lr, rr) = (lc.remainder(), rc.remainder());
+        let values = &self.values[w.clone()];
         let mut slots = every.iter_mut();
-        for ((l, r), e) in lc.zip(rc).zip(&mut slots) {
-            *e = l[0];
-            for j in 0..STRIDE {
-                let d = r[j] - l[j];
-                lanes[j % 4] &= d >= thr;
+        let blocks = left
+            .chunks(BLOCK)
+            .zip(right.chunks(BLOCK))
+            .zip(values.chunks(BLOCK));
+        for ((l, r), v) in blocks {
+            let (lc, rc, vc) = (l.chunks_exact(4), r.chunks_exact(4), v.chunks_exact(4));
+            let rest = lc
+                .remainder()
+                .iter()
+                .zip(rc.remainder())
+                .zip(vc.remainder());
+            for ((l, r), v) in lc.zip(rc).zip(vc) {
+                for j in 0..4 {
+                    lanes.take(j, r[j] - l[j], v[j]);
+                }
+            }
+            for ((l, r), &v) in rest {
+                lanes.take(0, r - l, v);
+            }
+            // The knots first: `zip` would take a slot past the last one.
+            for (k, e) in l.iter().step_by(STRIDE).zip(&mut slots) {
+                *e = *k;
             }
         }
-        for (l, r) in lr.iter().zip(rr) {
-            let d = r - l;
-            lanes[0] &= d >= thr;
+        if w.end == n - 1 {
+            // The last value, with the last width.
+            lanes.take(0, thr, self.values[n - 1]);
         }
-        // The stretches the loop did not reach (the last knot's included).
-        let tail = w.start + (w.end - w.start) / STRIDE * STRIDE;
-        for (e, k) in slots.zip(knots[tail..].iter().step_by(STRIDE)) {
+        // The summary's entries past the widths (the last knot's, when the
+        // widths end on a stride).
+        let past = w.start + (w.end - w.start).div_ceil(STRIDE) * STRIDE;
+        for (e, k) in slots.zip(knots.get(past..).unwrap_or_default().iter().step_by(STRIDE)) {
             *e = *k;
         }
-        let mut ok = lanes.iter().all(|&b| b);
-        // Four running maxima and finiteness flags, so that the loop vectorises.
-        let values = if w.end == n - 1 {
-            &self.values[w.start..]
-        } else {
-            &self.values[w.clone()]
-        };
-        let mut mx = [0.0f64; 4];
-        let mut fin = [true; 4];
-        let chunks = values.chunks_exact(4);
-        let rest = chunks.remainder();
-        for c in chunks {
-            for j in 0..4 {
-                let a = c[j].abs();
-                mx[j] = if a > mx[j] { a } else { mx[j] };
-                fin[j] &= c[j].is_finite();
-            }
-        }
-        for &v in rest {
-            let a = v.abs();
-            mx[0] = if a > mx[0] { a } else { mx[0] };
-            fin[0] &= v.is_finite();
-        }
-        ok &= fin.iter().all(|&f| f);
+        let Lanes { least, most, zero } = lanes;
+        let mut ok = least.iter().all(|&d| d >= thr) && zero.iter().sum::<f64>() == 0.0;
         if let Some(a) = self.alphas.get(w) {
             ok &= a
                 .iter()
                 .fold(true, |ok, a| ok & (ALPHA_MIN..=ALPHA_MAX).contains(a));
         }
-        let m = mx[0].max(mx[1]).max(mx[2].max(mx[3]));
+        let m = most[0].max(most[1]).max(most[2].max(most[3]));
         ok.then_some(m)
+    }
+}
+
+/// What [`Stretches::widths`] keeps of the widths and values it has read,
+/// in four lanes.
+struct Lanes {
+    /// The least width.
+    least: [f64; 4],
+    /// The largest `|F|`.
+    most: [f64; 4],
+    /// The sum of `0 * w + 0 * F`: zero while every width and value is
+    /// finite, NaN once one is not.
+    zero: [f64; 4],
+}
+
+impl Lanes {
+    /// Takes width `d` and value `v` into lane `j`.
+    #[inline(always)]
+    fn take(&mut self, j: usize, d: f64, v: f64) {
+        self.least[j] = if d < self.least[j] { d } else { self.least[j] };
+        let a = v.abs();
+        self.most[j] = if a > self.most[j] { a } else { self.most[j] };
+        self.zero[j] += d * 0.0 + v * 0.0;
     }
 }
 

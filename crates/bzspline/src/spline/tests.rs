@@ -2,11 +2,13 @@
 //! assembly, the defining conditions, batches, rebuilds and the range of a
 //! double.
 
+use super::build::quick_check;
 use super::*;
 use crate::error::{Error, Field};
-use crate::fast::search::Summary;
+use crate::fast::search::{Summary, STRIDE};
 use crate::poly::{deriv_of, horner};
 use crate::traits::ParamCurve;
+use crate::validate::MIN_RELATIVE_INTERVAL;
 
 #[test]
 fn the_fused_through_sweep_matches_the_reference() {
@@ -783,4 +785,91 @@ fn first_value_is_exact_beside_a_value_near_the_top_of_the_range() {
         assert_eq!(y, s.eval(*x).unwrap(), "batch at {x}");
     }
     assert_eq!(out[0], f0);
+}
+
+/// What the one-pass check must find, item by item: `Some(max |F|)` when the
+/// span is finite and positive, every width at least `span * EPSILON` (and
+/// positive), every value finite and every alpha in range.
+fn brute_force_check(knots: &[f64], values: &[f64], alphas: &[f64]) -> Option<f64> {
+    let n = knots.len();
+    let span = knots[n - 1] - knots[0];
+    let thr = (span * MIN_RELATIVE_INTERVAL).max(f64::from_bits(1));
+    let ok = span.is_finite()
+        && span > 0.0
+        && knots.windows(2).all(|w| w[1] - w[0] >= thr)
+        && values.iter().all(|v| v.is_finite())
+        && alphas.iter().all(|a| (ALPHA_MIN..=ALPHA_MAX).contains(a));
+    ok.then(|| values.iter().fold(0.0f64, |m, v| m.max(v.abs())))
+}
+
+/// A change to knots, values and alphas.
+type Fault<'a> = dyn Fn(&mut [f64], &mut [f64], &mut [f64]) + 'a;
+
+#[test]
+fn the_one_pass_check_agrees_with_a_brute_force_check() {
+    let mut rng = Rng(0x0c4e_c4ed);
+    // Sizes around the lanes, the strides, the blocks of the loop and the
+    // two halves.
+    for n in [
+        2, 3, 4, 5, 7, 8, 9, 17, 33, 40, 1025, 2051, 2066, 4100, 4113,
+    ] {
+        let (x, f, a) = random_data(&mut rng, n, 1.0);
+        let mut positions: Vec<usize> = (0..n.min(40)).chain(n.saturating_sub(40)..n).collect();
+        for b in (1024..n)
+            .step_by(1024)
+            .chain([(n - 1) / 2 / STRIDE * STRIDE])
+        {
+            positions.extend(b.saturating_sub(2)..(b + 3).min(n));
+        }
+        positions.extend((0..30).map(|_| (rng.next() * n as f64) as usize));
+        let mut summary = Summary::default();
+        let want = brute_force_check(&x, &f, &a);
+        assert!(want.is_some());
+        let got = quick_check(&x, &f, Alphas::PerInterval(&a), &mut summary);
+        assert_eq!(got, want, "n {n}");
+        let every: Vec<f64> = x.iter().step_by(STRIDE).copied().collect();
+        assert_eq!(summary.every, every, "n {n}: summary");
+        for &i in &positions {
+            let faults: [(&str, &Fault<'_>); 8] = [
+                ("NaN value", &|_, f, _| f[i] = f64::NAN),
+                ("infinite value", &|_, f, _| f[i] = f64::INFINITY),
+                ("negative infinite value", &|_, f, _| f[i] = -f64::INFINITY),
+                ("NaN knot", &|x, _, _| x[i] = f64::NAN),
+                ("repeated knot", &|x, _, _| x[i.max(1)] = x[i.max(1) - 1]),
+                ("knot too close", &|x, _, _| {
+                    let j = i.max(1);
+                    x[j] = x[j - 1] + (x[x.len() - 1] - x[0]) * f64::EPSILON / 2.0;
+                }),
+                ("knot out of order", &|x, _, _| {
+                    x.swap(i.max(1) - 1, i.max(1))
+                }),
+                ("alpha out of range", &|_, _, a| {
+                    if let Some(a) = a.get_mut(i) {
+                        *a = ALPHA_MAX + 1e-9;
+                    }
+                }),
+            ];
+            for (what, fault) in faults {
+                let (mut x, mut f, mut a) = (x.clone(), f.clone(), a.clone());
+                fault(&mut x, &mut f, &mut a);
+                let want = brute_force_check(&x, &f, &a);
+                let got = quick_check(&x, &f, Alphas::PerInterval(&a), &mut summary);
+                assert_eq!(got, want, "n {n}: {what} at {i}");
+                // Every fault but an alpha past the last leg and a last knot
+                // moved close (which moves the span too) makes the input bad.
+                let end = i.max(1) == n - 1;
+                if !(what == "alpha out of range" && i == n - 1 || what == "knot too close" && end)
+                {
+                    assert!(got.is_none(), "n {n}: {what} at {i} passed");
+                }
+            }
+        }
+    }
+    // Values and widths at the top of the range: nothing overflows to a
+    // false alarm.
+    let x = [0.0, 6e307, 1.2e308, 1.79e308];
+    let f = [f64::MAX, -f64::MAX, f64::MAX, 1.0];
+    let mut summary = Summary::default();
+    let got = quick_check(&x, &f, Alphas::Uniform(0.5), &mut summary);
+    assert_eq!(got, Some(f64::MAX));
 }
