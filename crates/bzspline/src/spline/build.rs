@@ -148,7 +148,8 @@ impl Stretches<'_> {
             }
         }
         if w.end == n - 1 {
-            // The last value, with the last width.
+            // The last value, beside a width that passes (the last width
+            // was taken with the value before).
             lanes.take(0, thr, self.values[n - 1]);
         }
         // The summary's entries past the widths (the last knot's, when the
