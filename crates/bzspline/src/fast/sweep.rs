@@ -45,8 +45,8 @@ use crate::method::alpha_terms;
 
 /// Rows between two renormalisations of the continuants: each row multiplies
 /// them by a pivot between `3 * 2^-52` and `32` (widths relative to a span
-/// near 1), so in 8 rows they stay within `2^-400 .. 2^40` of `[1, 2)`, and a
-/// product of two of them far inside a double.
+/// near 1), so in 8 rows they stay within `2^-400 .. 2^40` of `[1, 2)`, far
+/// inside a double.
 pub(super) const RENORM: usize = 8;
 
 /// Multiplies `p` and `q` by the power of two that brings `p` into `[1, 2)`,
@@ -695,10 +695,11 @@ impl<L: Lane, const D: usize> Elim<L, D> {
         let (p_prev, p_prev2) = (self.p_prev, self.p_prev2);
         let p1 = d1 * p_prev - e1 * p_prev2;
         let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
-        // One division for both pivots' reciprocals.
-        let rr = L::splat(1.0) / (p1 * p2);
-        let inv1 = p_prev * p2 * rr;
-        let inv2 = p1 * p1 * rr;
+        // Each pivot's reciprocal `P_{k+1} / P_k` by its own division, off
+        // the chain: two divisions cost less than the five multiplications
+        // that would share one between the rows (BENCHMARKS.md).
+        let inv1 = p_prev / p1;
+        let inv2 = p1 / p2;
         let (m1, m2) = (l1 * inv1, l2 * inv2);
         let mut y1 = [L::splat(0.0); D];
         let mut y2 = [L::splat(0.0); D];
