@@ -696,8 +696,9 @@ impl<L: Lane, const D: usize> Elim<L, D> {
         let p1 = d1 * p_prev - e1 * p_prev2;
         let p2 = (d2 * d1 - e2) * p_prev - (d2 * e1) * p_prev2;
         // Each pivot's reciprocal `P_{k+1} / P_k` by its own division, off
-        // the chain: two divisions cost less than the five multiplications
-        // that would share one between the rows (BENCHMARKS.md).
+        // the chain: measured, two divisions cost less than the five
+        // multiplications that would share one between the rows
+        // (BENCHMARKS.md, "Construction in chunks").
         let inv1 = p_prev / p1;
         let inv2 = p1 / p2;
         let (m1, m2) = (l1 * inv1, l2 * inv2);
