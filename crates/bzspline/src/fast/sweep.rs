@@ -708,7 +708,11 @@ impl<L: Lane, const D: usize> Elim<L, D> {
             let g1 = (hl * df1[c] - h1 * self.df_l[c]) * inv1;
             let g2 = (h1 * df2[c] - h2 * df1[c]) * inv2;
             y1[c] = g1 - m1 * self.y_prev[c];
-            y2[c] = (g2 - m2 * g1) + (m2 * m1) * self.y_prev[c];
+            // y_{k-1} from y_k, as a row taken alone would: one more
+            // multiply-subtract on the chain of swept right-hand sides, which
+            // measured less than the two multiplications that would take it
+            // from y_{k+1} (BENCHMARKS.md, "Construction in chunks").
+            y2[c] = g2 - m2 * y1[c];
         }
         self.advance(2, p1, p2);
         self.y_prev = y2;
